@@ -1,0 +1,37 @@
+"""topomesh: connected, orientable 2-manifold polygon meshes of any genus.
+
+A Rust core (``topomesh._core``) with NumPy in and out. Start with a
+primitive or your own arrays::
+
+    import topomesh
+    m = topomesh.cube()
+    m.genus, m.n_faces
+    tm = m.to_trimesh()
+"""
+
+from topomesh._core import (
+    Mesh,
+    MeshError,
+    cube,
+    dodecahedron,
+    genus_surface,
+    icosahedron,
+    octahedron,
+    tetrahedron,
+    torus,
+)
+from topomesh.io import load  # noqa: E402
+
+__all__ = [
+    "Mesh",
+    "MeshError",
+    "cube",
+    "dodecahedron",
+    "genus_surface",
+    "icosahedron",
+    "load",
+    "octahedron",
+    "tetrahedron",
+    "torus",
+]
+__version__ = "0.1.0"

@@ -1,0 +1,108 @@
+//! NumPy <-> core conversions with input checks that name the problem.
+
+use super::arg_err;
+use glam::DVec3;
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
+use pyo3::prelude::*;
+
+/// `numpy.asarray(obj)` with a named error instead of numpy's own.
+fn as_ndarray<'py>(py: Python<'py>, obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Bound<'py, PyAny>> {
+    let np = py.import("numpy")?;
+    np.call_method1("asarray", (obj,))
+        .map_err(|e| arg_err(format!("{what}: cannot be read as an array ({e})")))
+}
+
+fn dtype_kind(a: &Bound<'_, PyAny>) -> PyResult<String> {
+    a.getattr("dtype")?.getattr("kind")?.extract()
+}
+
+/// A `(V, 3)` array of finite numbers → positions. Integer and float32
+/// input is accepted (converted); anything else is a `MeshError`.
+pub(crate) fn positions(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Vec<DVec3>> {
+    let a = as_ndarray(py, obj, "vertices")?;
+    let kind = dtype_kind(&a)?;
+    if !matches!(kind.as_str(), "f" | "i" | "u") {
+        return Err(arg_err(format!(
+            "vertices: dtype {} is not a real number type (expected float64, shape (V, 3))",
+            a.getattr("dtype")?.str()?
+        )));
+    }
+    let shape: Vec<usize> = a.getattr("shape")?.extract()?;
+    if shape.len() != 2 || shape[1] != 3 {
+        return Err(arg_err(format!("vertices: shape {shape:?} is not (V, 3)")));
+    }
+    let a = py.import("numpy")?.call_method1("ascontiguousarray", (a, "float64"))?;
+    let arr = a.cast::<PyArray2<f64>>()?.readonly();
+    let s = arr.as_slice()?;
+    Ok(s.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect())
+}
+
+/// A 1-D array of integers → `i64`s (no silent float truncation).
+pub(crate) fn indices_1d(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<i64>> {
+    let a = as_ndarray(py, obj, what)?;
+    let kind = dtype_kind(&a)?;
+    let shape: Vec<usize> = a.getattr("shape")?.extract()?;
+    if shape.len() != 1 {
+        return Err(arg_err(format!("{what}: shape {shape:?} is not one-dimensional")));
+    }
+    if shape[0] > 0 && !matches!(kind.as_str(), "i" | "u") {
+        return Err(arg_err(format!("{what}: dtype {} is not an integer type", a.getattr("dtype")?.str()?)));
+    }
+    let a = py.import("numpy")?.call_method1("ascontiguousarray", (a, "int64"))?;
+    let arr = a.cast::<PyArray1<i64>>()?.readonly();
+    Ok(arr.as_slice()?.to_vec())
+}
+
+/// Faces given as a 2-D integer array `(F, k)` or as any sequence of index
+/// sequences (ragged allowed) → `(sizes, flat indices)`.
+pub(crate) fn faces(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<(Vec<i64>, Vec<i64>)> {
+    // fast path: a rectangular integer ndarray
+    if let Ok(kind) = dtype_kind(obj) {
+        let shape: Vec<usize> = obj.getattr("shape")?.extract()?;
+        if shape.len() == 2 {
+            if !matches!(kind.as_str(), "i" | "u") && shape[0] * shape[1] > 0 {
+                return Err(arg_err(format!("faces: dtype {} is not an integer type", obj.getattr("dtype")?.str()?)));
+            }
+            let a = py.import("numpy")?.call_method1("ascontiguousarray", (obj, "int64"))?;
+            let arr = a.cast::<PyArray2<i64>>()?.readonly();
+            if shape[1] == 0 && shape[0] > 0 {
+                return Err(crate::python::err(crate::MeshError::EmptyFace { face: 0 }));
+            }
+            return Ok((vec![shape[1] as i64; shape[0]], arr.as_slice()?.to_vec()));
+        }
+        if shape.len() != 1 || kind != "O" {
+            return Err(arg_err(format!("faces: array of shape {shape:?} is neither (F, k) nor a sequence of faces")));
+        }
+    }
+    let seq = obj
+        .try_iter()
+        .map_err(|_| arg_err("faces: expected a sequence of index sequences or an (F, k) integer array"))?;
+    let mut sizes = Vec::new();
+    let mut flat = Vec::new();
+    for (f, face) in seq.enumerate() {
+        let face = face?;
+        let idx = indices_1d(py, &face, &format!("face {f}"))
+            .map_err(|e| arg_err(format!("{}", e.value(py))))?;
+        if idx.is_empty() {
+            return Err(crate::python::err(crate::MeshError::EmptyFace { face: f }));
+        }
+        sizes.push(idx.len() as i64);
+        flat.extend(idx);
+    }
+    Ok((sizes, flat))
+}
+
+pub(crate) fn vec3_array<'py>(py: Python<'py>, v: &[DVec3]) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = v.iter().flat_map(|p| p.to_array()).collect();
+    Array2::from_shape_vec((v.len(), 3), flat).expect("shape").into_pyarray(py)
+}
+
+pub(crate) fn i64_array<'py>(py: Python<'py>, v: impl IntoIterator<Item = i64>) -> Bound<'py, PyArray1<i64>> {
+    Array1::from_iter(v).into_pyarray(py)
+}
+
+pub(crate) fn u32_rows<'py, const K: usize>(py: Python<'py>, v: &[[u32; K]]) -> Bound<'py, PyArray2<i64>> {
+    let flat: Vec<i64> = v.iter().flat_map(|r| r.iter().map(|&x| x as i64)).collect();
+    Array2::from_shape_vec((v.len(), K), flat).expect("shape").into_pyarray(py)
+}

@@ -1,0 +1,403 @@
+//! `topomesh.Mesh`: an immutable Python view of the core `Mesh`. Operations
+//! return new meshes. Interop and file methods delegate to the pure-Python
+//! `topomesh._interop` / `topomesh.io` modules.
+
+use super::convert::{faces, i64_array, indices_1d, positions, u32_rows, vec3_array};
+use super::{arg_err, err};
+use crate::mesh::{BuildOptions, Corner, EdgeId, FaceId, Mesh, VertexId};
+use crate::primitives;
+use glam::DVec3;
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+
+/// A closed, orientable 2-manifold polygon mesh (immutable).
+///
+/// Build one with :meth:`Mesh.from_polygons`, :meth:`Mesh.from_flat`,
+/// :func:`topomesh.load` or a primitive such as :func:`topomesh.cube`.
+/// Self-loops, multi-edges, two-gons and point-spheres are legal.
+#[pyclass(name = "Mesh", module = "topomesh", frozen)]
+pub struct PyMesh {
+    pub inner: Mesh,
+}
+
+impl PyMesh {
+    pub fn wrap(inner: Mesh) -> Self {
+        PyMesh { inner }
+    }
+
+    fn face_id(&self, f: i64) -> PyResult<FaceId> {
+        if f < 0 || f as usize >= self.inner.n_faces() {
+            return Err(arg_err(format!("face {f} out of range (mesh has {} faces)", self.inner.n_faces())));
+        }
+        Ok(FaceId(f as u32))
+    }
+
+    fn corner(&self, face: i64, position: i64) -> PyResult<Corner> {
+        let f = self.face_id(face)?;
+        if position < 0 {
+            return Err(arg_err(format!("corner position {position} of face {face} is negative")));
+        }
+        self.inner.corner(f, position as usize).map_err(err)
+    }
+
+    /// Calls `module.func(self, *args)`: interop and file code lives in Python.
+    fn delegate<'py>(slf: &Bound<'py, Self>, module: &str, func: &str, args: &[Bound<'py, PyAny>]) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let f = py.import(module)?.getattr(func)?;
+        let mut all = vec![slf.clone().into_any()];
+        all.extend(args.iter().cloned());
+        f.call1(pyo3::types::PyTuple::new(py, all)?)
+    }
+}
+
+fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: Vec<i64>, idx: Vec<i64>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+    let opts = BuildOptions { close_boundaries, allow_multi_edges };
+    let m = py.detach(|| Mesh::from_polygons(pos, &sizes, &idx, opts)).map_err(err)?;
+    Ok(PyMesh::wrap(m))
+}
+
+#[pymethods]
+impl PyMesh {
+    /// Build a mesh from vertices and polygon faces.
+    ///
+    /// Parameters
+    /// ----------
+    /// vertices : array_like, shape (V, 3)
+    ///     Real coordinates (converted to float64).
+    /// faces : sequence of sequences of int, or int array of shape (F, k)
+    ///     Each face lists its vertex indices counter-clockwise seen from
+    ///     outside. Faces may have any size; a size-1 face whose vertex is in
+    ///     no other face is a point-sphere.
+    /// close_boundaries : bool, default False
+    ///     Cap every boundary loop with a hole face (topology only; holes are
+    ///     left out of every export) instead of raising.
+    /// allow_multi_edges : bool, default False
+    ///     Accept more than two face sides on one vertex pair, pairing them in
+    ///     order of appearance.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     Naming the face or vertex: index out of range, empty face, edge used
+    ///     by more than two faces, inconsistent orientation, non-manifold
+    ///     vertex, non-finite coordinate, unreferenced vertex, wrong dtype or
+    ///     shape, boundary edge.
+    #[staticmethod]
+    #[pyo3(signature = (vertices, faces, close_boundaries = false, allow_multi_edges = false))]
+    fn from_polygons(py: Python<'_>, vertices: &Bound<'_, PyAny>, faces: &Bound<'_, PyAny>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+        let pos = positions(py, vertices)?;
+        let (sizes, idx) = self::faces(py, faces)?;
+        build(py, pos, sizes, idx, close_boundaries, allow_multi_edges)
+    }
+
+    /// Build a mesh from vertices, ``face_sizes`` (F,) and flat ``face_indices``,
+    /// the layout of the :attr:`face_sizes` / :attr:`face_indices` exports.
+    /// Same checks and options as :meth:`from_polygons`.
+    #[staticmethod]
+    #[pyo3(signature = (vertices, face_sizes, face_indices, close_boundaries = false, allow_multi_edges = false))]
+    fn from_flat(py: Python<'_>, vertices: &Bound<'_, PyAny>, face_sizes: &Bound<'_, PyAny>, face_indices: &Bound<'_, PyAny>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+        let pos = positions(py, vertices)?;
+        let sizes = indices_1d(py, face_sizes, "face_sizes")?;
+        let idx = indices_1d(py, face_indices, "face_indices")?;
+        build(py, pos, sizes, idx, close_boundaries, allow_multi_edges)
+    }
+
+    /// Vertex coordinates, float64 array of shape (V, 3) (a copy).
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        vec3_array(py, self.inner.positions())
+    }
+
+    /// Number of corners of each exported face, int64 (F,). Hole faces are left out.
+    #[getter]
+    fn face_sizes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let p = py.detach(|| self.inner.to_polygons());
+        i64_array(py, p.sizes.iter().map(|&s| s as i64))
+    }
+
+    /// Vertex indices of all exported faces, concatenated, int64. Self-loops
+    /// show as a vertex repeated in a row; lossless with :attr:`face_sizes`.
+    #[getter]
+    fn face_indices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let p = py.detach(|| self.inner.to_polygons());
+        i64_array(py, p.indices.iter().map(|&s| s as i64))
+    }
+
+    /// Faces in pyvista/VTK layout ``[n, i0, ..., n, ...]``, int64.
+    #[getter]
+    fn padded_faces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let p = py.detach(|| self.inner.to_padded_faces());
+        i64_array(py, p.iter().map(|&s| s as i64))
+    }
+
+    /// The two end vertices of every edge, int64 (E, 2).
+    #[getter]
+    fn edges<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        let m = &self.inner;
+        let rows: Vec<[u32; 2]> = m.edges().map(|e| [m.vertex(e.halfedge()).0, m.head(e.halfedge()).0]).collect();
+        u32_rows(py, &rows)
+    }
+
+    #[getter]
+    fn n_vertices(&self) -> usize {
+        self.inner.n_vertices()
+    }
+    #[getter]
+    fn n_edges(&self) -> usize {
+        self.inner.n_edges()
+    }
+    /// Number of faces, hole faces included (see :attr:`n_holes`).
+    #[getter]
+    fn n_faces(&self) -> usize {
+        self.inner.n_faces()
+    }
+    /// Faces added by ``close_boundaries=True``.
+    #[getter]
+    fn n_holes(&self) -> usize {
+        self.inner.n_holes()
+    }
+    /// V − E + F.
+    #[getter]
+    fn euler_characteristic(&self) -> i64 {
+        self.inner.euler_characteristic()
+    }
+    /// Total genus: the sum of the genera of the components.
+    #[getter]
+    fn genus(&self) -> i64 {
+        self.inner.genus()
+    }
+    /// Genus of each connected component, as a list.
+    #[getter]
+    fn component_genera(&self) -> Vec<i64> {
+        self.inner.component_genera()
+    }
+    #[getter]
+    fn n_components(&self) -> usize {
+        self.inner.n_components()
+    }
+    /// Edges whose two ends are the same vertex.
+    #[getter]
+    fn n_self_loops(&self) -> usize {
+        self.inner.n_self_loops()
+    }
+    /// ``{face size: count}``, holes included.
+    #[getter]
+    fn face_size_histogram(&self) -> std::collections::BTreeMap<usize, usize> {
+        self.inner.face_size_histogram()
+    }
+    /// ``{valence: count}``; a self-loop adds 2 to its vertex's valence.
+    #[getter]
+    fn valence_histogram(&self) -> std::collections::BTreeMap<usize, usize> {
+        self.inner.valence_histogram()
+    }
+    /// Mean of each face's corner positions, float64 (F, 3), holes included.
+    #[getter]
+    fn face_centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let c = py.detach(|| self.inner.face_centroids());
+        vec3_array(py, &c)
+    }
+    /// Unit face normals by Newell's method, float64 (F, 3); zero rows for
+    /// degenerate faces.
+    #[getter]
+    fn face_normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let c = py.detach(|| self.inner.face_normals());
+        vec3_array(py, &c)
+    }
+    /// Area-weighted unit vertex normals, float64 (V, 3).
+    #[getter]
+    fn vertex_normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let c = py.detach(|| self.inner.vertex_normals());
+        vec3_array(py, &c)
+    }
+    /// Signed enclosed volume; positive when faces are oriented outward.
+    #[getter]
+    fn volume(&self) -> f64 {
+        self.inner.signed_volume()
+    }
+
+    /// Triangles for rendering and validation, int64 (T, 3).
+    ///
+    /// Self-loops (consecutive repeated vertices) are dropped, faces with
+    /// fewer than three distinct corners give no triangle, convex faces are
+    /// fanned and non-convex ones ear-clipped in their plane. With
+    /// ``return_faces=True`` also returns the source face of every triangle.
+    #[pyo3(signature = (return_faces = false))]
+    fn triangles<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
+        let (t, f) = py.detach(|| self.inner.triangles());
+        let tris = u32_rows(py, &t).into_any();
+        if return_faces {
+            Ok((tris, i64_array(py, f.iter().map(|&x| x as i64))).into_pyobject(py)?.into_any())
+        } else {
+            Ok(tris)
+        }
+    }
+
+    /// Check every structural invariant; raise :class:`MeshError` naming the
+    /// first one broken. A mesh made by topomesh always passes.
+    fn validate(&self, py: Python<'_>) -> PyResult<()> {
+        py.detach(|| self.inner.validate()).map_err(err)
+    }
+
+    // ------------------------------------------------ fundamental operators
+
+    /// CreateVertex(p) (dissertation ch. II.5): a new mesh with an added
+    /// point-sphere at ``p``. Returns ``(mesh, vertex, face)``.
+    /// V+1, F+1, components+1, genus unchanged.
+    fn create_vertex(&self, point: [f64; 3]) -> PyResult<(PyMesh, usize, usize)> {
+        let mut m = self.inner.clone();
+        let (v, f) = m.create_vertex(DVec3::from_array(point)).map_err(err)?;
+        Ok((PyMesh::wrap(m), v.idx(), f.idx()))
+    }
+
+    /// DeleteVertex(v): a new mesh without the point-sphere ``v``. The last
+    /// vertex takes index ``v`` and the last face the point-sphere's face
+    /// index. Raises :class:`MeshError` if ``v`` has edges.
+    fn delete_vertex(&self, vertex: i64) -> PyResult<PyMesh> {
+        if vertex < 0 || vertex as usize >= self.inner.n_vertices() {
+            return Err(arg_err(format!("vertex {vertex} out of range (mesh has {} vertices)", self.inner.n_vertices())));
+        }
+        let mut m = self.inner.clone();
+        m.delete_vertex(VertexId(vertex as u32)).map_err(err)?;
+        Ok(PyMesh::wrap(m))
+    }
+
+    /// InsertEdge(c1, c2): a new mesh with an edge between corner
+    /// ``position1`` of ``face1`` and corner ``position2`` of ``face2``
+    /// (positions as in :attr:`face_indices`). Returns ``(mesh, edge)``.
+    ///
+    /// Same face: it splits (F+1, genus unchanged). Two faces of one
+    /// component: they merge (F−1, genus+1). Two components: they join
+    /// (F−1, components−1).
+    fn insert_edge(&self, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<(PyMesh, usize)> {
+        let c1 = self.corner(face1, position1)?;
+        let c2 = self.corner(face2, position2)?;
+        let mut m = self.inner.clone();
+        let e = m.insert_edge(c1, c2).map_err(err)?;
+        Ok((PyMesh::wrap(m), e.idx()))
+    }
+
+    /// DeleteEdge(e): a new mesh without edge ``e`` (inverse of
+    /// :meth:`insert_edge`). Different faces on its sides merge (F−1); the
+    /// same face on both sides separates (F+1, genus−1 or components+1).
+    fn delete_edge(&self, edge: i64) -> PyResult<PyMesh> {
+        if edge < 0 || edge as usize >= self.inner.n_edges() {
+            return Err(arg_err(format!("edge {edge} out of range (mesh has {} edges)", self.inner.n_edges())));
+        }
+        let mut m = self.inner.clone();
+        m.delete_edge(EdgeId(edge as u32)).map_err(err)?;
+        Ok(PyMesh::wrap(m))
+    }
+
+    /// A new mesh with the same connectivity and new vertex positions (V, 3).
+    fn with_vertices(&self, py: Python<'_>, vertices: &Bound<'_, PyAny>) -> PyResult<PyMesh> {
+        let pos = positions(py, vertices)?;
+        if pos.len() != self.inner.n_vertices() {
+            return Err(arg_err(format!("with_vertices: got {} vertices, mesh has {}", pos.len(), self.inner.n_vertices())));
+        }
+        if let Some(v) = pos.iter().position(|p| !p.is_finite()) {
+            return Err(err(crate::MeshError::NonFinite { vertex: v }));
+        }
+        let mut m = self.inner.clone();
+        m.positions_mut().copy_from_slice(&pos);
+        Ok(PyMesh::wrap(m))
+    }
+
+    // -------------------------------------------- interop (pure Python side)
+
+    /// A ``trimesh.Trimesh`` of :meth:`triangles` (``process=False``).
+    fn to_trimesh<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        Self::delegate(slf, "topomesh._interop", "to_trimesh", &[])
+    }
+    /// A ``pyvista.PolyData`` with the polygon faces (no triangulation).
+    fn to_pyvista<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        Self::delegate(slf, "topomesh._interop", "to_pyvista", &[])
+    }
+    /// A ``manifold3d.Manifold`` of :meth:`triangles`.
+    fn to_manifold<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        Self::delegate(slf, "topomesh._interop", "to_manifold", &[])
+    }
+    /// Write to ``path``; the format comes from the extension (.obj, .off, .ply).
+    fn save<'py>(slf: &Bound<'py, Self>, path: &Bound<'py, PyAny>) -> PyResult<()> {
+        Self::delegate(slf, "topomesh.io", "save", &[path.clone()])?;
+        Ok(())
+    }
+
+    fn __repr__(&self) -> String {
+        let m = &self.inner;
+        format!(
+            "Mesh(V={}, E={}, F={}, genus={}, components={})",
+            m.n_vertices(),
+            m.n_edges(),
+            m.n_faces(),
+            m.genus(),
+            m.n_components()
+        )
+    }
+
+    /// Same connectivity arrays and positions.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.cast::<PyMesh>().map(|o| o.get().inner == self.inner).unwrap_or(false)
+    }
+
+    fn __copy__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+    fn __deepcopy__(slf: Py<Self>, _memo: &Bound<'_, PyAny>) -> Py<Self> {
+        slf
+    }
+}
+
+// ------------------------------------------------------------- primitives
+
+/// Regular tetrahedron at alternate corners of the cube [-1, 1]³.
+#[pyfunction]
+fn tetrahedron() -> PyMesh {
+    PyMesh::wrap(primitives::tetrahedron())
+}
+/// The cube [-1, 1]³ (8 vertices, 12 edges, 6 quads).
+#[pyfunction]
+fn cube() -> PyMesh {
+    PyMesh::wrap(primitives::cube())
+}
+/// Octahedron with vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1).
+#[pyfunction]
+fn octahedron() -> PyMesh {
+    PyMesh::wrap(primitives::octahedron())
+}
+/// Dodecahedron with circumradius √3 (20 vertices, 12 pentagons).
+#[pyfunction]
+fn dodecahedron() -> PyMesh {
+    PyMesh::wrap(primitives::dodecahedron())
+}
+/// Icosahedron with vertices (0, ±1, ±φ) and cyclic permutations.
+#[pyfunction]
+fn icosahedron() -> PyMesh {
+    PyMesh::wrap(primitives::icosahedron())
+}
+/// Quad torus around the z axis: ``major`` segments around the axis, ``minor``
+/// around the tube. V = major·minor, F = V, genus 1.
+#[pyfunction]
+#[pyo3(signature = (major = 24, minor = 12, major_radius = 1.0, minor_radius = 0.4))]
+fn torus(major: usize, minor: usize, major_radius: f64, minor_radius: f64) -> PyResult<PyMesh> {
+    primitives::torus(major, minor, major_radius, minor_radius).map(PyMesh::wrap).map_err(err)
+}
+/// A closed genus-``g`` slab, tunnelled with InsertEdge (quads only).
+#[pyfunction]
+fn genus_surface(g: usize) -> PyResult<PyMesh> {
+    if g > 10_000 {
+        return Err(arg_err(format!("genus_surface: g = {g} is too large (at most 10000)")));
+    }
+    primitives::genus_surface(g).map(PyMesh::wrap).map_err(err)
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyMesh>()?;
+    m.add_function(wrap_pyfunction!(tetrahedron, m)?)?;
+    m.add_function(wrap_pyfunction!(cube, m)?)?;
+    m.add_function(wrap_pyfunction!(octahedron, m)?)?;
+    m.add_function(wrap_pyfunction!(dodecahedron, m)?)?;
+    m.add_function(wrap_pyfunction!(icosahedron, m)?)?;
+    m.add_function(wrap_pyfunction!(torus, m)?)?;
+    m.add_function(wrap_pyfunction!(genus_surface, m)?)?;
+    Ok(())
+}

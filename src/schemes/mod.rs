@@ -1,0 +1,2 @@
+//! Schemes: one file each. Every scheme is a free function taking a `&Mesh`
+//! and returning a new `Mesh`; the mesh structure knows nothing about them.
