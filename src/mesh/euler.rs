@@ -261,10 +261,11 @@ impl Mesh {
 
         // splice a and b out of their cycles
         let (pa, pb) = (self.prev(a), self.prev(b));
+        // a walk that reaches a removed side continues after its twin
         let skip = |m: &Mesh, x: HalfedgeId| -> HalfedgeId {
             let mut y = m.next(x);
             while gone(y) {
-                y = m.next(y);
+                y = m.next(y.twin());
             }
             y
         };
@@ -276,6 +277,8 @@ impl Mesh {
 
         // faces of the remaining cycles
         let mut free_faces: Vec<FaceId> = if fa == fb { vec![fa] } else { vec![fa, fb] };
+        // a merged face is a hole only if both sides were
+        let hole = self.f_hole[fa.idx()] && self.f_hole[fb.idx()];
         let mut cycles: Vec<HalfedgeId> = Vec::new();
         for &s in &seeds {
             if cycles.iter().any(|&c| self.face_halfedges_from(c).any(|h| h == s)) {
@@ -286,6 +289,7 @@ impl Mesh {
         for &c in &cycles {
             let f = if !free_faces.is_empty() { free_faces.remove(0) } else { self.push_face(c.0) };
             self.f_start[f.idx()] = c.0;
+            self.f_hole[f.idx()] = hole;
             self.set_cycle_face(c, f);
         }
         // isolated end vertices become point-spheres

@@ -25,7 +25,7 @@ pub use build::{BuildOptions, PolygonFaces};
 pub use euler::Corner;
 pub use query::Histogram;
 
-use glam::DVec3;
+pub(crate) use glam::DVec3;
 
 macro_rules! id_type {
     ($(#[$doc:meta])* $name:ident) => {
@@ -326,3 +326,6 @@ impl Iterator for VertexHalfedges<'_> {
         Some(h)
     }
 }
+
+#[cfg(test)]
+mod tests;
