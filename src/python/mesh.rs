@@ -334,9 +334,15 @@ impl PyMesh {
         )
     }
 
-    /// Same connectivity arrays and positions.
+    /// Equal when the exports are: same vertices (exactly), same faces with
+    /// the same corner order, and as many edges and hole faces.
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
-        other.cast::<PyMesh>().map(|o| o.get().inner == self.inner).unwrap_or(false)
+        let Ok(o) = other.cast::<PyMesh>() else { return false };
+        let (a, b) = (&self.inner, &o.get().inner);
+        a.positions() == b.positions()
+            && a.n_edges() == b.n_edges()
+            && a.n_holes() == b.n_holes()
+            && a.to_polygons() == b.to_polygons()
     }
 
     fn __copy__(slf: Py<Self>) -> Py<Self> {
