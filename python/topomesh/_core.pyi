@@ -3,13 +3,27 @@
 from __future__ import annotations
 
 from os import PathLike
-from typing import Any, Literal, Sequence, overload
+from typing import Any, Literal, Sequence, final, overload
+
 
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "Mesh",
+    "MeshError",
+    "cube",
+    "dodecahedron",
+    "genus_surface",
+    "icosahedron",
+    "octahedron",
+    "tetrahedron",
+    "torus",
+]
+
 class MeshError(ValueError): ...
 
+@final
 class Mesh:
     @staticmethod
     def from_polygons(
@@ -82,7 +96,7 @@ class Mesh:
     def to_pyvista(self) -> Any: ...
     def to_manifold(self) -> Any: ...
     def save(self, path: str | PathLike[str]) -> None: ...
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, value: object, /) -> bool: ...
     def __copy__(self) -> Mesh: ...
     def __deepcopy__(self, memo: Any) -> Mesh: ...
     # --- schemes and operators added by topic below; keep one block per topic ---

@@ -1,0 +1,205 @@
+"""The gallery: every mesh topomesh can make, written out with a render and
+a table of what topomesh, trimesh and manifold3d say about it.
+
+``topomesh gallery OUTDIR`` writes ``OUTDIR/<name>.obj``, ``OUTDIR/<name>.png``
+and ``OUTDIR/summary.md`` (plus ``summary.csv``). Entries come from
+:func:`entries`; a scheme shows up here by adding its builder there.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+
+import topomesh
+from topomesh import Mesh
+
+
+@dataclass(frozen=True)
+class Entry:
+    name: str
+    title: str
+    build: Callable[[], Mesh]
+    #: zero-length features (self-loops at a point) make the raw geometry
+    #: pinched; the peers are then asked about this smoothed realization
+    realize: Callable[[Mesh], Mesh] | None = None
+
+
+def _method(name: str) -> bool:
+    return hasattr(Mesh, name)
+
+
+def entries() -> Iterator[Entry]:
+    """Every gallery entry, in display order. Scheme entries appear when the
+    scheme is available in this build."""
+    solids = {
+        "tetrahedron": topomesh.tetrahedron,
+        "cube": topomesh.cube,
+        "octahedron": topomesh.octahedron,
+        "dodecahedron": topomesh.dodecahedron,
+        "icosahedron": topomesh.icosahedron,
+    }
+    for name, make in solids.items():
+        yield Entry(name, name.capitalize(), make)
+    yield Entry("torus", "Quad torus 24×12", lambda: topomesh.torus(24, 12))
+    for g in (2, 3, 5):
+        yield Entry(f"genus{g}", f"Genus-{g} slab tunnelled with InsertEdge", lambda g=g: topomesh.genus_surface(g))
+    yield from _extra_entries(solids)
+
+
+def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
+    # smoothing and refinement schemes (issue 6)
+    for scheme in ("catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual"):
+        if _method(scheme):
+            yield Entry(
+                f"cube_{scheme}",
+                f"Cube, {scheme.replace('_', '-')} ×3",
+                lambda s=scheme: getattr(topomesh.cube(), s)(iterations=3),
+            )
+    if _method("honeycomb"):
+        for name in ("cube", "dodecahedron"):
+            yield Entry(f"{name}_honeycomb", f"{name.capitalize()}, honeycomb ×2", lambda n=name: solids[n]().honeycomb(iterations=2))
+    if _method("vertex_truncation"):
+        for name in ("tetrahedron", "cube", "dodecahedron"):
+            yield Entry(
+                f"{name}_truncation",
+                f"{name.capitalize()}, Chaikin vertex truncation ×3",
+                lambda n=name: solids[n]().vertex_truncation(iterations=3),
+            )
+    # high-genus fractals (issue 4)
+    smooth = "doo_sabin" if _method("doo_sabin") else ("catmull_clark" if _method("catmull_clark") else None)
+    if _method("sierpinski"):
+        for name in ("tetrahedron", "cube", "octahedron"):
+            yield Entry(
+                f"{name}_sierpinski",
+                f"Sierpinski {name} ×3",
+                lambda n=name: solids[n]().sierpinski(iterations=3),
+                realize=(lambda m: getattr(m, smooth)(iterations=1)) if smooth else None,
+            )
+            if smooth:
+                yield Entry(
+                    f"{name}_sierpinski_{smooth}",
+                    f"Sierpinski {name} ×2, {smooth.replace('_', '-')} ×2",
+                    lambda n=name: getattr(solids[n]().sierpinski(iterations=2), smooth)(iterations=2),
+                )
+    if hasattr(topomesh, "menger_sponge"):
+        for level in (1, 2, 3):
+            yield Entry(f"menger_sponge_{level}", f"Classic Menger sponge, level {level}", lambda k=level: topomesh.menger_sponge(k))
+    if _method("menger"):
+        for name in ("cube", "tetrahedron", "dodecahedron"):
+            yield Entry(f"{name}_menger", f"Generalized Menger {name} ×2", lambda n=name: solids[n]().menger(iterations=2))
+    # handles and rinds (issue 3)
+    if _method("add_handle"):
+        yield Entry("cube_handle", "Cube with a curved handle", lambda: topomesh.cube().add_handle(0, 1, segments=8))
+    if _method("rind"):
+        yield Entry("cube_rind_punched", "Rind cube with 6 holes", lambda: _punched_rind())
+
+
+def _punched_rind() -> Mesh:
+    m = topomesh.cube().catmull_clark(iterations=1) if _method("catmull_clark") else topomesh.cube()
+    r = m.rind(0.1)
+    return r.punch(list(range(0, m.n_faces, 4)))
+
+
+def peer_summary(mesh: Mesh) -> dict[str, object]:
+    """Counts by topomesh, and genus/closedness by trimesh and manifold3d
+    (whichever is installed). Never raises: a peer's failure is reported."""
+    row: dict[str, object] = {
+        "V": mesh.n_vertices,
+        "E": mesh.n_edges,
+        "F": mesh.n_faces,
+        "genus": mesh.genus,
+        "components": mesh.n_components,
+        "self_loops": mesh.n_self_loops,
+    }
+    tris = mesh.triangles()
+    try:
+        import trimesh
+
+        tm = trimesh.Trimesh(mesh.vertices, tris, process=False)
+        row["trimesh_watertight"] = bool(tm.is_watertight)
+        row["trimesh_genus"] = int(mesh.n_components - tm.euler_number // 2)
+    except Exception as e:  # pragma: no cover - reported, not raised
+        row["trimesh_watertight"] = f"error: {type(e).__name__}"
+        row["trimesh_genus"] = ""
+    try:
+        import manifold3d as m3d
+
+        man = m3d.Manifold(m3d.Mesh(vert_properties=mesh.vertices.astype(np.float32), tri_verts=tris.astype(np.uint32)))
+        ok = man.status() == m3d.Error.NoError
+        row["manifold_status"] = str(man.status()).split(".")[-1]
+        # manifold3d's genus is 1 − χ/2 of the whole mesh; add back the components
+        row["manifold_genus"] = int(man.genus()) + mesh.n_components - 1 if ok else ""
+    except Exception as e:  # pragma: no cover
+        row["manifold_status"] = f"error: {type(e).__name__}"
+        row["manifold_genus"] = ""
+    return row
+
+
+def render(mesh: Mesh, path: Path, title: str = "") -> None:
+    """Render ``mesh`` off-screen to a PNG with pyvista."""
+    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+    import pyvista as pv
+
+    pl = pv.Plotter(off_screen=True, window_size=(640, 480))
+    pl.add_mesh(mesh.to_pyvista(), color="#d9b38c", show_edges=mesh.n_faces < 20000, edge_color="#4d3319", smooth_shading=False)
+    if title:
+        pl.add_text(title, font_size=10)
+    pl.view_isometric()
+    pl.screenshot(str(path))
+    pl.close()
+
+
+def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress: bool = True, images: bool = True) -> list[dict[str, object]]:
+    """Build every entry (or those named in ``only``), write mesh + PNG, and
+    the summary table. Returns the table rows."""
+    from tqdm.auto import tqdm
+
+    out = Path(outdir)
+    out.mkdir(parents=True, exist_ok=True)
+    todo = [e for e in entries() if not only or e.name in only]
+    if only:
+        unknown = sorted(set(only) - {e.name for e in todo})
+        if unknown:
+            raise topomesh.MeshError(f"unknown gallery entries: {', '.join(unknown)}")
+    rows = []
+    for e in tqdm(todo, desc="gallery", unit="mesh", disable=not progress):
+        m = e.build()
+        m.validate()
+        m.save(out / f"{e.name}.obj")
+        if images:
+            render(m, out / f"{e.name}.png", e.title)
+        checked = e.realize(m) if e.realize else m
+        row: dict[str, object] = {"name": e.name, "title": e.title}
+        row.update(peer_summary(m))
+        if e.realize:
+            peers = peer_summary(checked)
+            row.update({k: f"{v} (smoothed)" for k, v in peers.items() if k.startswith(("trimesh", "manifold"))})
+        rows.append(row)
+    _write_tables(out, rows)
+    return rows
+
+
+def _write_tables(out: Path, rows: list[dict[str, object]]) -> None:
+    cols = ["name", "V", "E", "F", "genus", "components", "self_loops", "trimesh_watertight", "trimesh_genus", "manifold_status", "manifold_genus"]
+    with open(out / "summary.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    lines = [
+        "# topomesh gallery",
+        "",
+        "Counts and genus by topomesh; watertightness and genus by trimesh and manifold3d on the triangulated mesh. "
+        "Entries with zero-length self-loops (Sierpinski) are checked by the peers after one smoothing step, marked (smoothed).",
+        "",
+        "| " + " | ".join(cols) + " | render |",
+        "|" + "---|" * (len(cols) + 1),
+    ]
+    for r in rows:
+        lines.append("| " + " | ".join(str(r.get(c, "")) for c in cols) + f" | ![]({r['name']}.png) |")
+    (out / "summary.md").write_text("\n".join(lines) + "\n")
