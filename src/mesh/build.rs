@@ -370,6 +370,14 @@ fn pair_sides(
     twin: &mut [u32],
     unmatched: &mut Vec<u32>,
 ) -> Result<()> {
+    // the common case, one side each way, without allocating
+    if let [(_, c0), (_, c1)] = *sides {
+        if lo != hi && (verts[c0 as usize] == lo) != (verts[c1 as usize] == lo) {
+            twin[c0 as usize] = c1;
+            twin[c1 as usize] = c0;
+            return Ok(());
+        }
+    }
     let faces = || sides.iter().map(|&(_, c)| face_of[c as usize] as usize).collect::<Vec<_>>();
     let link = |twin: &mut [u32], a: u32, b: u32| {
         twin[a as usize] = b;
