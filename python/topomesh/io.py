@@ -72,44 +72,10 @@ def save(mesh: Mesh, path: PathLike) -> None:
     coordinates written with 17 significant digits, so reading it back gives
     the same vertices bit for bit). Hole faces are not written."""
     kind = _suffix(path)
-    verts = mesh.vertices
-    sizes = mesh.face_sizes
-    idx = mesh.face_indices
     if kind == ".ply":
-        _write_ply(path, verts, sizes, idx)
-        return
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
-    with open(path, "w", encoding="ascii") as f:
-        if kind == ".off":
-            f.write(f"OFF\n{len(verts)} {len(sizes)} {mesh.n_edges}\n")
-            base, prefix = 0, None
-        else:
-            f.write("# written by topomesh\n")
-            base, prefix = 1, "f"
-        f.write(_format_rows("v " if kind == ".obj" else "", verts))
-        # one line per face; group faces of equal size to format them in bulk
-        lines = np.empty(len(sizes), dtype=object)
-        for s in np.unique(sizes):
-            sel = np.nonzero(sizes == s)[0]
-            rows = idx[offsets[sel][:, None] + np.arange(s)] + base
-            head = f"{prefix} " if prefix else f"{s} "
-            lines[sel] = np.char.add(head, _join_ints(rows))
-        if len(lines):
-            f.write("\n".join(lines.tolist()) + "\n")
-
-
-def _format_rows(prefix: str, a: np.ndarray) -> str:
-    if len(a) == 0:
-        return ""
-    body = "\n".join(prefix + " ".join(repr(float(x)) for x in row) for row in a.tolist())
-    return body + "\n"
-
-
-def _join_ints(rows: np.ndarray) -> np.ndarray:
-    out = rows[:, 0].astype(str)
-    for k in range(1, rows.shape[1]):
-        out = np.char.add(np.char.add(out, " "), rows[:, k].astype(str))
-    return out
+        _write_ply(path, mesh.vertices, mesh.face_sizes, mesh.face_indices)
+    else:
+        mesh._write_text(os.fspath(path), kind[1:])
 
 
 def _read_obj(path: PathLike):

@@ -322,6 +322,22 @@ impl PyMesh {
         Ok(())
     }
 
+    /// Write OBJ or OFF text (``format`` "obj" or "off") to ``path``; used by
+    /// :func:`topomesh.io.save`.
+    fn _write_text(&self, py: Python<'_>, path: std::path::PathBuf, format: &str) -> PyResult<()> {
+        let fmt = match format {
+            "obj" => crate::io::TextFormat::Obj,
+            "off" => crate::io::TextFormat::Off,
+            _ => return Err(arg_err(format!("unknown text format {format:?}"))),
+        };
+        py.detach(|| {
+            let f = std::fs::File::create(&path)
+                .map_err(|e| crate::MeshError::Io(format!("{}: {e}", path.display())))?;
+            crate::io::write_text(&self.inner, fmt, f)
+        })
+        .map_err(err)
+    }
+
     fn __repr__(&self) -> String {
         let m = &self.inner;
         format!(
