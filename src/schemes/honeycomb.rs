@@ -187,7 +187,8 @@ fn edge_point(pos: &[DVec3], a: u32, b: u32, t: f64) -> DVec3 {
     (1.0 - t) * pos[a as usize] + t * pos[b as usize]
 }
 
-fn check_args(t: f64, tension: Option<f64>) -> Result<()> {
+/// The argument checks of [`honeycomb`], for callers that iterate zero times.
+pub fn check_args(t: f64, tension: Option<f64>) -> Result<()> {
     if !(0.0..=1.0).contains(&t) {
         return Err(MeshError::InvalidArgument(format!(
             "honeycomb: t = {t} is outside [0, 1] (eq. 1 takes a point on each edge)"

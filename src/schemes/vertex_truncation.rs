@@ -69,18 +69,26 @@ impl Truncation {
             Truncation::Polyhedral { ratio } => ratio,
         }
     }
+
+    /// Errors unless the ratio is in `(0, 1/2]`.
+    pub fn check(self) -> Result<()> {
+        let r = self.ratio();
+        if r > 0.0 && r <= 0.5 {
+            Ok(())
+        } else {
+            Err(MeshError::InvalidArgument(format!(
+                "vertex_truncation: ratio = {r} is outside (0, 0.5] (the fraction of each edge cut off at each end)"
+            )))
+        }
+    }
 }
 
 /// One step of vertex truncation (see the module docs).
 ///
 /// Errors: a polyhedral `ratio` outside `(0, 1/2]` (including NaN).
 pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
+    mode.check()?;
     let r = mode.ratio();
-    if !(r > 0.0 && r <= 0.5) {
-        return Err(MeshError::InvalidArgument(format!(
-            "vertex_truncation: ratio = {r} is outside (0, 0.5] (the fraction of each edge cut off at each end)"
-        )));
-    }
     let tab = Tables::new(m);
     let nh = m.n_halfedges();
     let nf = m.n_faces();
