@@ -47,6 +47,14 @@ def loop_and_two_gon_cube():
     return m
 
 
+def handle_cube():
+    """A cube whose faces 0 and 1 are merged by an edge (genus 1): the merged
+    face runs along both sides of that edge and visits two vertices twice."""
+    m, _ = topomesh.cube().insert_edge(0, 0, 1, 0)
+    assert m.genus == 1 and m.face_size_histogram[10] == 1
+    return m
+
+
 CORPUS = {
     "tetrahedron": topomesh.tetrahedron,
     "cube": topomesh.cube,
@@ -57,7 +65,11 @@ CORPUS = {
     "genus3": lambda: topomesh.genus_surface(3),
     "loop_two_gon_cube": loop_and_two_gon_cube,
     "star_prism": star_prism,
+    "handle_cube": handle_cube,
 }
+# inputs whose geometry is degenerate (zero-length loop) or self-intersecting
+# (the handle edge runs through the cube): topology checks only
+NO_PEERS = {"loop_two_gon_cube", "handle_cube"}
 
 
 # --------------------------------------------------------------- peer checks
@@ -147,7 +159,7 @@ def test_honeycomb_of_platonic_solids():
     assert m.face_size_histogram[5] == 12
 
 
-@pytest.mark.parametrize("name", [n for n in CORPUS if n != "loop_two_gon_cube"])
+@pytest.mark.parametrize("name", [n for n in CORPUS if n not in NO_PEERS])
 def test_honeycomb_peers(name):
     h = CORPUS[name]().honeycomb(2)
     h.validate()
@@ -245,7 +257,7 @@ def test_truncation_counts(name, kw):
 
 
 @pytest.mark.parametrize("kw", MODES, ids=["chaikin", "poly0.1", "rectify"])
-@pytest.mark.parametrize("name", [n for n in CORPUS if n != "loop_two_gon_cube"])
+@pytest.mark.parametrize("name", [n for n in CORPUS if n not in NO_PEERS])
 def test_truncation_peers(name, kw):
     t = CORPUS[name]().vertex_truncation(2, **kw)
     t.validate()
@@ -345,3 +357,16 @@ def test_truncation_arguments():
     for bad in (0.0, -0.1, 0.51, float("nan")):
         with pytest.raises(topomesh.MeshError, match="ratio"):
             c.vertex_truncation(mode="polyhedral", ratio=bad)
+
+
+def test_point_spheres_and_holes_pass_through():
+    m, _, _ = topomesh.cube().create_vertex([5.0, 0.0, 0.0])
+    for out in (m.honeycomb(2), m.vertex_truncation(2), m.vertex_truncation(mode="polyhedral", ratio=0.5)):
+        out.validate()
+        assert out.n_components == 2 and out.component_genera == [0, 0]
+        assert [5.0, 0.0, 0.0] in out.vertices.tolist()
+    box = topomesh.Mesh.from_polygons(topomesh.cube().vertices, face_rows(topomesh.cube())[1:], close_boundaries=True)
+    for out in (box.honeycomb(), box.vertex_truncation(2)):
+        out.validate()
+        assert out.n_holes == 1
+        assert len(out.face_sizes) == out.n_faces - 1  # the hole is not exported

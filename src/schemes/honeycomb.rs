@@ -38,8 +38,9 @@
 //! one of old half-edge `h`; faces are `[front faces in old face order |
 //! vertex faces in old vertex order]`. Self-loops, one-gons, two-gons,
 //! multi-edges and repeated vertices need no special case. Point-spheres
-//! (no edge to act on) are copied unchanged; faces marked as holes stay holes
-//! (their front face is the hole). O(output) time and memory.
+//! (no edge to act on) are copied unchanged. A face marked as a hole is
+//! subdivided like any other (its points are pulled towards the hole's
+//! centroid) and its front face is the new hole. O(output) time and memory.
 
 use super::tables::Tables;
 use crate::error::{MeshError, Result};
@@ -209,7 +210,7 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::tables::test_support::{counts, one_gon_two_gon_cube, star_prism};
+    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, star_prism};
 
     fn check_step(m: &Mesh) -> Mesh {
         let (v, e, f) = (m.n_vertices(), m.n_edges(), m.n_faces());
@@ -239,6 +240,7 @@ mod tests {
         check_step(&genus_surface(3).unwrap());
         check_step(&one_gon_two_gon_cube());
         check_step(&star_prism());
+        check_step(&handle_cube());
     }
 
     #[test]

@@ -89,6 +89,17 @@ pub(crate) mod test_support {
     use crate::mesh::{BuildOptions, Corner, FaceId, Mesh};
     use glam::DVec3;
 
+    /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
+    /// merged face runs along both sides of the new edge.
+    pub fn handle_cube() -> Mesh {
+        let mut m = crate::primitives::cube();
+        let a = m.face_halfedge(FaceId(0)).unwrap();
+        let b = m.face_halfedge(FaceId(1)).unwrap();
+        m.insert_edge(Corner::Halfedge(a), Corner::Halfedge(b)).unwrap();
+        assert_eq!(m.genus(), 1);
+        m
+    }
+
     /// A prism over a counter-clockwise simple polygon (may be non-convex):
     /// planar faces, every vertex 3-valent.
     pub fn prism(profile: &[[f64; 2]], height: f64) -> Mesh {

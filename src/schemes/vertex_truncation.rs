@@ -175,7 +175,7 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::tables::test_support::{counts, one_gon_two_gon_cube, prism, star_prism};
+    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
 
     /// Largest distance of a face's corners from the plane through its
     /// centroid with its Newell normal, relative to the face's bounding-box
@@ -236,6 +236,7 @@ mod tests {
             genus_surface(3).unwrap(),
             one_gon_two_gon_cube(),
             star_prism(),
+            handle_cube(),
         ];
         for m in &corpus {
             for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.1 }, Truncation::Polyhedral { ratio: 0.5 }] {
