@@ -298,6 +298,66 @@ mod tests {
         }
     }
 
+    /// Section 4's remeshing algorithm with the DLFL operators:
+    /// CreateFaceManifold (CreateVertex + InsertEdge) per old face, then one
+    /// InsertEdge per old edge between the back corners. New vertex `h` is
+    /// created for old half-edge `h`, as in the one-pass builder.
+    fn honeycomb_by_operators(m: &Mesh, t: f64) -> Mesh {
+        let one_pass = honeycomb(m, t, None).unwrap();
+        let mut out = Mesh::new();
+        for h in m.halfedges() {
+            out.create_vertex(one_pass.position(crate::VertexId(h.0))).unwrap();
+        }
+        // back corner of v'_h: its outgoing half-edge that is not on the front face
+        let mut back = vec![crate::HalfedgeId(0); m.n_halfedges()];
+        for f in m.faces() {
+            let cyc: Vec<_> = m.face_halfedges(f).collect();
+            let n = cyc.len();
+            let mut fwd = Vec::with_capacity(n);
+            for i in 0..n {
+                let (a, b) = (crate::VertexId(cyc[i].0), crate::VertexId(cyc[(i + 1) % n].0));
+                let corner = |o: &Mesh, v: crate::VertexId| match o.vertex_halfedge(v) {
+                    None => crate::Corner::Point(v),
+                    Some(h) => crate::Corner::Halfedge(h), // valence 1 (or the loop's): one corner
+                };
+                let e = out.insert_edge(corner(&out, a), corner(&out, b)).unwrap();
+                fwd.push(e.halfedge());
+            }
+            for i in 0..n {
+                // the twin of the front edge entering v'_i leaves v'_i on the back face
+                back[cyc[i].idx()] = fwd[(i + n - 1) % n].twin();
+            }
+        }
+        for e in m.edges() {
+            let h = e.halfedge();
+            out.insert_edge(crate::Corner::Halfedge(back[h.idx()]), crate::Corner::Halfedge(back[h.twin().idx()])).unwrap();
+        }
+        out
+    }
+
+    fn canonical_faces(m: &Mesh) -> Vec<Vec<u32>> {
+        let mut faces: Vec<Vec<u32>> = m
+            .faces()
+            .map(|f| {
+                let c: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
+                (0..c.len()).map(|k| [&c[k..], &c[..k]].concat()).min().unwrap()
+            })
+            .collect();
+        faces.sort();
+        faces
+    }
+
+    #[test]
+    fn one_pass_equals_section_4_operators() {
+        for m in [cube(), dodecahedron(), torus(6, 4, 2.0, 0.5).unwrap(), genus_surface(2).unwrap(), one_gon_two_gon_cube(), handle_cube(), star_prism()] {
+            let ops = honeycomb_by_operators(&m, 0.5);
+            ops.validate().unwrap();
+            let one = honeycomb(&m, 0.5, None).unwrap();
+            assert_eq!(canonical_faces(&ops), canonical_faces(&one));
+            assert_eq!(ops.genus(), m.genus());
+        }
+    }
+
     #[test]
     fn bad_arguments() {
         let c = cube();
