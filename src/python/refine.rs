@@ -1,0 +1,136 @@
+//! Bindings of the refinement schemes of the honeycomb and vertex truncation
+//! papers: `Mesh.honeycomb` and `Mesh.vertex_truncation`.
+
+use super::mesh::PyMesh;
+use super::{arg_err, err};
+use crate::mesh::Mesh;
+use crate::schemes::honeycomb::{self, honeycomb};
+use crate::schemes::vertex_truncation::{vertex_truncation, Truncation};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// Applies `step` `iterations` times with the GIL released, one tqdm update
+/// per iteration when `progress` is true.
+fn iterate(
+    py: Python<'_>,
+    mesh: &Mesh,
+    iterations: i64,
+    progress: bool,
+    desc: &str,
+    step: impl Fn(&Mesh) -> crate::Result<Mesh> + Send + Sync,
+) -> PyResult<PyMesh> {
+    if iterations < 0 {
+        return Err(arg_err(format!("{desc}: iterations = {iterations} must be >= 0")));
+    }
+    let bar = if progress {
+        let kw = PyDict::new(py);
+        kw.set_item("total", iterations)?;
+        kw.set_item("desc", desc)?;
+        Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
+    } else {
+        None
+    };
+    let mut cur = mesh.clone();
+    for _ in 0..iterations {
+        cur = py.detach(|| step(&cur)).map_err(err)?;
+        if let Some(b) = &bar {
+            b.call_method1("update", (1,))?;
+        }
+    }
+    if let Some(b) = &bar {
+        b.call_method0("close")?;
+    }
+    Ok(PyMesh::wrap(cur))
+}
+
+#[pymethods]
+impl PyMesh {
+    /// Honeycomb subdivision (Akleman & Srinivasan, "Honeycomb Subdivision").
+    ///
+    /// Each face's corners get new points by eq. (1)–(2) of the paper; each
+    /// face keeps its size, each valence-k vertex becomes a 2k-gon and every
+    /// new vertex is 3-valent. Per iteration V' = 2E, E' = 3E, F' = F + V
+    /// (Remark 2); genus unchanged. The dodecahedron gives the truncated
+    /// icosahedron (12 pentagons, 20 hexagons).
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    ///     Number of steps (>= 0).
+    /// t : float, default 0.5
+    ///     Position of the point on each edge, in [0, 1] (eq. 1).
+    /// tension : float or None, default None
+    ///     The weight ``a`` of eq. (2), in [0, 1], for every face; ``None``
+    ///     uses the paper's ``a = 0.45 + 1.25 / N`` for an N-gon (clamped to
+    ///     1 for two-gons). One-gons always use 1.
+    /// progress : bool, default False
+    ///     Show a tqdm progress bar, one tick per iteration.
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     ``iterations`` negative, ``t`` or ``tension`` outside [0, 1].
+    #[pyo3(signature = (iterations = 1, t = 0.5, tension = None, progress = false))]
+    fn honeycomb(&self, py: Python<'_>, iterations: i64, t: f64, tension: Option<f64>, progress: bool) -> PyResult<PyMesh> {
+        honeycomb::check_args(t, tension).map_err(err)?;
+        iterate(py, &self.inner, iterations, progress, "honeycomb", |m| honeycomb(m, t, tension))
+    }
+
+    /// Vertex truncation (Akleman, Edmundson & Ozener, "A Generalized Vertex
+    /// Truncation Scheme").
+    ///
+    /// Cuts every edge at ``ratio`` from each end and replaces every vertex
+    /// by the polygon of its cut points: an n-gon becomes a 2n-gon, a
+    /// valence-m vertex an m-gon, every new vertex is 3-valent; per
+    /// iteration V' = 2E, E' = 3E, F' = F + V, genus unchanged. Planar faces
+    /// with 3-valent vertices (and the octahedron and icosahedron) stay
+    /// planar at every iteration.
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    ///     Number of steps (>= 0).
+    /// mode : {"chaikin", "polyhedral"}, default "chaikin"
+    ///     ``"chaikin"``: the paper's scheme, cuts at 1/4 and 3/4 of each
+    ///     edge. ``"polyhedral"``: classic truncation at ``ratio``.
+    /// ratio : float, default 0.25
+    ///     Fraction of each edge cut off at each end, in (0, 0.5]; only
+    ///     ``mode="polyhedral"`` accepts a value other than 0.25. At 0.5 the
+    ///     two cuts of an edge coincide and are merged: the result is the
+    ///     rectified mesh (cube → cuboctahedron; V' = E, E' = 2E,
+    ///     F' = F + V, 4-valent vertices). ``1 / (2 + 2 cos(pi / n))`` turns
+    ///     regular n-gons into regular 2n-gons (the Archimedean truncations).
+    /// progress : bool, default False
+    ///     Show a tqdm progress bar, one tick per iteration.
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     ``iterations`` negative, unknown ``mode``, ``ratio`` outside
+    ///     (0, 0.5] or not 0.25 with ``mode="chaikin"``.
+    #[pyo3(signature = (iterations = 1, mode = "chaikin", ratio = 0.25, progress = false))]
+    fn vertex_truncation(&self, py: Python<'_>, iterations: i64, mode: &str, ratio: f64, progress: bool) -> PyResult<PyMesh> {
+        let how = match mode {
+            "chaikin" if ratio == 0.25 => Truncation::Chaikin,
+            "chaikin" => {
+                return Err(arg_err(format!(
+                    "vertex_truncation: ratio = {ratio} needs mode='polyhedral' (mode='chaikin' always cuts at 1/4 and 3/4)"
+                )))
+            }
+            "polyhedral" => Truncation::Polyhedral { ratio },
+            other => {
+                return Err(arg_err(format!("vertex_truncation: mode = {other:?} is not one of 'chaikin', 'polyhedral'")))
+            }
+        };
+        how.check().map_err(err)?;
+        iterate(py, &self.inner, iterations, progress, "vertex_truncation", |m| vertex_truncation(m, how))
+    }
+}

@@ -1,0 +1,388 @@
+//! Honeycomb subdivision (honeycomb paper: Akleman & Srinivasan, "Honeycomb
+//! Subdivision").
+//!
+//! **Geometry** (section 2, eq. 1, and section 3, eq. 2). Every corner `n`
+//! of an N-gon `f = (v_0 … v_{N-1})` — equivalently its edge `e_n` from `v_n`
+//! to `v_{n+1}` — gets a new vertex
+//!
+//! ```text
+//! v'_n = Σ_m a_{n,m} p_m,     p_m = (1 − t) v_m + t v_{m+1}   (a point on e_m)
+//! a_{n,n} = a,   a_{n,m} = β_{n−m} (1 − a) / (3N − 5),   β_k = 3 + 2 cos(2kπ/N)
+//! ```
+//!
+//! with `t ∈ [0, 1]` (Remark 1; 0.5 in the paper's figures) and tension
+//! `a ∈ [0, 1]` (the range where every `a_{n,m} ≥ 0`, section 3's first
+//! condition). The default tension is the paper's `a = 0.45 + 1.25/N`,
+//! clamped to 1 for N = 2 (where it would be 1.075 and make a weight
+//! negative). A one-gon has the single weight `a_{0,0}`, which must be 1 for
+//! the weights to sum to 1 (section 3's second condition): its new vertex is
+//! its old one, whatever `a`. The cosine sum is evaluated through
+//! `cos(θ(n−m)) = cos θn cos θm + sin θn sin θm`, so a face costs O(N), not
+//! O(N²).
+//!
+//! **Connectivity** (section 4). Each old face gives a front face (its new
+//! vertices in the old order: an N-gon stays an N-gon) and a back face; each
+//! old edge inserts one edge between the back corners of its two new
+//! vertices. The back faces and inserted edges around an old vertex of
+//! valence k merge into one 2k-gon. Every new vertex is 3-valent (two front
+//! edges, one inserted edge). Counts (Remark 2 of section 2):
+//!
+//! ```text
+//! V' = 2E,   E' = 3E,   F' = F + V,   χ' = χ (genus unchanged)
+//! ```
+//!
+//! The dodecahedron gives 12 pentagons and 20 hexagons (the truncated
+//! icosahedron of Fig. 1); the icosahedron 20 triangles and 12 decagons.
+//!
+//! Built in one pass with [`Mesh::from_corner_twins`]: new vertex `h` is the
+//! one of old half-edge `h`; faces are `[front faces in old face order |
+//! vertex faces in old vertex order]`. Self-loops, one-gons, two-gons,
+//! multi-edges and repeated vertices need no special case. Point-spheres
+//! (no edge to act on) are copied unchanged. A face marked as a hole is
+//! subdivided like any other (its points are pulled towards the hole's
+//! centroid) and its front face is the new hole. O(output) time and memory.
+
+use super::tables::Tables;
+use crate::error::{MeshError, Result};
+use crate::mesh::{FaceStart, Mesh, NONE};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// The paper's default tension for an N-gon, `0.45 + 1.25/N`, clamped to
+/// `[0, 1]` (section 3).
+pub fn default_tension(n: usize) -> f64 {
+    (0.45 + 1.25 / n as f64).min(1.0)
+}
+
+/// One step of honeycomb subdivision (see the module docs).
+///
+/// `t` is the position of the edge points (eq. 1), `tension` the weight `a`
+/// of eq. 2 for every face, or `None` for the paper's `a = 0.45 + 1.25/N`.
+///
+/// Errors: `t` outside `[0, 1]` or `tension` outside `[0, 1]` (including NaN).
+pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
+    check_args(t, tension)?;
+    let tab = Tables::new(m);
+    let nh = m.n_halfedges();
+    let nf = m.n_faces();
+    let nv = m.n_vertices();
+    let (next, vert, face) = m.halfedge_columns();
+    let pos = m.positions();
+
+    // ---- per-face sums of the edge points p_m (relative to the face's first vertex)
+    #[derive(Clone, Copy, Default)]
+    struct Sums {
+        origin: DVec3,
+        s: DVec3,
+        c: DVec3,
+        sn: DVec3,
+    }
+    let sums: Vec<Sums> = (0..nf)
+        .into_par_iter()
+        .map(|f| {
+            let FaceStart::Halfedge(h0) = m.face_start(crate::FaceId(f as u32)) else {
+                return Sums::default();
+            };
+            let n = tab.face_degree(f) as f64;
+            let origin = pos[vert[h0.idx()] as usize];
+            let mut out = Sums { origin, ..Sums::default() };
+            let mut h = h0.0 as usize;
+            let mut k = 0.0f64;
+            loop {
+                let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
+                let th = std::f64::consts::TAU * k / n;
+                out.s += p;
+                out.c += p * th.cos();
+                out.sn += p * th.sin();
+                k += 1.0;
+                h = next[h] as usize;
+                if h == h0.idx() {
+                    break;
+                }
+            }
+            out
+        })
+        .collect();
+
+    // ---- new positions: [one per old half-edge | point-spheres]
+    let mut point_id = vec![NONE; nv];
+    let mut n_points = 0u32;
+    for v in 0..nv {
+        if m.v_out[v] & crate::mesh::POINT != 0 {
+            point_id[v] = nh as u32 + n_points;
+            n_points += 1;
+        }
+    }
+    let mut new_pos: Vec<DVec3> = (0..nh)
+        .into_par_iter()
+        .map(|h| {
+            let f = face[h] as usize;
+            let nn = tab.face_degree(f);
+            let p = edge_point(pos, vert[h], vert[h ^ 1], t);
+            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn as usize)) };
+            if a == 1.0 {
+                return p;
+            }
+            let sm = &sums[f];
+            let p = p - sm.origin;
+            let th = std::f64::consts::TAU * tab.in_face[h] as f64 / nn as f64;
+            let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
+            let rest = 3.0 * sm.s - 5.0 * p + 2.0 * (th.cos() * sm.c + th.sin() * sm.sn);
+            sm.origin + a * p + c1 * rest
+        })
+        .collect();
+    new_pos.reserve_exact(n_points as usize);
+    for v in 0..nv {
+        if point_id[v] != NONE {
+            new_pos.push(pos[v]);
+        }
+    }
+
+    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex]
+    let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
+    let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
+    out_off.push(0);
+    for f in 0..nf {
+        let d = tab.face_degree(f).max(1); // a point-sphere face keeps its one corner
+        sizes.push(d);
+        out_off.push(out_off[f] + d);
+    }
+    for v in 0..nv {
+        let k = tab.valence(v);
+        if k > 0 {
+            sizes.push(2 * k);
+        }
+    }
+    let vb = out_off[nf]; // first corner of the vertex faces
+    let n_corners = vb as usize + 2 * nh;
+    let mut cv = vec![0u32; n_corners];
+    let mut tw = vec![NONE; n_corners];
+    let front = |h: usize| out_off[face[h] as usize] + tab.in_face[h];
+    // corners 2j and 2j+1 of the face of vertex w for its j-th outgoing half-edge g:
+    // v'_g, then v'_{prev g} (the back face's edge g -> prev g, then the inserted edge)
+    let vc_even = |g: usize| vb + 2 * (tab.vert_off[vert[g] as usize] + tab.in_vert[g]);
+    for h in 0..nh {
+        let hp = m.he_prev[h] as usize;
+        let hn = next[h] as usize;
+        let cf = front(h) as usize;
+        cv[cf] = h as u32;
+        tw[cf] = vc_even(hn);
+        let ce = vc_even(h) as usize;
+        cv[ce] = h as u32;
+        tw[ce] = front(hp);
+        cv[ce + 1] = hp as u32;
+        tw[ce + 1] = vc_even(next[hp ^ 1] as usize) + 1;
+    }
+    for f in 0..nf {
+        if let FaceStart::Point(v) = m.face_start(crate::FaceId(f as u32)) {
+            cv[out_off[f] as usize] = point_id[v.idx()];
+        }
+    }
+    let mut out = Mesh::from_corner_twins(new_pos, &sizes, &cv, &tw)?;
+    out.f_hole[..nf].copy_from_slice(&m.f_hole);
+    Ok(out)
+}
+
+#[inline]
+fn edge_point(pos: &[DVec3], a: u32, b: u32, t: f64) -> DVec3 {
+    (1.0 - t) * pos[a as usize] + t * pos[b as usize]
+}
+
+/// The argument checks of [`honeycomb`], for callers that iterate zero times.
+pub fn check_args(t: f64, tension: Option<f64>) -> Result<()> {
+    if !(0.0..=1.0).contains(&t) {
+        return Err(MeshError::InvalidArgument(format!(
+            "honeycomb: t = {t} is outside [0, 1] (eq. 1 takes a point on each edge)"
+        )));
+    }
+    if let Some(a) = tension {
+        if !(0.0..=1.0).contains(&a) {
+            return Err(MeshError::InvalidArgument(format!(
+                "honeycomb: tension = {a} is outside [0, 1] (eq. 2 needs 0 <= a <= 1 for non-negative weights)"
+            )));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::BuildOptions;
+    use crate::primitives::*;
+    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, star_prism};
+
+    fn check_step(m: &Mesh) -> Mesh {
+        let (v, e, f) = (m.n_vertices(), m.n_edges(), m.n_faces());
+        let h = honeycomb(m, 0.5, None).unwrap();
+        h.validate().unwrap();
+        assert_eq!(counts(&h), (2 * e, 3 * e, f + v));
+        assert_eq!(h.genus(), m.genus());
+        assert_eq!(h.n_components(), m.n_components());
+        // every vertex 3-valent; n-gon -> n-gon; valence-k vertex -> 2k-gon
+        assert_eq!(h.valence_histogram().keys().copied().collect::<Vec<_>>(), vec![3]);
+        let mut want = m.face_size_histogram();
+        for (k, c) in m.valence_histogram() {
+            *want.entry(2 * k).or_default() += c;
+        }
+        assert_eq!(h.face_size_histogram(), want);
+        h
+    }
+
+    #[test]
+    fn counts_on_platonic_torus_genus() {
+        for m in [tetrahedron(), cube(), octahedron(), dodecahedron(), icosahedron()] {
+            let h = check_step(&m);
+            let h2 = check_step(&h);
+            assert!(h2.signed_volume() > 0.0);
+        }
+        check_step(&torus(8, 5, 2.0, 0.5).unwrap());
+        check_step(&genus_surface(3).unwrap());
+        check_step(&one_gon_two_gon_cube());
+        check_step(&star_prism());
+        check_step(&handle_cube());
+    }
+
+    #[test]
+    fn dodecahedron_gives_soccer_ball() {
+        let h = honeycomb(&dodecahedron(), 0.5, None).unwrap();
+        let hist: Vec<_> = h.face_size_histogram().into_iter().collect();
+        assert_eq!(hist, vec![(5, 12), (6, 20)]);
+        let i = honeycomb(&icosahedron(), 0.5, None).unwrap();
+        let hist: Vec<_> = i.face_size_histogram().into_iter().collect();
+        assert_eq!(hist, vec![(3, 20), (10, 12)]);
+    }
+
+    /// The O(N) evaluation equals eq. (1)-(2) summed directly.
+    #[test]
+    fn positions_match_direct_formula() {
+        let pos = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.1),
+            DVec3::new(3.0, 1.0, -0.2),
+            DVec3::new(2.0, 3.0, 0.3),
+            DVec3::new(1.0, 1.5, 0.0),
+            DVec3::new(-1.0, 2.0, 0.1),
+            DVec3::new(1.0, 1.0, 2.0),
+        ];
+        // a non-convex hexagon and a fan of triangles closing it
+        let mut sizes = vec![6i64];
+        let mut idx = vec![0i64, 1, 2, 3, 4, 5];
+        for k in 0..6 {
+            sizes.push(3);
+            idx.extend([(k + 1) % 6, k, 6]);
+        }
+        let m = Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap();
+        for (t, a) in [(0.5, None), (0.3, Some(0.7)), (0.9, Some(0.0)), (0.0, Some(1.0))] {
+            let h = honeycomb(&m, t, a).unwrap();
+            for hh in m.halfedges() {
+                let f = m.face(hh);
+                let cyc: Vec<_> = m.face_halfedges(f).collect();
+                let nn = cyc.len();
+                let n = cyc.iter().position(|&x| x == hh).unwrap();
+                let aa = a.unwrap_or_else(|| default_tension(nn));
+                let mut want = DVec3::ZERO;
+                for (mm, &g) in cyc.iter().enumerate() {
+                    let p = (1.0 - t) * m.position(m.vertex(g)) + t * m.position(m.head(g));
+                    let w = if mm == n {
+                        aa
+                    } else {
+                        let beta = 3.0 + 2.0 * (2.0 * (n as f64 - mm as f64) * std::f64::consts::PI / nn as f64).cos();
+                        beta * (1.0 - aa) / (3.0 * nn as f64 - 5.0)
+                    };
+                    want += w * p;
+                }
+                let got = h.position(crate::VertexId(hh.0));
+                assert!((got - want).length() < 1e-12, "{got} vs {want}");
+            }
+        }
+    }
+
+    /// Section 4's remeshing algorithm with the DLFL operators:
+    /// CreateFaceManifold (CreateVertex + InsertEdge) per old face, then one
+    /// InsertEdge per old edge between the back corners. New vertex `h` is
+    /// created for old half-edge `h`, as in the one-pass builder.
+    fn honeycomb_by_operators(m: &Mesh, t: f64) -> Mesh {
+        let one_pass = honeycomb(m, t, None).unwrap();
+        let mut out = Mesh::new();
+        for h in m.halfedges() {
+            out.create_vertex(one_pass.position(crate::VertexId(h.0))).unwrap();
+        }
+        // back corner of v'_h: its outgoing half-edge that is not on the front face
+        let mut back = vec![crate::HalfedgeId(0); m.n_halfedges()];
+        for f in m.faces() {
+            let cyc: Vec<_> = m.face_halfedges(f).collect();
+            let n = cyc.len();
+            let mut fwd = Vec::with_capacity(n);
+            for i in 0..n {
+                let (a, b) = (crate::VertexId(cyc[i].0), crate::VertexId(cyc[(i + 1) % n].0));
+                let corner = |o: &Mesh, v: crate::VertexId| match o.vertex_halfedge(v) {
+                    None => crate::Corner::Point(v),
+                    Some(h) => crate::Corner::Halfedge(h), // valence 1 (or the loop's): one corner
+                };
+                let e = out.insert_edge(corner(&out, a), corner(&out, b)).unwrap();
+                fwd.push(e.halfedge());
+            }
+            for i in 0..n {
+                // the twin of the front edge entering v'_i leaves v'_i on the back face
+                back[cyc[i].idx()] = fwd[(i + n - 1) % n].twin();
+            }
+        }
+        for e in m.edges() {
+            let h = e.halfedge();
+            out.insert_edge(crate::Corner::Halfedge(back[h.idx()]), crate::Corner::Halfedge(back[h.twin().idx()])).unwrap();
+        }
+        out
+    }
+
+    fn canonical_faces(m: &Mesh) -> Vec<Vec<u32>> {
+        let mut faces: Vec<Vec<u32>> = m
+            .faces()
+            .map(|f| {
+                let c: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
+                (0..c.len()).map(|k| [&c[k..], &c[..k]].concat()).min().unwrap()
+            })
+            .collect();
+        faces.sort();
+        faces
+    }
+
+    #[test]
+    fn one_pass_equals_section_4_operators() {
+        for m in [cube(), dodecahedron(), torus(6, 4, 2.0, 0.5).unwrap(), genus_surface(2).unwrap(), one_gon_two_gon_cube(), handle_cube(), star_prism()] {
+            let ops = honeycomb_by_operators(&m, 0.5);
+            ops.validate().unwrap();
+            let one = honeycomb(&m, 0.5, None).unwrap();
+            assert_eq!(canonical_faces(&ops), canonical_faces(&one));
+            assert_eq!(ops.genus(), m.genus());
+        }
+    }
+
+    #[test]
+    fn bad_arguments() {
+        let c = cube();
+        assert!(honeycomb(&c, -0.1, None).is_err());
+        assert!(honeycomb(&c, 1.5, None).is_err());
+        assert!(honeycomb(&c, f64::NAN, None).is_err());
+        assert!(honeycomb(&c, 0.5, Some(1.2)).is_err());
+        assert!(honeycomb(&c, 0.5, Some(-0.2)).is_err());
+    }
+
+    #[test]
+    fn point_spheres_and_holes_pass_through() {
+        let mut m = cube();
+        m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
+        let h = honeycomb(&m, 0.5, None).unwrap();
+        h.validate().unwrap();
+        assert_eq!(h.n_components(), 2);
+        assert_eq!(h.n_vertices(), 24 + 1);
+        // an open box capped by a hole: the hole's front face stays a hole
+        let c = cube().to_polygons();
+        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
+        let open = Mesh::from_polygons(cube().positions().to_vec(), &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+        let h = honeycomb(&open, 0.5, None).unwrap();
+        h.validate().unwrap();
+        assert_eq!(h.n_holes(), 1);
+    }
+}

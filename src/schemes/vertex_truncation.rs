@@ -1,0 +1,321 @@
+//! Vertex truncation (vertex truncation paper: Akleman, Edmundson & Ozener,
+//! "A Generalized Vertex Truncation Scheme to Construct Intriguing
+//! Polyhedral Shapes").
+//!
+//! Every edge is cut at `ratio` of its length from each end, and every old
+//! vertex is replaced by the polygon through the cut points of its edges
+//! (section 3.1, Fig. 2):
+//!
+//! * [`Truncation::Chaikin`] — the paper's scheme (section 3.2): cuts at 1/4
+//!   and 3/4 of every edge, Chaikin's corner cutting applied to every face
+//!   boundary. Stationary; in the limit the faces are bounded by quadratic
+//!   B-spline curves.
+//! * [`Truncation::Polyhedral`] — classic polyhedral truncation at a given
+//!   `ratio ∈ (0, 1/2]` (section 3.1). A regular n-gon becomes a regular
+//!   2n-gon for `ratio = 1 / (2 + 2 cos(π/n))`: 1/3 on triangles (truncated
+//!   tetrahedron, icosahedron), `1/(2 + √2)` on squares (truncated cube).
+//!
+//! **Counts** for `ratio < 1/2` (section 3.1): an n-gon becomes a 2n-gon, a
+//! valence-m vertex an m-gon, every new vertex is 3-valent:
+//!
+//! ```text
+//! V' = 2E,   E' = 3E,   F' = F + V,   χ' = χ (genus unchanged)
+//! ```
+//!
+//! **`ratio = 1/2`** (rectification): the two cut points of an edge coincide
+//! at its midpoint and are merged into one vertex, giving the rectified
+//! (cuboctahedral) mesh instead of a mesh with zero-length edges: an n-gon
+//! stays an n-gon, a valence-m vertex becomes an m-gon, every new vertex is
+//! 4-valent (cube → cuboctahedron, dodecahedron → icosidodecahedron):
+//!
+//! ```text
+//! V' = E,   E' = 2E,   F' = F + V
+//! ```
+//!
+//! **Planarity** (section 3.2): the cut points of a face lie on its edges, so
+//! a planar face stays planar; the new face of a 3-valent vertex is a
+//! triangle. Planar faces with 3-valent vertices therefore give planar faces
+//! at every iteration; the regular octahedron and icosahedron do too by
+//! symmetry (Fig. 5). Other input may give non-planar vertex faces.
+//!
+//! Built in one pass with [`Mesh::from_corner_twins`]: for `ratio < 1/2` new
+//! vertex `h` is the cut point of old half-edge `h` near its tail; for
+//! `ratio = 1/2` new vertex `e` is the midpoint of old edge `e`. Faces are
+//! `[old faces in order | vertex faces in old vertex order]`. Self-loops,
+//! one-gons, two-gons, multi-edges and non-convex faces need no special case;
+//! point-spheres are copied unchanged; hole faces stay holes. O(output).
+
+use super::tables::Tables;
+use crate::error::{MeshError, Result};
+use crate::mesh::{FaceStart, Mesh, NONE, POINT};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Where vertex truncation cuts the edges.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Truncation {
+    /// The paper's Chaikin-based scheme: cuts at 1/4 and 3/4 (section 3.2).
+    Chaikin,
+    /// Classic polyhedral truncation: cuts at `ratio` and `1 − ratio`,
+    /// `ratio ∈ (0, 1/2]`; `1/2` merges the two cuts (rectification).
+    Polyhedral { ratio: f64 },
+}
+
+impl Truncation {
+    /// The fraction of each edge cut off at each end.
+    pub fn ratio(self) -> f64 {
+        match self {
+            Truncation::Chaikin => 0.25,
+            Truncation::Polyhedral { ratio } => ratio,
+        }
+    }
+
+    /// Errors unless the ratio is in `(0, 1/2]`.
+    pub fn check(self) -> Result<()> {
+        let r = self.ratio();
+        if r > 0.0 && r <= 0.5 {
+            Ok(())
+        } else {
+            Err(MeshError::InvalidArgument(format!(
+                "vertex_truncation: ratio = {r} is outside (0, 0.5] (the fraction of each edge cut off at each end)"
+            )))
+        }
+    }
+}
+
+/// One step of vertex truncation (see the module docs).
+///
+/// Errors: a polyhedral `ratio` outside `(0, 1/2]` (including NaN).
+pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
+    mode.check()?;
+    let r = mode.ratio();
+    let tab = Tables::new(m);
+    let nh = m.n_halfedges();
+    let nf = m.n_faces();
+    let nv = m.n_vertices();
+    let (next, vert, face) = m.halfedge_columns();
+    let pos = m.positions();
+    let merge = r == 0.5;
+
+    // ---- positions: [cut points (per half-edge, or per edge when merged) | point-spheres]
+    let mut new_pos: Vec<DVec3> = if merge {
+        (0..nh / 2).into_par_iter().map(|e| 0.5 * (pos[vert[2 * e] as usize] + pos[vert[2 * e + 1] as usize])).collect()
+    } else {
+        (0..nh).into_par_iter().map(|h| (1.0 - r) * pos[vert[h] as usize] + r * pos[vert[h ^ 1] as usize]).collect()
+    };
+    let n_cut = new_pos.len() as u32;
+    let mut point_id = vec![NONE; nv];
+    for v in 0..nv {
+        if m.v_out[v] & POINT != 0 {
+            point_id[v] = new_pos.len() as u32;
+            new_pos.push(pos[v]);
+        }
+    }
+    debug_assert!(n_cut as usize <= new_pos.len());
+
+    // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex]
+    let per_corner = if merge { 1 } else { 2 };
+    let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
+    let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
+    out_off.push(0);
+    for f in 0..nf {
+        let d = (per_corner * tab.face_degree(f)).max(1); // a point-sphere face keeps its corner
+        sizes.push(d);
+        out_off.push(out_off[f] + d);
+    }
+    for v in 0..nv {
+        let k = tab.valence(v);
+        if k > 0 {
+            sizes.push(k);
+        }
+    }
+    let vb = out_off[nf];
+    let n_corners = vb as usize + nh;
+    let mut cv = vec![0u32; n_corners];
+    let mut tw = vec![NONE; n_corners];
+    // first corner of half-edge h in its old face's image
+    let fc = |h: usize| out_off[face[h] as usize] + per_corner * tab.in_face[h];
+    // corner of outgoing half-edge g in its tail's vertex face
+    let vc = |g: usize| vb + tab.vert_off[vert[g] as usize] + tab.in_vert[g];
+    for h in 0..nh {
+        let hp = m.he_prev[h] as usize;
+        let hn = next[h] as usize;
+        let c = fc(h) as usize;
+        if merge {
+            // face: m_e(h) -> m_e(next h); vertex face: m_e(g) -> m_e(prev g)
+            cv[c] = (h >> 1) as u32;
+            tw[c] = vc(hn);
+            let cg = vc(h) as usize;
+            cv[cg] = (h >> 1) as u32;
+            tw[cg] = fc(hp);
+        } else {
+            // face: p_h -> p_twin(h) (along the old edge) -> p_next(h) (the cut)
+            cv[c] = h as u32;
+            tw[c] = fc(h ^ 1);
+            cv[c + 1] = (h ^ 1) as u32;
+            tw[c + 1] = vc(hn);
+            // vertex face: p_g -> p_rotate(g) = p_twin(prev g)
+            let cg = vc(h) as usize;
+            cv[cg] = h as u32;
+            tw[cg] = fc(hp) + 1;
+        }
+    }
+    for f in 0..nf {
+        if let FaceStart::Point(v) = m.face_start(crate::FaceId(f as u32)) {
+            cv[out_off[f] as usize] = point_id[v.idx()];
+        }
+    }
+    let mut out = Mesh::from_corner_twins(new_pos, &sizes, &cv, &tw)?;
+    out.f_hole[..nf].copy_from_slice(&m.f_hole);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::BuildOptions;
+    use crate::primitives::*;
+    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
+
+    /// Largest distance of a face's corners from the plane through its
+    /// centroid with its Newell normal, relative to the face's bounding-box
+    /// diagonal.
+    pub(crate) fn max_planarity_deviation(m: &Mesh) -> f64 {
+        let mut worst: f64 = 0.0;
+        for f in m.faces() {
+            let ps: Vec<DVec3> = m.face_vertices(f).map(|v| m.position(v)).collect();
+            if ps.len() < 4 {
+                continue;
+            }
+            let n = m.face_newell(f).normalize_or_zero();
+            let c = ps.iter().sum::<DVec3>() / ps.len() as f64;
+            let (lo, hi) = ps.iter().fold((ps[0], ps[0]), |(a, b), &p| (a.min(p), b.max(p)));
+            let size = (hi - lo).length();
+            for p in &ps {
+                worst = worst.max((*p - c).dot(n).abs() / size);
+            }
+        }
+        worst
+    }
+
+    fn check_step(m: &Mesh, mode: Truncation) -> Mesh {
+        let (v, e, f) = counts(m);
+        let t = vertex_truncation(m, mode).unwrap();
+        t.validate().unwrap();
+        assert_eq!(t.genus(), m.genus());
+        assert_eq!(t.n_components(), m.n_components());
+        let merged = mode.ratio() == 0.5;
+        // n-gon -> 2n-gon (n-gon when merged); valence-m vertex -> m-gon
+        let mut want = crate::mesh::Histogram::new();
+        for (k, c) in m.face_size_histogram() {
+            *want.entry(if merged { k } else { 2 * k }).or_default() += c;
+        }
+        for (k, c) in m.valence_histogram() {
+            *want.entry(k).or_default() += c;
+        }
+        assert_eq!(t.face_size_histogram(), want);
+        if merged {
+            assert_eq!(counts(&t), (e, 2 * e, f + v));
+            assert_eq!(t.valence_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
+        } else {
+            assert_eq!(counts(&t), (2 * e, 3 * e, f + v));
+            assert_eq!(t.valence_histogram().keys().copied().collect::<Vec<_>>(), vec![3]);
+        }
+        t
+    }
+
+    #[test]
+    fn counts_on_corpus() {
+        let corpus = [
+            tetrahedron(),
+            cube(),
+            octahedron(),
+            dodecahedron(),
+            icosahedron(),
+            torus(8, 5, 2.0, 0.5).unwrap(),
+            genus_surface(3).unwrap(),
+            one_gon_two_gon_cube(),
+            star_prism(),
+            handle_cube(),
+        ];
+        for m in &corpus {
+            for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.1 }, Truncation::Polyhedral { ratio: 0.5 }] {
+                let t = check_step(m, mode);
+                check_step(&t, mode);
+            }
+        }
+    }
+
+    #[test]
+    fn planar_input_stays_planar() {
+        // (genus_surface is planar-faced but has non-symmetric 4-valent rim vertices)
+        let l_prism = prism(&[[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]], 0.7);
+        for m in [tetrahedron(), cube(), dodecahedron(), octahedron(), icosahedron(), l_prism, star_prism()] {
+            assert!(m.signed_volume() > 0.0);
+            let mut t = m;
+            for _ in 0..4 {
+                t = vertex_truncation(&t, Truncation::Chaikin).unwrap();
+                assert!(max_planarity_deviation(&t) < 1e-12, "{}", max_planarity_deviation(&t));
+            }
+        }
+        // a non-planar valence-4 vertex face: a torus vertex's four cut points
+        let t = vertex_truncation(&torus(8, 5, 2.0, 0.5).unwrap(), Truncation::Chaikin).unwrap();
+        assert!(max_planarity_deviation(&t) > 1e-3);
+    }
+
+    #[test]
+    fn archimedean_truncations_are_equilateral() {
+        let edge_lengths = |m: &Mesh| -> (f64, f64) {
+            m.edges().map(|e| (m.position(m.vertex(e.halfedge())) - m.position(m.head(e.halfedge()))).length()).fold(
+                (f64::INFINITY, 0.0f64),
+                |(a, b), l| (a.min(l), b.max(l)),
+            )
+        };
+        let regular = |n: f64| 1.0 / (2.0 + 2.0 * (std::f64::consts::PI / n).cos());
+        for (m, n) in [(tetrahedron(), 3.0), (cube(), 4.0), (dodecahedron(), 5.0), (icosahedron(), 3.0), (octahedron(), 3.0)] {
+            for r in [regular(n), 0.5] {
+                let t = vertex_truncation(&m, Truncation::Polyhedral { ratio: r }).unwrap();
+                let (lo, hi) = edge_lengths(&t);
+                assert!((hi - lo) / hi < 1e-12, "ratio {r}: {lo} .. {hi}");
+            }
+        }
+        let co = vertex_truncation(&cube(), Truncation::Polyhedral { ratio: 0.5 }).unwrap();
+        assert_eq!(co.face_size_histogram().into_iter().collect::<Vec<_>>(), vec![(3, 8), (4, 6)]);
+    }
+
+    #[test]
+    fn positions_are_cut_points() {
+        let m = cube();
+        let t = vertex_truncation(&m, Truncation::Polyhedral { ratio: 0.2 }).unwrap();
+        for h in m.halfedges() {
+            let want = 0.8 * m.position(m.vertex(h)) + 0.2 * m.position(m.head(h));
+            assert!((t.position(crate::VertexId(h.0)) - want).length() < 1e-15);
+        }
+        assert!(t.signed_volume() > 0.0 && t.signed_volume() < m.signed_volume());
+    }
+
+    #[test]
+    fn bad_ratio() {
+        for r in [0.0, -0.1, 0.51, f64::NAN] {
+            assert!(vertex_truncation(&cube(), Truncation::Polyhedral { ratio: r }).is_err());
+        }
+    }
+
+    #[test]
+    fn point_spheres_and_holes_pass_through() {
+        let mut m = cube();
+        m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
+        let t = vertex_truncation(&m, Truncation::Chaikin).unwrap();
+        t.validate().unwrap();
+        assert_eq!((t.n_components(), t.n_vertices()), (2, 25));
+        let c = cube().to_polygons();
+        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
+        let open = Mesh::from_polygons(cube().positions().to_vec(), &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+        for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.5 }] {
+            let t = vertex_truncation(&open, mode).unwrap();
+            t.validate().unwrap();
+            assert_eq!(t.n_holes(), 1);
+        }
+    }
+}
