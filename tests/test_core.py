@@ -214,7 +214,13 @@ def _corner_count(m):
 @settings(max_examples=60, deadline=None)
 @given(st.data())
 def test_random_operator_sequences_keep_contracts(data):
-    m = data.draw(st.sampled_from([topomesh.tetrahedron(), topomesh.cube(), topomesh.torus(4, 3, 2.0, 0.5)]))
+    m = data.draw(
+        st.one_of(
+            st.sampled_from([topomesh.tetrahedron(), topomesh.cube(), topomesh.octahedron(), topomesh.dodecahedron()]),
+            st.builds(topomesh.torus, st.integers(3, 7), st.integers(3, 6), st.just(2.0), st.just(0.5)),
+            st.builds(topomesh.genus_surface, st.integers(0, 3)),
+        )
+    )
     for _ in range(data.draw(st.integers(1, 25))):
         sizes = m.face_sizes
         chi, comps, genus, f = m.euler_characteristic, m.n_components, m.genus, m.n_faces
