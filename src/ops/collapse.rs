@@ -87,7 +87,6 @@ mod tests {
     use super::super::testing::*;
     use crate::mesh::{Corner, EdgeId, FaceId};
     use crate::primitives;
-    use glam::DVec3;
 
     #[test]
     fn triangle_and_quad_meshes() {
@@ -140,6 +139,5 @@ mod tests {
         assert_eq!(counts(&m), (v - 1, e - 1, f, cc, g));
         assert_eq!(m.n_self_loops(), 1);
         assert_ne!(r.removed, v2);
-        let _ = DVec3::ZERO;
     }
 }

@@ -31,7 +31,7 @@ pub use rind::Rind;
 pub use subdivide::EdgeSplit;
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{EdgeId, FaceId, HalfedgeId, Mesh, VertexId};
+use crate::mesh::{EdgeId, HalfedgeId, Mesh, VertexId};
 
 /// After DeleteEdge(`e`) with `last` the last edge before the call: half-edges
 /// of `e` are gone (`None`), those of `last` now carry `e`'s ids.
@@ -78,13 +78,6 @@ pub(crate) fn check_halfedge(m: &Mesh, h: HalfedgeId) -> Result<()> {
             h.0,
             m.n_halfedges()
         )));
-    }
-    Ok(())
-}
-
-pub(crate) fn check_face(m: &Mesh, f: FaceId) -> Result<()> {
-    if f.idx() >= m.n_faces() {
-        return Err(MeshError::InvalidArgument(format!("face {} out of range (mesh has {} faces)", f.0, m.n_faces())));
     }
     Ok(())
 }

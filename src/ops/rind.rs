@@ -16,7 +16,7 @@
 //! in a row thus gives genus 2g + 0 (one hole), whereas punching them gives
 //! 2g + n − 1.
 
-use super::{follow_vertex, remap_deleted_edge};
+use super::remap_deleted_edge;
 use crate::error::{MeshError, Result};
 use crate::mesh::{Corner, FaceId, HalfedgeId, Mesh, VertexId};
 use glam::DVec3;
@@ -248,10 +248,8 @@ impl Rind {
     fn delete_tracked(&mut self, h: HalfedgeId, tracked: &mut [Option<HalfedgeId>]) -> Result<()> {
         let e = h.edge();
         let last = crate::mesh::EdgeId::new(self.mesh.n_edges() - 1);
-        let nv = self.mesh.n_vertices();
-        let removed = self.mesh.delete_edge_with_cleanup(e)?;
+        self.mesh.delete_edge_with_cleanup(e)?;
         remap_deleted_edge(e, last, tracked);
-        let _ = follow_vertex(VertexId(0), nv, &removed);
         Ok(())
     }
 }
