@@ -448,21 +448,32 @@ def test_rind_errors():
 
 
 def cup() -> Mesh:
-    """The dissertation's cup (Fig. 65): the rind of an octagonal prism with
-    its top punched, and a curved handle on its side."""
-    body = prism(sides=8, rings=4, radius=1.0, height=2.0)
-    top = face_at(body, [0, 0, 2])
-    r = body.rind(0.12).punch(top)
-    m = r.mesh
-    # the side faces facing +x in the top and bottom rings of quads
-    c0 = body.face_centroids
-    upper = min((f for f in range(32) if f // 8 == 3), key=lambda f: -c0[f][0])
-    lower = min((f for f in range(32) if f // 8 == 0), key=lambda f: -c0[f][0])
-    fa, fb = r.face_pair(upper)[0], r.face_pair(lower)[0]
-    return m.add_handle(fa, fb, segments=10, weights=(2.5, 2.5))
+    """The dissertation's cup (Fig. 65): the rind of a 12-sided prism with its
+    top punched, and a curved handle from the 4th to the 2nd ring of side
+    quads, both facing +x."""
+    body = prism(sides=12, rings=5, radius=1.0, height=2.5)
+    r = body.rind(0.12).punch(face_at(body, [0, 0, 2.5]))
+    c = body.face_centroids
+    upper = max((f for f in range(60) if f // 12 == 3), key=lambda f: c[f][0])
+    lower = max((f for f in range(60) if f // 12 == 1), key=lambda f: c[f][0])
+    return r.mesh.add_handle(r.face_pair(upper)[0], r.face_pair(lower)[0], segments=10, weights=(1.6, 1.6))
 
 
 def test_cup():
     m = cup()
     assert (m.n_components, m.genus) == (1, 1)
     assert_clean(m, genus=1)
+
+
+def test_peeled_rind_sphere():
+    g = grid_cube(6)
+    v = g.vertices
+    sphere = g.with_vertices(v / np.linalg.norm(v, axis=1, keepdims=True))
+    c = g.face_centroids
+    window = [f for f in range(g.n_faces) if np.sort(np.abs(c[f]))[1] < 0.34]  # 2 × 2 per side
+    assert len(window) == 24
+    r = sphere.rind(0.12)
+    assert r.punch(window).mesh.genus == 23
+    peeled = r.peel(window)
+    assert peeled.mesh.n_vertices == r.mesh.n_vertices - 2 * 6  # each window's centre vertex pair
+    assert_clean(peeled.mesh, genus=5)
