@@ -34,7 +34,8 @@ impl Mesh {
     /// one): V−1, E−s, F−(s−1), components and genus unchanged — provided
     /// every edge parallel to `e` bounds a chain of two-gons with it (the
     /// algorithm deletes parallel edges; a parallel edge around a handle
-    /// would cut it). Preconditions: `e` is not a self-loop, and not both
+    /// would cut it). A component whose only vertices are v1 and v2 becomes
+    /// a point-sphere. Preconditions: `e` is not a self-loop, and not both
     /// ends carry self-loops.
     pub fn collapse_edge(&mut self, e: EdgeId) -> Result<Collapse> {
         check_edge(self, e)?;
@@ -70,14 +71,22 @@ impl Mesh {
             self.insert_edge(Corner::Halfedge(c), Corner::Halfedge(h))?;
         }
         let deg = self.valence(v2);
-        let mut v1_now = v1;
+        let mut v1_now = Some(v1);
         for _ in 0..deg {
             let out = self.vertex_halfedge(v2).expect("v2 keeps edges until the last deletion");
             let nv = self.n_vertices();
             let removed = self.delete_edge_with_cleanup(out.edge())?;
-            v1_now = follow_vertex(v1_now, nv, &removed).expect("v1 is never removed");
+            v1_now = v1_now.and_then(|v| follow_vertex(v, nv, &removed));
         }
-        self.set_position(v1_now, mid);
+        // v1 goes too only when every edge of the component ran between v1
+        // and v2: what is left of it is a point-sphere
+        let v1_now = match v1_now {
+            Some(v) => {
+                self.set_position(v, mid);
+                v
+            }
+            None => self.create_vertex(mid)?.0,
+        };
         Ok(Collapse { vertex: v1_now, removed: v2, inserted: targets.len(), deleted: deg })
     }
 }
@@ -122,6 +131,14 @@ mod tests {
         // s = 2: the parallel edge goes too, and the two-gon with it
         assert_eq!(counts(&m), (v - 1, e - 2, f - 1, c, g));
         assert_eq!(m.face_size_histogram().get(&2), None);
+    }
+
+    #[test]
+    fn lone_dipole_becomes_a_point_sphere() {
+        let mut m = digon_sphere();
+        let r = m.collapse_edge(EdgeId(0)).unwrap();
+        assert_eq!(counts(&m), (1, 0, 1, 1, 0));
+        assert_eq!(m.point_sphere_face(r.vertex), Some(FaceId(0)));
     }
 
     #[test]

@@ -145,3 +145,133 @@ pub(crate) mod testing {
         Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
     }
 }
+
+/// Random sequences of every operator from several start meshes (degenerate
+/// ones included), checking `validate()` and each contract at every step.
+#[cfg(test)]
+mod random_sequences {
+    use super::testing::*;
+    use crate::mesh::{Corner, EdgeId, FaceId, HalfedgeId, Mesh};
+    use crate::primitives;
+    use glam::DVec3;
+
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        fn below(&mut self, n: usize) -> usize {
+            (self.next() % n as u64) as usize
+        }
+        fn unit(&mut self) -> f64 {
+            (self.next() >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    fn random_corner(m: &Mesh, r: &mut Rng) -> Corner {
+        let f = FaceId::new(r.below(m.n_faces()));
+        let d = m.face_degree(f);
+        m.corner(f, r.below(d)).unwrap()
+    }
+
+    fn same_component(m: &Mesh, a: Corner, b: Corner) -> bool {
+        let (label, _) = m.vertex_components();
+        label[m.corner_vertex(a).idx()] == label[m.corner_vertex(b).idx()]
+    }
+
+    fn run(start: Mesh, seed: u64, steps: usize) {
+        let mut m = start;
+        let mut r = Rng(seed);
+        for _ in 0..steps {
+            let before = m.clone();
+            let (v, e, f, c, g) = counts(&m);
+            let big = m.n_edges() > 400;
+            match r.below(8) {
+                0 if m.n_edges() > 0 => {
+                    let ed = EdgeId::new(r.below(m.n_edges()));
+                    m.subdivide_edge(ed, r.unit()).unwrap();
+                    assert_eq!(counts(&m), (v + 1, e + 1, f, c, g));
+                }
+                1 if m.n_edges() > 0 => {
+                    let ed = EdgeId::new(r.below(m.n_edges()));
+                    let h = ed.halfedge();
+                    let split = m.face(h) == m.face(h.twin());
+                    let k = m.delete_edge_with_cleanup(ed).unwrap().len() as i64;
+                    let (v2, e2, f2, c2, g2) = counts(&m);
+                    assert_eq!((v2, e2), (v - k, e - 1));
+                    if split {
+                        assert_eq!(f2, f + 1 - k);
+                        assert!((c2, g2) == (c + 1 - k, g) || (c2, g2) == (c - k, g - 1));
+                    } else {
+                        // a lone self-loop's vertex is left bare: cleaned up
+                        assert_eq!((f2, c2, g2), (f - 1 - k, c - k, g));
+                    }
+                }
+                2 if !big && m.n_faces() > 0 => {
+                    let (a, b) = (random_corner(&m, &mut r), random_corner(&m, &mut r));
+                    let one = same_component(&m, a, b);
+                    let (n1, n2) = (m.face_degree(m.corner_face(a)), m.face_degree(m.corner_face(b)));
+                    match m.create_pipe(a, b) {
+                        Ok(p) => {
+                            let (d, n) = (p.subdivisions as i64, n1.max(n2) as i64);
+                            assert!(d <= n1.abs_diff(n2) as i64);
+                            let (c2, g2) = if one { (c, g + 1) } else { (c - 1, g) };
+                            assert_eq!(counts(&m), (v + d, e + d + n, f + n - 2, c2, g2));
+                        }
+                        Err(_) => assert_eq!(m, before),
+                    }
+                }
+                3 if !big && m.n_halfedges() > 0 => {
+                    let h1 = HalfedgeId::new(r.below(m.n_halfedges()));
+                    let h2 = HalfedgeId::new(r.below(m.n_halfedges()));
+                    let same = m.face(h1) == m.face(h2);
+                    let one = same_component(&m, Corner::Halfedge(h1), Corner::Halfedge(h2));
+                    match m.connect_edges(h1, h2) {
+                        Ok(_) if same => assert_eq!(counts(&m), (v, e + 2, f + 2, c, g)),
+                        Ok(_) if one => assert_eq!(counts(&m), (v, e + 2, f, c, g + 1)),
+                        Ok(_) => assert_eq!(counts(&m), (v, e + 2, f, c - 1, g)),
+                        Err(_) => assert_eq!((h1, &m), (h2, &before)),
+                    }
+                }
+                4 if m.n_edges() > 0 => {
+                    let ed = EdgeId::new(r.below(m.n_edges()));
+                    match m.collapse_edge(ed) {
+                        Ok(col) => {
+                            let (v2, e2, _, _, _) = counts(&m);
+                            assert_eq!(v2, v - 1);
+                            assert_eq!(e2, e + col.inserted as i64 - col.deleted as i64);
+                        }
+                        Err(_) => assert_eq!(m, before),
+                    }
+                }
+                5 if !big => {
+                    let n = 1 + r.below(5);
+                    let pts: Vec<DVec3> = (0..n).map(|i| DVec3::new(i as f64, r.unit(), 3.0)).collect();
+                    m.create_face_manifold(&pts).unwrap();
+                    let (de, df) = if n == 1 { (0, 1) } else { (n as i64, 2) };
+                    assert_eq!(counts(&m), (v + n as i64, e + de, f + df, c + 1, g));
+                }
+                6 | 7 if !big && m.n_faces() > 0 => {
+                    // fundamental InsertEdge: self-loops, multi-edges, two-gons
+                    let (a, b) = (random_corner(&m, &mut r), random_corner(&m, &mut r));
+                    m.insert_edge(a, b).unwrap();
+                    m.validate().unwrap();
+                }
+                _ => {}
+            }
+        }
+    }
+
+    #[test]
+    fn operators_keep_their_contracts() {
+        let starts = [primitives::cube(), primitives::torus(4, 3, 1.0, 0.4).unwrap(), loop_sphere(), digon_sphere(), grid_cube(2)];
+        for (i, s) in starts.into_iter().enumerate() {
+            for seed in 1..6u64 {
+                run(s.clone(), seed * 7919 + i as u64, 300);
+            }
+        }
+    }
+}

@@ -37,38 +37,66 @@ impl Mesh {
         Ok((f1, f2))
     }
 
-    /// Subdivides edges of the smaller of the two faces (the longest edge
-    /// first, at its midpoint) until both have as many corners; updates the
-    /// two corners to what they stand for after each split. Returns the
-    /// number of splits.
+    /// Subdivides edges of the smaller of the two faces (the longest first,
+    /// at its midpoint) until both have as many corners; updates the two
+    /// corners to what they stand for after each split. Returns the number
+    /// of splits. Sides shared with the larger face are never split (that
+    /// would grow both); a side with the smaller face on both of its sides
+    /// grows it by two. When that leaves no way to equalize, it is an error
+    /// and nothing changes.
     pub(crate) fn equalize_faces(&mut self, c1: &mut Corner, c2: &mut Corner, what: &str) -> Result<usize> {
         let (f1, f2) = self.pipe_faces(*c1, *c2, what)?;
         let (n1, n2) = (self.face_degree(f1), self.face_degree(f2));
         if n1 == n2 {
             return Ok(0);
         }
-        let small = if n1 < n2 { *c1 } else { *c2 };
-        let Corner::Halfedge(_) = small else {
+        let first_small = n1 < n2;
+        let (small, large) = if first_small { (f1, f2) } else { (f2, f1) };
+        let Some(start) = self.face_halfedge(small) else {
             return Err(MeshError::Precondition(format!(
                 "{what}: face {} is a point-sphere; it cannot be matched with the {}-gon face {}",
-                if n1 < n2 { f1.0 } else { f2.0 },
+                small.0,
                 n1.max(n2),
-                if n1 < n2 { f2.0 } else { f1.0 }
+                large.0
             )));
         };
+        // which sides can grow the smaller face alone?
+        let free = |m: &Mesh, h: HalfedgeId| {
+            let t = m.face(h.twin());
+            t != m.face(h) && t != large
+        };
+        let diff = n1.abs_diff(n2);
+        let has_free = self.face_halfedges_from(start).any(|h| free(self, h));
+        let has_self = self.face_halfedges_from(start).any(|h| self.face(h.twin()) == small);
+        if !has_free && !(has_self && diff % 2 == 0) {
+            return Err(MeshError::Precondition(format!(
+                "{what}: face {} ({n} corners) cannot be subdivided to match face {} ({m} corners): its sides are shared with that face",
+                small.0,
+                large.0,
+                n = n1.min(n2),
+                m = n1.max(n2)
+            )));
+        }
+        let length = |m: &Mesh, h: HalfedgeId| (m.position(m.head(h)) - m.position(m.vertex(h))).length_squared();
         let mut splits = 0;
-        for _ in 0..n1.abs_diff(n2) {
-            let s = if n1 < n2 { *c1 } else { *c2 };
+        loop {
+            let s = if first_small { *c1 } else { *c2 };
             let Corner::Halfedge(start) = s else { unreachable!() };
-            let longest = self
-                .face_halfedges_from(start)
-                .max_by(|&x, &y| {
-                    let lx = (self.position(self.head(x)) - self.position(self.vertex(x))).length_squared();
-                    let ly = (self.position(self.head(y)) - self.position(self.vertex(y))).length_squared();
-                    lx.partial_cmp(&ly).unwrap_or(std::cmp::Ordering::Equal).then(y.0.cmp(&x.0))
-                })
-                .expect("a face with edges");
-            let e = longest.edge();
+            let grown = self.face_degree(self.face(start));
+            let target = n1.max(n2);
+            if grown >= target {
+                debug_assert_eq!(grown, target);
+                break;
+            }
+            let pick = |want_free: bool| {
+                self.face_halfedges_from(start)
+                    .filter(|&h| if want_free { free(self, h) } else { self.face(h.twin()) == self.face(h) })
+                    .max_by(|&x, &y| {
+                        length(self, x).partial_cmp(&length(self, y)).unwrap_or(std::cmp::Ordering::Equal).then(y.0.cmp(&x.0))
+                    })
+            };
+            let h = pick(true).or_else(|| pick(false)).expect("checked above");
+            let e = h.edge();
             let split = self.subdivide_edge(e, 0.5)?;
             for c in [&mut *c1, &mut *c2] {
                 if let Corner::Halfedge(h) = *c {
@@ -88,10 +116,13 @@ impl Mesh {
     /// are first subdivided (longest first, at midpoints) until both have N
     /// corners; this also adds a corner to each neighbour across a split edge.
     ///
-    /// Contract, with d = |N1 − N2| splits and N = max(N1, N2):
+    /// Contract, with d splits (|N1 − N2| unless a side of the smaller face
+    /// has it on both sides: such a split adds two corners) and
+    /// N = max(N1, N2):
     /// V+d, E+d+N, F+N−2; one component: genus +1; two components:
     /// components −1 and the total genus unchanged. Precondition: two
-    /// different faces. Existing half-edges keep their ids unless their edge
+    /// different faces, and a smaller face that can be grown to the larger's
+    /// size without splitting sides they share. Existing half-edges keep their ids unless their edge
     /// was split (see [`crate::ops::EdgeSplit::remap`]); the two faces are
     /// replaced by the quads (face ids as InsertEdge leaves them).
     pub fn create_pipe(&mut self, c1: Corner, c2: Corner) -> Result<Pipe> {

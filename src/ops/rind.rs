@@ -345,6 +345,61 @@ mod tests {
         assert_eq!(v, v0 - 2);
     }
 
+    /// χ of the part M of `m` left after removing the faces in `gone`
+    /// (faces, edges and vertices touching a kept face).
+    fn chi_of_rest(m: &Mesh, gone: &[bool]) -> i64 {
+        let keep = |h: HalfedgeId| !gone[m.face(h).idx()];
+        let f = gone.iter().filter(|&&g| !g).count() as i64;
+        let e = m.edges().filter(|e| keep(e.halfedge()) || keep(e.halfedge().twin())).count() as i64;
+        // the corners at v are its outgoing half-edges
+        let v = m.vertices().filter(|&v| m.vertex_halfedges(v).any(keep)).count() as i64;
+        v - e + f
+    }
+
+    #[test]
+    fn random_peels_double_the_rest() {
+        // peeling any set S of faces gives the double of M = mesh − S: χ = 2χ(M)
+        let mut seed = 0x9e3779b97f4a7c15u64;
+        let mut rnd = move |n: usize| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as usize
+        };
+        for src in [grid_cube(3), primitives::torus(6, 4, 1.0, 0.4).unwrap(), primitives::cube()] {
+            let nf = src.n_faces();
+            for _ in 0..40 {
+                let mut r = src.rind(0.1).unwrap();
+                let mut gone = vec![false; nf];
+                let k = 1 + rnd(nf);
+                let mut order: Vec<usize> = (0..nf).collect();
+                for i in 0..nf {
+                    order.swap(i, i + rnd(nf - i));
+                }
+                // peel in a few batches
+                let chosen = &order[..k];
+                for batch in chosen.chunks(1 + rnd(4)) {
+                    r.peel(batch).unwrap();
+                    for &f in batch {
+                        gone[f] = true;
+                    }
+                    r.mesh().validate().unwrap();
+                    assert_eq!(r.mesh().euler_characteristic(), 2 * chi_of_rest(&src, &gone));
+                }
+                // the unpeeled faces still have their twins, and can be punched
+                if let Some(f) = (0..nf).find(|&f| !gone[f]) {
+                    let chi = r.mesh().euler_characteristic();
+                    r.punch(&[f]).unwrap();
+                    assert_eq!(r.mesh().euler_characteristic(), chi - 2);
+                }
+            }
+            // everything peeled: nothing is left
+            let mut r = src.rind(0.1).unwrap();
+            r.peel(&(0..nf).collect::<Vec<_>>()).unwrap();
+            assert_eq!(counts(r.mesh()), (0, 0, 0, 0, 0));
+        }
+    }
+
     #[test]
     fn errors_name_the_face() {
         let m = primitives::cube();
