@@ -232,6 +232,26 @@ mod tests {
     }
 
     #[test]
+    fn adjacent_faces_and_impossible_equalization() {
+        // faces sharing an edge: a pipe is still a handle topologically
+        let mut m = primitives::cube();
+        let h = m.face_halfedge(FaceId(0)).unwrap();
+        let (v, e, f, c, g) = counts(&m);
+        m.create_pipe(Corner::Halfedge(h), Corner::Halfedge(h.twin())).unwrap();
+        assert_eq!(counts(&m), (v, e + 4, f + 2, c, g + 1));
+        // a one-gon whose only side it shares with the five-gon around it
+        let mut m = primitives::cube();
+        let c0 = corner(&m, 0, 0);
+        let l = m.insert_edge(c0, c0).unwrap();
+        let one_gon = m.face(l.halfedge());
+        assert_eq!(m.face_degree(one_gon), 1);
+        let before = m.clone();
+        let err = m.create_pipe(Corner::Halfedge(l.halfedge()), Corner::Halfedge(l.halfedge().twin())).unwrap_err();
+        assert!(err.to_string().contains("its sides are shared with that face"), "{err}");
+        assert_eq!(m, before);
+    }
+
+    #[test]
     fn same_face_and_point_sphere_are_errors() {
         let mut m = primitives::cube();
         assert!(m.create_pipe(corner(&m, 0, 0), corner(&m, 0, 2)).is_err());
