@@ -177,8 +177,7 @@ impl Mesh {
                 f1.0, f2.0
             )));
         }
-        // equal sizes first (this moves no centroid: split points lie on edges,
-        // but the centroid is recomputed from the new corners below)
+        // equal sizes first; centroids are then taken over the new corners
         let (mut a, mut b) = (Corner::Halfedge(c1), Corner::Halfedge(c2));
         let subdivisions = self.equalize_faces(&mut a, &mut b, "add_handle")?;
         let (Corner::Halfedge(c1), Corner::Halfedge(c2)) = (a, b) else { unreachable!() };

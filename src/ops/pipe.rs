@@ -68,7 +68,8 @@ impl Mesh {
         let diff = n1.abs_diff(n2);
         let has_free = self.face_halfedges_from(start).any(|h| free(self, h));
         let has_self = self.face_halfedges_from(start).any(|h| self.face(h.twin()) == small);
-        if !has_free && !(has_self && diff % 2 == 0) {
+        let feasible = has_free || (has_self && diff % 2 == 0);
+        if !feasible {
             return Err(MeshError::Precondition(format!(
                 "{what}: face {} ({n} corners) cannot be subdivided to match face {} ({m} corners): its sides are shared with that face",
                 small.0,
