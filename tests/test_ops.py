@@ -133,13 +133,19 @@ def _coplanar_overlap(t1, t2, eps=1e-9) -> bool:
     return any(inside(x, p) for x in q) or any(inside(x, q) for x in p)
 
 
-def self_intersections(m: Mesh, chunk: int = 256) -> list[tuple[int, int]]:
-    """Pairs of triangles of ``m.triangles()`` sharing no vertex that
-    intersect: a bounding-box prefilter (numpy, chunked), then segment–
-    triangle tests both ways (Möller–Trumbore) and a planar test for
-    coplanar pairs. Triangles sharing a vertex are adjacent and skipped."""
-    v = m.vertices
-    t = m.triangles()
+def self_intersections(m: Mesh) -> list[tuple[int, int]]:
+    """Pairs of triangles of ``m.triangles()`` that intersect improperly."""
+    return triangle_intersections(m.vertices, m.triangles())
+
+
+def triangle_intersections(v: np.ndarray, t: np.ndarray, chunk: int = 256) -> list[tuple[int, int]]:
+    """Pairs of triangles ``t`` (T, 3) over vertices ``v`` that intersect improperly: a
+    bounding-box prefilter (numpy, chunked), then segment–triangle tests
+    (Möller–Trumbore) both ways. Pairs sharing no vertex: every side of each
+    against the other, plus a planar test for coplanar pairs. Pairs sharing
+    exactly one vertex: the side opposite the shared vertex of each against
+    the other (the other sides meet the other triangle's plane only at the
+    shared vertex, unless coplanar). Pairs sharing a side are neighbours."""
     tri = v[t]  # (T, 3, 3)
     lo, hi = tri.min(axis=1), tri.max(axis=1)
     tol = 1e-9 * max(1.0, float(np.abs(v).max()))
@@ -152,27 +158,39 @@ def self_intersections(m: Mesh, chunk: int = 256) -> list[tuple[int, int]]:
         keep = j > i
         pairs.append(np.stack([i[keep], j[keep]], axis=1))
     cand = np.concatenate(pairs) if pairs else np.zeros((0, 2), int)
-    # drop pairs sharing a vertex
-    shared = np.zeros(len(cand), bool)
+    same = np.zeros((len(cand), 3, 3), bool)  # same[k, a, b]: corner a of the first is corner b of the second
     for a in range(3):
         for b in range(3):
-            shared |= t[cand[:, 0], a] == t[cand[:, 1], b]
-    cand = cand[~shared]
-    if len(cand) == 0:
-        return []
-    A, B = tri[cand[:, 0]], tri[cand[:, 1]]
-    hit = np.zeros(len(cand), bool)
-    for k in range(3):
-        hit |= _segments_hit_triangles(A[:, k], A[:, (k + 1) % 3], B[:, 0], B[:, 1], B[:, 2])
-        hit |= _segments_hit_triangles(B[:, k], B[:, (k + 1) % 3], A[:, 0], A[:, 1], A[:, 2])
-    # coplanar pairs
-    n1 = np.cross(A[:, 1] - A[:, 0], A[:, 2] - A[:, 0])
-    n1 /= np.linalg.norm(n1, axis=1, keepdims=True) + 1e-300
-    dist = np.abs(np.einsum("ikj,ij->ik", B - A[:, :1], n1))
-    cop = np.all(dist < tol * 10, axis=1) & ~hit
-    for k in np.nonzero(cop)[0]:
-        hit[k] = _coplanar_overlap(A[k], B[k])
-    return [tuple(p) for p in cand[hit]]
+            same[:, a, b] = t[cand[:, 0], a] == t[cand[:, 1], b]
+    shared = same.any(axis=2).sum(axis=1)
+    found = []
+    # no shared vertex
+    c0 = cand[shared == 0]
+    if len(c0):
+        A, B = tri[c0[:, 0]], tri[c0[:, 1]]
+        hit = np.zeros(len(c0), bool)
+        for k in range(3):
+            hit |= _segments_hit_triangles(A[:, k], A[:, (k + 1) % 3], B[:, 0], B[:, 1], B[:, 2])
+            hit |= _segments_hit_triangles(B[:, k], B[:, (k + 1) % 3], A[:, 0], A[:, 1], A[:, 2])
+        n1 = np.cross(A[:, 1] - A[:, 0], A[:, 2] - A[:, 0])
+        n1 /= np.linalg.norm(n1, axis=1, keepdims=True) + 1e-300
+        dist = np.abs(np.einsum("ikj,ij->ik", B - A[:, :1], n1))
+        cop = np.all(dist < tol * 10, axis=1) & ~hit
+        for k in np.nonzero(cop)[0]:
+            hit[k] = _coplanar_overlap(A[k], B[k])
+        found += [tuple(p) for p in c0[hit]]
+    # one shared vertex: the opposite sides
+    sel = shared == 1
+    c1 = cand[sel]
+    if len(c1):
+        ia = np.argmax(same[sel].any(axis=2), axis=1)  # shared corner in the first
+        ib = np.argmax(same[sel].any(axis=1), axis=1)  # and in the second
+        r = np.arange(len(c1))
+        A, B = tri[c1[:, 0]], tri[c1[:, 1]]
+        hit = _segments_hit_triangles(A[r, (ia + 1) % 3], A[r, (ia + 2) % 3], B[:, 0], B[:, 1], B[:, 2])
+        hit |= _segments_hit_triangles(B[r, (ib + 1) % 3], B[r, (ib + 2) % 3], A[:, 0], A[:, 1], A[:, 2])
+        found += [tuple(p) for p in c1[hit]]
+    return sorted(found)
 
 
 def assert_clean(m: Mesh, genus: int | None = None) -> None:
@@ -192,6 +210,14 @@ def test_intersection_check_finds_crossings():
     v = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [0.5, 0.2, 0], [3, 0.2, 0], [0.5, 3, 0]], float)
     m = Mesh.from_polygons(v, [[0, 1, 2], [3, 4, 5]], close_boundaries=True)
     assert self_intersections(m) == [(0, 1)]
+    # sharing one vertex, the second folded through the first
+    v = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [1, 1, -1], [0.2, 0.2, 1]], float)
+    t = np.array([[0, 1, 2], [0, 3, 4]])
+    assert triangle_intersections(v, t) == [(0, 1)]
+    v[4] = [-2, 1, 1]  # now they only meet at vertex 0
+    assert triangle_intersections(v, t) == []
+    # sharing a side: neighbours, never reported
+    assert triangle_intersections(v, np.array([[0, 1, 2], [0, 2, 3]])) == []
     assert self_intersections(grid_cube(3)) == []
 
 
