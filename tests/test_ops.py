@@ -4,8 +4,6 @@ of the high-genus dissertation: contracts on V, E, F, genus; peers
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 import pytest
 
@@ -16,62 +14,22 @@ from tests.harness import assert_agrees_with_peers
 
 # ------------------------------------------------------------------ shapes
 
-
-def grid_cube(n: int) -> Mesh:
-    """The cube [-1, 1]³ with each side cut into n × n quads."""
-    index: dict[tuple[int, int, int], int] = {}
-    pts: list[tuple[float, float, float]] = []
-
-    def vid(p):
-        if p not in index:
-            index[p] = len(pts)
-            pts.append(tuple(c * 2.0 / n - 1.0 for c in p))
-        return index[p]
-
-    faces = []
-    for axis in range(3):
-        u, v = (axis + 1) % 3, (axis + 2) % 3
-        for side in (0, n):
-            for i, j in itertools.product(range(n), range(n)):
-                quad = []
-                for di, dj in ((0, 0), (1, 0), (1, 1), (0, 1)):
-                    p = [0, 0, 0]
-                    p[axis], p[u], p[v] = side, i + di, j + dj
-                    quad.append(vid(tuple(p)))
-                faces.append(quad if side == n else quad[::-1])
-    return Mesh.from_polygons(np.array(pts), faces)
-
-
-def prism(sides: int = 8, rings: int = 4, radius: float = 1.0, height: float = 2.0) -> Mesh:
-    """A closed prism around the z axis: one polygon at each end, ``rings``
-    rows of quads around."""
-    a = np.arange(sides) * 2 * np.pi / sides
-    pts = [(radius * np.cos(t), radius * np.sin(t), height * r / rings) for r in range(rings + 1) for t in a]
-    faces = [[r * sides + i, r * sides + (i + 1) % sides, (r + 1) * sides + (i + 1) % sides, (r + 1) * sides + i]
-             for r in range(rings) for i in range(sides)]
-    faces.append(list(range(sides))[::-1])
-    faces.append([rings * sides + i for i in range(sides)])
-    return Mesh.from_polygons(np.array(pts), faces)
-
-
-def face_at(m: Mesh, c) -> int:
-    d = np.linalg.norm(m.face_centroids - np.asarray(c, float), axis=1)
-    f = int(np.argmin(d))
-    assert d[f] < 1e-9, f"no face centred at {c}"
-    return f
+from topomesh.modeling import (  # noqa: E402
+    arch_cube,
+    cube_sphere,
+    cup,
+    edge_between as edge_index,
+    face_at,
+    grid_cube,
+    peeled_rind_sphere,
+    triangle_hexagon_handle,
+)
 
 
 def face_rows(m: Mesh) -> list[list[int]]:
     sizes, idx = m.face_sizes, m.face_indices
     off = np.concatenate([[0], np.cumsum(sizes)])
     return [list(idx[off[i]:off[i + 1]]) for i in range(len(sizes))]
-
-
-def edge_index(m: Mesh, a: int, b: int) -> int:
-    e = m.edges
-    hit = np.nonzero(((e[:, 0] == a) & (e[:, 1] == b)) | ((e[:, 0] == b) & (e[:, 1] == a)))[0]
-    assert len(hit) == 1
-    return int(hit[0])
 
 
 def counts(m: Mesh):
@@ -336,10 +294,8 @@ def test_torus_from_one_handle_on_a_cube():
 
 
 def test_genus_three_cube_with_three_handles():
-    m = grid_cube(5)
-    for y in (-0.8, 0.0, 0.8):
-        m = m.add_handle(face_at(m, [-0.8, y, 1]), face_at(m, [0.8, y, 1]), segments=8, weights=(3.0, 3.0))
-    assert m.genus == 3
+    m = arch_cube(3)
+    assert (m.genus, m.n_components) == (3, 1)
     assert_clean(m, genus=3)
 
 
@@ -355,6 +311,8 @@ def test_twisted_handle():
     for o in others:
         if not np.allclose(o.vertices, straight.vertices):
             assert_clean(o, genus=1)
+    assert np.allclose(arch_cube(1).vertices, straight.vertices)
+    assert any(np.allclose(arch_cube(1, twist=1).vertices, o.vertices) for o in others)
 
 
 def triangle_and_hexagon(m: Mesh) -> tuple[Mesh, int, int]:
@@ -379,6 +337,7 @@ def test_triangle_to_hexagon_handle():
     n, k, d = 6, 8, 3
     assert counts(h) == (v + d + n * (k - 1), e + d + n * (2 * k - 1), f + n * k - 2, 1, 1)
     assert_clean(h, genus=1)
+    assert h == triangle_hexagon_handle()
 
 
 def test_handle_between_two_components():
@@ -473,18 +432,6 @@ def test_rind_errors():
     assert r.face_pair(3) == (3, 9) and r2.face_pair(3) is None
 
 
-def cup() -> Mesh:
-    """The dissertation's cup (Fig. 65): the rind of a 12-sided prism with its
-    top punched, and a curved handle from the 4th to the 2nd ring of side
-    quads, both facing +x."""
-    body = prism(sides=12, rings=5, radius=1.0, height=2.5)
-    r = body.rind(0.12).punch(face_at(body, [0, 0, 2.5]))
-    c = body.face_centroids
-    upper = max((f for f in range(60) if f // 12 == 3), key=lambda f: c[f][0])
-    lower = max((f for f in range(60) if f // 12 == 1), key=lambda f: c[f][0])
-    return r.mesh.add_handle(r.face_pair(upper)[0], r.face_pair(lower)[0], segments=10, weights=(1.6, 1.6))
-
-
 def test_cup():
     m = cup()
     assert (m.n_components, m.genus) == (1, 1)
@@ -493,8 +440,7 @@ def test_cup():
 
 def test_peeled_rind_sphere():
     g = grid_cube(6)
-    v = g.vertices
-    sphere = g.with_vertices(v / np.linalg.norm(v, axis=1, keepdims=True))
+    sphere = cube_sphere(6)
     c = g.face_centroids
     window = [f for f in range(g.n_faces) if np.sort(np.abs(c[f]))[1] < 0.34]  # 2 × 2 per side
     assert len(window) == 24
@@ -503,3 +449,4 @@ def test_peeled_rind_sphere():
     peeled = r.peel(window)
     assert peeled.mesh.n_vertices == r.mesh.n_vertices - 2 * 6  # each window's centre vertex pair
     assert_clean(peeled.mesh, genus=5)
+    assert peeled.mesh == peeled_rind_sphere()
