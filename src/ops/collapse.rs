@@ -71,12 +71,13 @@ impl Mesh {
             self.insert_edge(Corner::Halfedge(c), Corner::Halfedge(h))?;
         }
         let deg = self.valence(v2);
-        let mut v1_now = Some(v1);
+        let (mut v1_now, mut v2_now) = (Some(v1), Some(v2));
         for _ in 0..deg {
-            let out = self.vertex_halfedge(v2).expect("v2 keeps edges until the last deletion");
+            let Some(out) = v2_now.and_then(|v| self.vertex_halfedge(v)) else { break };
             let nv = self.n_vertices();
             let removed = self.delete_edge_with_cleanup(out.edge())?;
             v1_now = v1_now.and_then(|v| follow_vertex(v, nv, &removed));
+            v2_now = v2_now.and_then(|v| follow_vertex(v, nv, &removed));
         }
         // v1 goes too only when every edge of the component ran between v1
         // and v2: what is left of it is a point-sphere

@@ -311,6 +311,58 @@ mod tests {
         assert_eq!(counts(&m), counts(&grid_cube(3)));
     }
 
+    /// Winding number of a closed polygon about its centroid, seen along its
+    /// Newell normal, and whether every turn is positive (a star about it).
+    fn star_winding(pts: &[glam::DVec3]) -> (f64, bool) {
+        let c = pts.iter().sum::<glam::DVec3>() / pts.len() as f64;
+        let mut n = glam::DVec3::ZERO;
+        for i in 0..pts.len() {
+            n += pts[i].cross(pts[(i + 1) % pts.len()]);
+        }
+        let n = n.normalize();
+        let mut total = 0.0;
+        let mut all_positive = true;
+        for i in 0..pts.len() {
+            let (a, b) = (pts[i] - c, pts[(i + 1) % pts.len()] - c);
+            let turn = n.dot(a.cross(b)).atan2(a.dot(b));
+            all_positive &= turn > 0.0;
+            total += turn;
+        }
+        (total / std::f64::consts::TAU, all_positive)
+    }
+
+    #[test]
+    fn sections_are_star_shaped_between_unlike_faces() {
+        // a quad (cube top) to a long, thin, rotated hexagon far away: every
+        // intermediate section winds once around its centre with positive turns
+        for twist in 0..6 {
+            let mut m = grid_cube(1);
+            let hex: Vec<glam::DVec3> = (0..6)
+                .map(|i| {
+                    let a = i as f64 * std::f64::consts::TAU / 6.0 + 0.4;
+                    glam::DVec3::new(3.0 + 0.2 * a.sin(), 2.0 * a.cos(), 5.0 + 0.3 * a.cos())
+                })
+                .collect();
+            let fm = m.create_face_manifold(&hex).unwrap();
+            let top = face_at(&m, [0., 0., 1.]);
+            let crate::Corner::Halfedge(back) = fm.back_corner else { panic!() };
+            let mut c2 = back;
+            for _ in 0..twist {
+                c2 = m.next(c2);
+            }
+            let nv = m.n_vertices();
+            let h = m.add_handle(top, c2, 7, 4.0, 4.0).unwrap();
+            assert_eq!((h.corners, h.subdivisions), (6, 2));
+            m.validate().unwrap();
+            let new = &m.positions()[nv + h.subdivisions..];
+            assert_eq!(new.len(), 6 * 6);
+            for section in new.chunks(6) {
+                let (w, positive) = star_winding(section);
+                assert!((w - 1.0).abs() < 1e-9 && positive, "twist {twist}: winding {w}");
+            }
+        }
+    }
+
     #[test]
     fn two_components_join() {
         let mut m = grid_cube(1);
