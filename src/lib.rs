@@ -7,6 +7,7 @@
 pub mod error;
 pub mod io;
 pub mod mesh;
+pub mod ops;
 pub mod primitives;
 pub mod schemes;
 

@@ -12,6 +12,7 @@ primitive or your own arrays::
 from topomesh._core import (
     Mesh,
     MeshError,
+    Rind,
     cube,
     dodecahedron,
     genus_surface,
@@ -25,6 +26,7 @@ from topomesh.io import load  # noqa: E402
 __all__ = [
     "Mesh",
     "MeshError",
+    "Rind",
     "cube",
     "dodecahedron",
     "genus_surface",

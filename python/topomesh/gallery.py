@@ -95,15 +95,16 @@ def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
             yield Entry(f"{name}_menger", f"Generalized Menger {name} ×2", lambda n=name: solids[n]().menger(iterations=2))
     # handles and rinds (issue 3)
     if _method("add_handle"):
-        yield Entry("cube_handle", "Cube with a curved handle", lambda: topomesh.cube().add_handle(0, 1, segments=8))
+        from topomesh import modeling
+
+        yield Entry("cup", "The dissertation's cup (Fig. 65): rind body + curved handle", modeling.cup)
+        yield Entry("arch_cube_3", "Genus-3 cube: three curved handles", lambda: modeling.arch_cube(3))
+        yield Entry("twisted_handle", "Twisted handle", lambda: modeling.arch_cube(1, twist=1))
+        yield Entry("triangle_hexagon_handle", "Handle from a triangle to a hexagon", modeling.triangle_hexagon_handle)
     if _method("rind"):
-        yield Entry("cube_rind_punched", "Rind cube with 6 holes", lambda: _punched_rind())
+        from topomesh import modeling
 
-
-def _punched_rind() -> Mesh:
-    m = topomesh.cube().catmull_clark(iterations=1) if _method("catmull_clark") else topomesh.cube()
-    r = m.rind(0.1)
-    return r.punch(list(range(0, m.n_faces, 4)))
+        yield Entry("peeled_rind_sphere", "Peeled rind sphere", modeling.peeled_rind_sphere)
 
 
 def peer_summary(mesh: Mesh) -> dict[str, object]:

@@ -8,6 +8,7 @@ use pyo3::prelude::*;
 pub(crate) mod convert;
 pub(crate) mod mesh;
 mod refine;
+mod ops;
 
 pyo3::create_exception!(
     topomesh,
@@ -29,5 +30,6 @@ pub(crate) fn arg_err(msg: impl Into<String>) -> PyErr {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MeshError", m.py().get_type::<MeshError>())?;
     mesh::register(m)?;
+    ops::register(m)?;
     Ok(())
 }

@@ -1,0 +1,300 @@
+//! Python bindings of the high-level operators (dissertation ch. III),
+//! multi-segment curved handles (ch. IV) and rind modeling (ch. V.3).
+//! Faces are given by index and corners by position in their face (the
+//! order of :attr:`Mesh.face_indices`); every method returns a new mesh.
+
+use super::mesh::PyMesh;
+use super::{arg_err, err};
+use crate::mesh::{Corner, EdgeId, FaceId, HalfedgeId, Mesh};
+use crate::ops::Rind;
+use pyo3::prelude::*;
+
+fn face_of(m: &Mesh, f: i64) -> PyResult<FaceId> {
+    if f < 0 || f as usize >= m.n_faces() {
+        return Err(arg_err(format!("face {f} out of range (mesh has {} faces)", m.n_faces())));
+    }
+    Ok(FaceId(f as u32))
+}
+
+fn corner_of(m: &Mesh, face: i64, position: i64) -> PyResult<Corner> {
+    let f = face_of(m, face)?;
+    if position < 0 {
+        return Err(arg_err(format!("corner position {position} of face {face} is negative")));
+    }
+    m.corner(f, position as usize).map_err(err)
+}
+
+/// The half-edge leaving corner `position` of `face` (faces with edges only).
+fn halfedge_of(m: &Mesh, face: i64, position: i64, what: &str) -> PyResult<HalfedgeId> {
+    match corner_of(m, face, position)? {
+        Corner::Halfedge(h) => Ok(h),
+        Corner::Point(_) => Err(arg_err(format!("{what}: face {face} is a point-sphere (it has no edge)"))),
+    }
+}
+
+fn edge_of(m: &Mesh, e: i64) -> PyResult<EdgeId> {
+    if e < 0 || e as usize >= m.n_edges() {
+        return Err(arg_err(format!("edge {e} out of range (mesh has {} edges)", m.n_edges())));
+    }
+    Ok(EdgeId(e as u32))
+}
+
+/// One face index or a sequence of them.
+fn face_list(obj: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
+    let raw: Vec<i64> = if let Ok(f) = obj.extract::<i64>() { vec![f] } else { obj.extract()? };
+    raw.into_iter()
+        .map(|f| if f < 0 { Err(arg_err(format!("face {f} is negative"))) } else { Ok(f as usize) })
+        .collect()
+}
+
+#[pymethods]
+impl PyMesh {
+    /// DeleteEdgeWithCleanup(e) (dissertation ch. III.1): :meth:`delete_edge`,
+    /// then every end vertex left without edges (a point-sphere) is deleted.
+    ///
+    /// E−1 and the effect of :meth:`delete_edge`; then V−k, F−k and
+    /// components −k for the k ∈ {0, 1, 2} point-spheres removed. The last
+    /// edge takes index ``edge``; a removed vertex's index goes to the last vertex.
+    fn delete_edge_with_cleanup(&self, py: Python<'_>, edge: i64) -> PyResult<PyMesh> {
+        let e = edge_of(&self.inner, edge)?;
+        let mut m = self.inner.clone();
+        py.detach(|| m.delete_edge_with_cleanup(e)).map_err(err)?;
+        Ok(PyMesh::wrap(m))
+    }
+
+    /// SubdivideEdge(e) (ch. III.2): a new vertex at ``(1 − t)·a + t·b`` on
+    /// ``edge`` = (a, b) (the row of :attr:`edges`), by CreateVertex,
+    /// two InsertEdge and DeleteEdge. Returns ``(mesh, vertex)``.
+    ///
+    /// V+1, E+1, F and genus unchanged; both faces beside the edge gain a
+    /// corner. Self-loops split too (a one-gon becomes a two-gon). ``edge``
+    /// now runs from the new vertex to b; the new last edge runs from a to it.
+    #[pyo3(signature = (edge, t = 0.5))]
+    fn subdivide_edge(&self, edge: i64, t: f64) -> PyResult<(PyMesh, usize)> {
+        let e = edge_of(&self.inner, edge)?;
+        let mut m = self.inner.clone();
+        let s = m.subdivide_edge(e, t).map_err(err)?;
+        Ok((PyMesh::wrap(m), s.vertex.idx()))
+    }
+
+    /// CreatePipe(c1, c2) (ch. III.3): joins corner ``position1`` of
+    /// ``face1`` to corner ``position2`` of ``face2``, and every further
+    /// matching corner (one face forward, the other backward), making a pipe
+    /// of quads in place of the two faces. A smaller face first has its
+    /// longest edges subdivided until the sizes agree.
+    ///
+    /// With d splits and N corners: V+d, E+d+N, F+N−2; genus +1 on one
+    /// component, components −1 across two.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     Same face twice, a corner position not in its face, a
+    ///     point-sphere against a larger face.
+    fn create_pipe(&self, py: Python<'_>, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<PyMesh> {
+        let c1 = corner_of(&self.inner, face1, position1)?;
+        let c2 = corner_of(&self.inner, face2, position2)?;
+        let mut m = self.inner.clone();
+        py.detach(|| m.create_pipe(c1, c2)).map_err(err)?;
+        Ok(PyMesh::wrap(m))
+    }
+
+    /// CreateFaceManifold(p0, …, pN−1) (ch. III.4): adds a sphere of two
+    /// faces through ``points`` (N, 3): the front face in the given order,
+    /// the back face reversed. Returns ``(mesh, front, back)``.
+    ///
+    /// V+N, E+N, F+2, components +1 (one point: a point-sphere, front = back).
+    fn create_face_manifold(&self, py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<(PyMesh, usize, usize)> {
+        let pts = super::convert::positions(py, points)?;
+        let mut m = self.inner.clone();
+        let fm = m.create_face_manifold(&pts).map_err(err)?;
+        Ok((PyMesh::wrap(m), fm.front.idx(), fm.back.idx()))
+    }
+
+    /// ConnectEdges (ch. III.5) on the side leaving corner ``position1`` of
+    /// ``face1`` and the side leaving corner ``position2`` of ``face2``: an
+    /// edge from where the first starts to where the second ends, and one
+    /// from where the first ends to where the second starts, bounding a new
+    /// face with both sides. Returns ``(mesh, new_face)``.
+    ///
+    /// E+2. One face: it splits in three (F+2). Two faces: F unchanged and
+    /// genus +1 (one component) or components −1.
+    fn connect_edges(&self, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<(PyMesh, usize)> {
+        let h1 = halfedge_of(&self.inner, face1, position1, "connect_edges")?;
+        let h2 = halfedge_of(&self.inner, face2, position2, "connect_edges")?;
+        let mut m = self.inner.clone();
+        let (_, _, f) = m.connect_edges(h1, h2).map_err(err)?;
+        Ok((PyMesh::wrap(m), f.idx()))
+    }
+
+    /// CollapseEdge(e) (ch. III.6): merges the two ends of ``edge`` into one
+    /// vertex at its midpoint. Returns ``(mesh, vertex)``.
+    ///
+    /// V−1, E−s, F−(s−1), genus unchanged, where s is 1 plus the number of
+    /// two-gons on the edge (each vanishes; a triangle beside it becomes a
+    /// two-gon). Raises :class:`MeshError` for a self-loop.
+    fn collapse_edge(&self, py: Python<'_>, edge: i64) -> PyResult<(PyMesh, usize)> {
+        let e = edge_of(&self.inner, edge)?;
+        let mut m = self.inner.clone();
+        let c = py.detach(|| m.collapse_edge(e)).map_err(err)?;
+        Ok((PyMesh::wrap(m), c.vertex.idx()))
+    }
+
+    /// A multi-segment curved handle (dissertation ch. IV) from ``face_a``
+    /// to ``face_b``.
+    ///
+    /// Parameters
+    /// ----------
+    /// face_a, face_b : int
+    ///     Two faces not sharing an edge.
+    /// segments : int, default 4
+    ///     Number of pipe segments k (k − 1 intermediate cross-sections).
+    /// weights : (float, float), optional
+    ///     Hermite tangent lengths (w1, w2) along the face normals, in model
+    ///     units; both negative make a tunnel through the solid instead of
+    ///     a handle. Default: the distance between the face centroids, twice.
+    /// corners : (int, int or None), optional
+    ///     Corner positions matched with each other in ``face_a`` and
+    ///     ``face_b``; changing one twists the handle. A second entry of
+    ///     ``None`` picks the corner of ``face_b`` giving the least twist.
+    ///     Default: ``(0, None)``.
+    ///
+    /// Faces of different sizes are equalized by subdividing the smaller
+    /// one's edges. With d splits and N corners: V + d + N(k−1),
+    /// E + d + N(2k−1), F + Nk − 2; genus +1 on one component, components −1
+    /// across two.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     Same face, faces sharing an edge, a corner not in its face,
+    ///     weights of opposite signs, segments < 1, coincident centroids.
+    #[pyo3(signature = (face_a, face_b, segments = 4, weights = None, corners = None))]
+    fn add_handle(
+        &self,
+        py: Python<'_>,
+        face_a: i64,
+        face_b: i64,
+        segments: i64,
+        weights: Option<(f64, f64)>,
+        corners: Option<(i64, Option<i64>)>,
+    ) -> PyResult<PyMesh> {
+        let m0 = &self.inner;
+        let corners = corners.unwrap_or((0, None));
+        let c1 = halfedge_of(m0, face_a, corners.0, "add_handle")?;
+        let c2 = halfedge_of(m0, face_b, corners.1.unwrap_or(0), "add_handle")?;
+        if segments < 1 {
+            return Err(arg_err(format!("add_handle: segments = {segments} must be at least 1")));
+        }
+        let (w1, w2) = match weights {
+            Some(w) => w,
+            None => {
+                let c = m0.face_centroids();
+                let d = (c[face_a as usize] - c[face_b as usize]).length();
+                (d, d)
+            }
+        };
+        let c2 = if corners.1.is_none() { m0.aligned_handle_corner(c1, c2, w1, w2).map_err(err)? } else { c2 };
+        let mut m = m0.clone();
+        py.detach(|| m.add_handle(c1, c2, segments as usize, w1, w2)).map_err(err)?;
+        Ok(PyMesh::wrap(m))
+    }
+
+    /// The offset shell of this mesh for rind modeling (dissertation ch.
+    /// V.3.1): a copy with reversed orientation, each vertex moved inward by
+    /// ``thickness`` along its averaged normal. Returns a :class:`Rind`
+    /// whose faces ``0..F`` are this mesh's faces (outer shell) and
+    /// ``F..2F`` their inner twins.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     A thickness that is not positive, or one that flips an inner face
+    ///     (named); a mesh with hole faces or point-spheres.
+    fn rind(&self, py: Python<'_>, thickness: f64) -> PyResult<PyRind> {
+        let r = py.detach(|| self.inner.rind(thickness)).map_err(err)?;
+        Ok(PyRind { inner: r })
+    }
+}
+
+/// A rind: a mesh with its offset shell and the outer↔inner face table
+/// (dissertation ch. V.3). Immutable; :meth:`punch` and :meth:`peel` return
+/// new rinds. Faces are named by their index in the initial rind (outer
+/// ``0..F``, inner ``F..2F``), whatever later operations renumber.
+#[pyclass(name = "Rind", module = "topomesh", frozen)]
+pub struct PyRind {
+    inner: Rind,
+}
+
+#[pymethods]
+impl PyRind {
+    /// The rind surface as a :class:`Mesh`.
+    #[getter]
+    fn mesh(&self) -> PyMesh {
+        PyMesh::wrap(self.inner.mesh().clone())
+    }
+    /// Number of outer faces F (the source mesh's faces).
+    #[getter]
+    fn n_outer_faces(&self) -> usize {
+        self.inner.initial_face_count() / 2
+    }
+    /// Outer faces punched or peeled so far, increasing.
+    #[getter]
+    fn punched(&self) -> Vec<usize> {
+        self.inner.punched_faces()
+    }
+    /// Current indices in :attr:`mesh` of outer face ``face`` and its inner
+    /// twin, or ``None`` once punched.
+    fn face_pair(&self, face: i64) -> Option<(usize, usize)> {
+        if face < 0 {
+            return None;
+        }
+        self.inner.face_pair(face as usize).map(|(a, b)| (a.idx(), b.idx()))
+    }
+    /// Punch a hole through each outer face of ``faces`` (an int or a
+    /// sequence): CreatePipe between the face and its inner twin.
+    ///
+    /// Per face E+N, F+N−2; the first punch of a fresh rind joins the two
+    /// shells (components −1), each later one adds a handle (genus +1).
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     A face out of range, on the inner shell, already punched, or
+    ///     selected twice.
+    fn punch(&self, py: Python<'_>, faces: &Bound<'_, PyAny>) -> PyResult<PyRind> {
+        let fs = face_list(faces)?;
+        let mut r = self.inner.clone();
+        py.detach(|| r.punch(&fs)).map_err(err)?;
+        Ok(PyRind { inner: r })
+    }
+    /// Peel each outer face of ``faces``: punch it, then delete the
+    /// infinitely thin walls it leaves against earlier holes and the
+    /// two-gons at their ends (ch. V.3.2), so neighbouring holes open into
+    /// one. Each wall removed cuts a handle (genus −1), or separates a piece
+    /// when it closes a ring of holes. Same errors as :meth:`punch`.
+    fn peel(&self, py: Python<'_>, faces: &Bound<'_, PyAny>) -> PyResult<PyRind> {
+        let fs = face_list(faces)?;
+        let mut r = self.inner.clone();
+        py.detach(|| r.peel(&fs)).map_err(err)?;
+        Ok(PyRind { inner: r })
+    }
+    fn __repr__(&self) -> String {
+        let m = self.inner.mesh();
+        format!(
+            "Rind(outer_faces={}, punched={}, V={}, E={}, F={}, genus={}, components={})",
+            self.inner.initial_face_count() / 2,
+            self.inner.punched_faces().len(),
+            m.n_vertices(),
+            m.n_edges(),
+            m.n_faces(),
+            m.genus(),
+            m.n_components()
+        )
+    }
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyRind>()?;
+    Ok(())
+}
