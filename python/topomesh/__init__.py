@@ -21,6 +21,7 @@ from topomesh._core import (
     torus,
 )
 from topomesh.io import load  # noqa: E402
+from topomesh import ifs  # noqa: E402
 
 __all__ = [
     "Mesh",
@@ -28,6 +29,7 @@ __all__ = [
     "cube",
     "dodecahedron",
     "genus_surface",
+    "ifs",
     "icosahedron",
     "load",
     "octahedron",

@@ -531,3 +531,37 @@ pub fn lattice_subdivide(
     }
     Ok((sites, pos))
 }
+
+/// Triangles of a set of lattice sites: `(c, c+e0, c+e1)` and
+/// `(c+e0, c+e0+e1, c+e1)` when all three sites are present (triangular
+/// lattice faces, or split quads of the square lattice), counter-clockwise.
+pub fn lattice_triangles(sites: &[[i64; 2]]) -> Vec<[u32; 3]> {
+    let index: HashMap<[i64; 2], u32> = sites.iter().enumerate().map(|(i, &c)| (c, i as u32)).collect();
+    let mut out = Vec::new();
+    for &c in sites {
+        let (a, b, d) = (index.get(&add(c, [1, 0])), index.get(&add(c, [0, 1])), index.get(&add(c, [1, 1])));
+        if let (Some(&a), Some(&b)) = (a, b) {
+            out.push([index[&c], a, b]);
+            if let Some(&d) = d {
+                out.push([a, d, b]);
+            }
+        }
+    }
+    out
+}
+
+/// The lattice sites of a named surface scheme's control net with `n` points:
+/// `"bicubic"` (4×4 grid, index `4j + i`), `"loop"` / `"sqrt3"` (`hex_lattice(r)`).
+pub fn surface_control_sites(scheme: &str, n: usize) -> Result<(LatticeRules, Vec<[i64; 2]>)> {
+    match scheme {
+        "bicubic" => {
+            if n != 16 {
+                return Err(invalid(format!("bicubic: expected 16 control points (a 4x4 grid), got {n}")));
+            }
+            Ok((LatticeRules::Tensor(CurveRules::cubic_bspline()), (0..4).flat_map(|j| (0..4).map(move |i| [i, j])).collect()))
+        }
+        "loop" => Ok((LatticeRules::Loop, hex_lattice(hex_radius_for(n, "loop")?))),
+        "sqrt3" => Ok((LatticeRules::Sqrt3, hex_lattice(hex_radius_for(n, "sqrt3")?))),
+        _ => Err(invalid(format!("unknown surface scheme {scheme:?} (expected 'bicubic', 'loop' or 'sqrt3')"))),
+    }
+}
