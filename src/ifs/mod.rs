@@ -341,6 +341,17 @@ impl Ifs {
         if self.domain == Some(Domain::Interval) && other.domain == Some(Domain::Interval) {
             u.domain = Some(Domain::Interval);
         }
+        // paired control points [P | Q]: iterating them subdivides both at once
+        if let (Some(p), Some(q)) = (&self.control, &other.control) {
+            if p.rows == q.rows {
+                let mut c = Mat::zeros(p.rows, p.cols + q.cols);
+                for r in 0..p.rows {
+                    c.data[r * c.cols..r * c.cols + p.cols].copy_from_slice(p.row(r));
+                    c.data[r * c.cols + p.cols..(r + 1) * c.cols].copy_from_slice(q.row(r));
+                }
+                u.control = Some(c);
+            }
+        }
         Ok(u)
     }
 
@@ -400,7 +411,8 @@ impl Ifs {
     pub fn blocks(&self) -> Option<&[Mat]> {
         self.blocks.as_deref()
     }
-    /// The lifted control-point matrix `P`, if built from a scheme.
+    /// The lifted control-point matrix `P`, if built from a scheme (for a
+    /// union of two IFSs with equally many control points, the rows `[P | Q]`).
     pub fn control(&self) -> Option<&Mat> {
         self.control.as_ref()
     }

@@ -152,13 +152,13 @@ impl PyIfs {
         self.inner.control().map(|p| mat_array(py, p))
     }
 
-    /// The control points, ``(n, D)`` float64, or None.
+    /// The control points, ``(n, D)`` float64 (``(c, n, D)`` for a union), or None.
     #[getter]
-    fn control_points<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
-        let p = self.inner.control()?;
-        let d = self.inner.ambient_dim();
-        let data: Vec<f64> = (0..p.rows).flat_map(|r| p.row(r)[..d].to_vec()).collect();
-        Some(Array2::from_shape_vec((p.rows, d), data).expect("shape").into_pyarray(py))
+    fn control_points<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyArrayDyn<f64>>>> {
+        let Some(p) = self.inner.control() else { return Ok(None) };
+        let rows: Vec<Vec<f64>> = (0..p.rows).map(|r| p.row(r).to_vec()).collect();
+        let y = self.inner.start_points(&rows).map_err(err)?;
+        Ok(Some(points_array(py, &self.inner, self.inner.draw(&y), &[p.rows])))
     }
 
     /// Spectral radius of each map's linear part, ``(k,)`` float64 (all < 1).
