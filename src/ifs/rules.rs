@@ -379,7 +379,7 @@ fn sqrt3_two_steps(p: [i64; 2]) -> Vec<([i64; 2], f64)> {
         }
     }
     let mut out: Vec<_> = acc.into_iter().collect();
-    out.sort_by(|a, b| a.0.cmp(&b.0));
+    out.sort_by_key(|a| a.0);
     out
 }
 
@@ -489,6 +489,9 @@ pub fn sqrt3_hexagon_ifs(points: &[Vec<f64>]) -> Result<Ifs> {
     lattice_ifs(&LatticeRules::Sqrt3, &control, &offsets, points, &v, &t, "sqrt3")
 }
 
+/// Lattice sites and the positions at them.
+pub type LatticeNet = (Vec<[i64; 2]>, Vec<Vec<f64>>);
+
 /// Plain subdivision of a lattice net: fine points whose stencils stay
 /// inside the current net, `levels` times. Returns fine lattice points and
 /// their positions.
@@ -497,7 +500,7 @@ pub fn lattice_subdivide(
     control: &[[i64; 2]],
     points: &[Vec<f64>],
     levels: usize,
-) -> Result<(Vec<[i64; 2]>, Vec<Vec<f64>>)> {
+) -> Result<LatticeNet> {
     if control.len() != points.len() {
         return Err(invalid("lattice subdivision: one point per lattice site"));
     }
