@@ -11,7 +11,10 @@ use crate::Result;
 use std::collections::{HashMap, HashSet};
 
 /// Largest number of points (or triangles) one call may produce.
-pub const MAX_OUTPUT: usize = 200_000_000;
+pub const MAX_OUTPUT: usize = 100_000_000;
+
+/// Largest number of levels of deterministic iteration or meshing.
+pub const MAX_LEVELS: usize = 64;
 
 /// xoshiro256++ seeded by splitmix64: small, fast and reproducible.
 #[derive(Clone, Debug)]
@@ -187,6 +190,9 @@ impl Ifs {
     /// `i·|X| + j` of the next level is `f_i(X_j)`, so the outermost map is
     /// the most significant digit of the index (curves come out in order).
     pub fn iterate_reduced(&self, start: &[f64], levels: usize) -> Result<Vec<f64>> {
+        if levels > MAX_LEVELS {
+            return Err(invalid(format!("{levels} levels exceed the limit {MAX_LEVELS}")));
+        }
         let d = self.reduced_dim();
         let count = start.len() / d.max(1);
         let k = self.maps.len();
@@ -297,6 +303,9 @@ impl Ifs {
         };
         if self.components.len() != 1 {
             return Err(invalid("mesh: only single-component IFSs"));
+        }
+        if levels > MAX_LEVELS {
+            return Err(invalid(format!("{levels} levels exceed the limit {MAX_LEVELS}")));
         }
         let est = (maps.len() as f64).powi(levels as i32) * triangles.len() as f64;
         if est > MAX_OUTPUT as f64 {
