@@ -382,10 +382,8 @@ pub fn hausdorff(a: &[f64], b: &[f64], dim: usize) -> f64 {
             let mut r = 0i64;
             loop {
                 // search shells of cells until the best is provably found
-                let mut any = false;
                 let mut visit = |cellk: &Vec<i64>| {
                     if let Some(ids) = grid.get(cellk) {
-                        any = true;
                         for &i in ids {
                             let q = &b[i * dim..(i + 1) * dim];
                             best = best.min(p.iter().zip(q).map(|(x, y)| (x - y) * (x - y)).sum::<f64>().sqrt());
@@ -412,7 +410,6 @@ pub fn hausdorff(a: &[f64], b: &[f64], dim: usize) -> f64 {
                         break;
                     }
                 }
-                let _ = any;
                 if best <= r as f64 * cell || r > 4 * (nb as i64 + 2) {
                     break;
                 }
