@@ -6,6 +6,7 @@
 
 pub mod error;
 pub mod io;
+pub mod ifs;
 pub mod mesh;
 pub mod ops;
 pub mod primitives;

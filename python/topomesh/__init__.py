@@ -22,6 +22,7 @@ from topomesh._core import (
     torus,
 )
 from topomesh.io import load  # noqa: E402
+from topomesh import ifs  # noqa: E402
 
 __all__ = [
     "Mesh",
@@ -30,6 +31,7 @@ __all__ = [
     "cube",
     "dodecahedron",
     "genus_surface",
+    "ifs",
     "icosahedron",
     "load",
     "octahedron",

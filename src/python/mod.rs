@@ -6,6 +6,7 @@
 use pyo3::prelude::*;
 
 pub(crate) mod convert;
+pub(crate) mod ifs;
 pub(crate) mod mesh;
 mod refine;
 mod ops;
@@ -31,5 +32,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MeshError", m.py().get_type::<MeshError>())?;
     mesh::register(m)?;
     ops::register(m)?;
+    ifs::register(m)?;
     Ok(())
 }
