@@ -71,3 +71,11 @@ def test_readme_example_runs(tmp_path, monkeypatch):
     code = re.search(r"```python\n(.*?)```", text, re.S).group(1)
     monkeypatch.chdir(tmp_path)
     exec(compile(code, "README.md", "exec"), {})
+
+
+def test_gallery_draws_attractor_pictures(tmp_path):
+    gallery.run(tmp_path, only=["ifs_koch", "ifs_gasket"], progress=False)
+    for n in ("ifs_koch", "ifs_gasket"):
+        png = tmp_path / f"{n}.png"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5000
+    assert "![](ifs_koch.png)" in (tmp_path / "summary.md").read_text()

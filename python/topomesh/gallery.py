@@ -107,6 +107,61 @@ def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
         yield Entry("peeled_rind_sphere", "Peeled rind sphere", modeling.peeled_rind_sphere)
 
 
+@dataclass(frozen=True)
+class Picture:
+    """A gallery image that is not a closed mesh (IFS attractors)."""
+
+    name: str
+    title: str
+    draw: Callable[[Path], None]
+
+
+def pictures() -> Iterator[Picture]:
+    """Attractors of subdivision schemes (attractors paper), drawn with matplotlib."""
+    from topomesh import ifs
+
+    def plot(path: Path, title: str, curves: list[tuple[np.ndarray, str]], points: np.ndarray | None = None) -> None:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(6, 4), dpi=100)
+        for xy, style in curves:
+            ax.plot(xy[:, 0], xy[:, 1], style, lw=1, ms=3)
+        if points is not None:
+            ax.plot(points[:, 0], points[:, 1], ",", color="#4d3319")
+        ax.set_aspect("equal")
+        ax.set_title(title, fontsize=10)
+        ax.axis("off")
+        fig.savefig(path, bbox_inches="tight")
+        plt.close(fig)
+
+    ctrl = np.array([[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5], [6.0, 1.5], [7.0, 0.0]])
+
+    def bspline(path: Path) -> None:
+        f = ifs.cubic_bspline(ctrl)
+        plot(path, "Cubic B-spline as an IFS: attractor vs control polygon", [(ctrl, "o--"), (f.polyline(10), "-")])
+
+    def koch(path: Path) -> None:
+        pts = ifs.koch_reference().copy()
+        moved = pts.copy()
+        moved[2, 1] += 0.25
+        plot(
+            path,
+            "Koch curve from 5 control points; apex moved (orange)",
+            [(ifs.koch(pts).polyline(7), "-"), (ifs.koch(moved).polyline(7), "-"), (moved, "o")],
+        )
+
+    def gasket(path: Path) -> None:
+        f = ifs.gasket()
+        plot(path, "Sierpinski gasket: chaos game, 200k points", [(ifs.gasket_reference(), "o")], f.chaos_game(200_000))
+
+    yield Picture("ifs_cubic_bspline", "Cubic B-spline attractor", bspline)
+    yield Picture("ifs_koch", "Koch curve with control points", koch)
+    yield Picture("ifs_gasket", "Sierpinski gasket (chaos game)", gasket)
+
+
 def peer_summary(mesh: Mesh) -> dict[str, object]:
     """Counts by topomesh, and genus/closedness by trimesh and manifold3d
     (whichever is installed). Never raises: a peer's failure is reported."""
@@ -165,7 +220,7 @@ def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress:
     out.mkdir(parents=True, exist_ok=True)
     todo = [e for e in entries() if not only or e.name in only]
     if only:
-        unknown = sorted(set(only) - {e.name for e in todo})
+        unknown = sorted(set(only) - {e.name for e in todo} - {p.name for p in pictures()})
         if unknown:
             raise topomesh.MeshError(f"unknown gallery entries: {', '.join(unknown)}")
     rows = []
@@ -182,11 +237,14 @@ def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress:
             peers = peer_summary(checked)
             row.update({k: f"{v} (smoothed)" for k, v in peers.items() if k.startswith(("trimesh", "manifold"))})
         rows.append(row)
-    _write_tables(out, rows)
+    pics = [p for p in pictures() if not only or p.name in only] if images else []
+    for p in tqdm(pics, desc="pictures", unit="image", disable=not progress):
+        p.draw(out / f"{p.name}.png")
+    _write_tables(out, rows, pics)
     return rows
 
 
-def _write_tables(out: Path, rows: list[dict[str, object]]) -> None:
+def _write_tables(out: Path, rows: list[dict[str, object]], pics: list[Picture]) -> None:
     cols = ["name", "V", "E", "F", "genus", "components", "self_loops", "trimesh_watertight", "trimesh_genus", "manifold_status", "manifold_genus"]
     with open(out / "summary.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
@@ -203,4 +261,7 @@ def _write_tables(out: Path, rows: list[dict[str, object]]) -> None:
     ]
     for r in rows:
         lines.append("| " + " | ".join(str(r.get(c, "")) for c in cols) + f" | ![]({r['name']}.png) |")
+    if pics:
+        lines += ["", "## Attractors of subdivision schemes", ""]
+        lines += [f"- {p.title}: ![]({p.name}.png)" for p in pics]
     (out / "summary.md").write_text("\n".join(lines) + "\n")
