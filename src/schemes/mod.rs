@@ -1,2 +1,11 @@
 //! Schemes: one file each. Every scheme is a free function taking a `&Mesh`
 //! and returning a new `Mesh`; the mesh structure knows nothing about them.
+
+pub(crate) mod hosts;
+pub mod catmull_clark;
+pub mod doo_sabin;
+pub mod dual;
+pub mod loop_subdivision;
+pub mod midpoint;
+pub mod simplest;
+pub mod sqrt3;
