@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 
 pub(crate) mod convert;
 pub(crate) mod mesh;
+mod smooth;
 
 pyo3::create_exception!(
     topomesh,
