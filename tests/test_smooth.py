@@ -469,7 +469,8 @@ def pymeshlab_run(m: Mesh, filt: str):
     pml = pytest.importorskip("pymeshlab")
     ms = pml.MeshSet()
     ms.add_mesh(pml.Mesh(m.vertices, [np.asarray(f, dtype=np.uint32) for f in faces_of(m)]))
-    getattr(ms, filt)(iterations=1)
+    kw = {"threshold": pml.PercentageValue(0.0)} if filt.endswith("loop") else {}
+    getattr(ms, filt)(iterations=1, **kw)
     return ms.current_mesh().vertex_matrix()
 
 

@@ -17,7 +17,7 @@
 //! Counts (H = 2E half-edges): V' = V + E + F, E' = 2E + H = 4E, F' = H.
 //! Output vertices are laid out `[vertex points | edge points | face points]`.
 
-use super::hosts::{face_centroids, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -29,6 +29,7 @@ pub fn catmull_clark(m: &Mesh) -> Result<Mesh> {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("catmull_clark", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
     let fl = FaceLayout::new(m);
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, face) = m.halfedge_columns();

@@ -4,7 +4,8 @@
 //! Mask: Doo & Sabin's weights. Corner k of an n-gon with corners
 //! `x₀ … x_{n−1}` gets the new point `Σᵢ αᵢ₋ₖ xᵢ`, with
 //! `α₀ = 1/4 + 5/(4n)` and `αᵢ = (3 + 2 cos(2πi/n))/(4n)` (i ≠ 0).
-//! Computed in O(n) per face as
+//! Computed in O(n) per face (one `sin_cos` per face, the multiples by
+//! rotation) as
 //! `x_k/4 + 3/(4n) Σ x + 1/(2n) (cos θ_k C + sin θ_k S)`, `θ_k = 2πk/n`,
 //! `C = Σ cos θᵢ xᵢ`, `S = Σ sin θᵢ xᵢ`. The weights sum to 1 for n ≥ 2; a
 //! one-gon's point is its vertex.
@@ -20,7 +21,7 @@
 //! 4-valent. Output vertex `c` is the corner `c` in face order; faces are
 //! laid out `[F-faces | E-faces | V-faces]`.
 
-use super::hosts::{with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, with_point_spheres, FaceLayout, SyncPtr, VertexLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -43,6 +44,7 @@ pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("doo_sabin", 4 * m.n_halfedges(), m.n_halfedges())?;
     let fl = FaceLayout::new(m);
     let vl = VertexLayout::new(m);
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
@@ -58,12 +60,15 @@ fn step(m: &Mesh) -> Result<Mesh> {
             let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
             let n = hs.len();
             let mut s = [DVec3::ZERO; 3];
-            for (i, &h) in hs.iter().enumerate() {
+            let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
+            let (mut cs, mut sn) = (1.0, 0.0);
+            for &h in hs {
                 let x = p[vert[h as usize] as usize];
-                let (sn, cs) = (std::f64::consts::TAU * i as f64 / n as f64).sin_cos();
                 s[0] += x;
                 s[1] += x * cs;
                 s[2] += x * sn;
+                // (cos, sin) of the next multiple of 2π/n
+                (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
             }
             s
         })
@@ -88,9 +93,11 @@ fn step(m: &Mesh) -> Result<Mesh> {
         let nf64 = n as f64;
         let [s, c, sn] = sums[f];
         let base = s * (0.75 / nf64);
+        let (ds, dc) = (std::f64::consts::TAU / nf64).sin_cos();
+        let (mut ck, mut sk) = (1.0, 0.0);
         for (k, &h) in hs.iter().enumerate() {
-            let (sk, ck) = (std::f64::consts::TAU * k as f64 / nf64).sin_cos();
             out[k] = p[vert[h as usize] as usize] * 0.25 + base + (c * ck + sn * sk) * (0.5 / nf64);
+            (ck, sk) = (ck * dc - sk * ds, sk * dc + ck * ds);
         }
     });
 
@@ -142,18 +149,6 @@ fn step(m: &Mesh) -> Result<Mesh> {
         });
     }
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
-}
-
-/// A raw pointer shared by parallel writers of disjoint slots.
-#[derive(Clone, Copy)]
-pub(crate) struct SyncPtr<T>(pub *mut T);
-unsafe impl<T> Send for SyncPtr<T> {}
-unsafe impl<T> Sync for SyncPtr<T> {}
-impl<T> SyncPtr<T> {
-    #[inline]
-    pub fn get(self) -> *mut T {
-        self.0
-    }
 }
 
 #[cfg(test)]

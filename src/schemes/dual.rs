@@ -12,7 +12,7 @@
 //! Counts: V' = F, E' = E, F' = V. Output vertex f is the centroid of face f;
 //! output face v is the one of vertex v.
 
-use super::hosts::{face_centroids, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -24,6 +24,7 @@ pub fn dual(m: &Mesh) -> Result<Mesh> {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("dual", m.n_halfedges(), m.n_faces())?;
     let fl = FaceLayout::new(m);
     let vl = VertexLayout::new(m);
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
@@ -33,7 +34,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
     face_centroids(m, &fl, &mut pos);
     let mut cv = vec![0u32; nh];
     let mut tw = vec![0u32; nh];
-    let (pc, pt) = (super::doo_sabin::SyncPtr(cv.as_mut_ptr()), super::doo_sabin::SyncPtr(tw.as_mut_ptr()));
+    let (pc, pt) = (super::hosts::SyncPtr(cv.as_mut_ptr()), super::hosts::SyncPtr(tw.as_mut_ptr()));
     (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
         let slot = vl.vidx[h] as usize;
         // side face(h) -> face(rotate h) crosses edge(prev h); its twin is the

@@ -20,6 +20,29 @@ use crate::mesh::{Mesh, NONE, POINT};
 use glam::DVec3;
 use rayon::prelude::*;
 
+/// Fails when a scheme's output would need more corners (or vertices) than
+/// 31-bit ids allow; schemes call it before any index arithmetic.
+pub(crate) fn check_output_size(scheme: &str, n_corners: usize, n_vertices: usize) -> Result<()> {
+    if n_corners > crate::mesh::MAX_ELEMENTS / 2 || n_vertices > crate::mesh::MAX_ELEMENTS {
+        return Err(crate::error::MeshError::InvalidArgument(format!(
+            "{scheme}: the output would have {n_corners} corners and {n_vertices} vertices, more than 31-bit ids allow"
+        )));
+    }
+    Ok(())
+}
+
+/// A raw pointer shared by parallel writers of disjoint slots.
+#[derive(Clone, Copy)]
+pub(crate) struct SyncPtr<T>(pub *mut T);
+unsafe impl<T> Send for SyncPtr<T> {}
+unsafe impl<T> Sync for SyncPtr<T> {}
+impl<T> SyncPtr<T> {
+    #[inline]
+    pub fn get(self) -> *mut T {
+        self.0
+    }
+}
+
 /// Below this many elements a parallel loop runs on one thread.
 pub(crate) const MIN_LEN: usize = 2048;
 
@@ -181,6 +204,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
     if all_triangles {
         return Ok(None);
     }
+    check_output_size("loop", 3 * m.n_halfedges(), m.n_vertices() + nf)?;
     let fl = FaceLayout::new(m);
     let (next, vert, face) = m.halfedge_columns();
     let nv = m.n_vertices();
@@ -297,17 +321,32 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Prim
         }
     };
     let mut sizes = Vec::with_capacity(n_out_faces);
+    for f in 0..nf {
+        if face_point[f] == NONE {
+            sizes.extend_from_slice(&[3, 3, 3, 3]);
+        } else {
+            sizes.extend(std::iter::repeat(4).take(fl.degree(f)));
+        }
+    }
     let mut cv = vec![0u32; nc];
     let mut tw = vec![0u32; nc];
-    for f in 0..nf {
+    let (pc, pt) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()));
+    (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
         let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
         let n = hs.len();
         let b = base[f] as usize;
+        // SAFETY: face f writes only its own range base[f]..base[f + 1].
+        let (cv, tw) = unsafe {
+            let len = if face_point[f] == NONE { 12 } else { 4 * n };
+            (
+                std::slice::from_raw_parts_mut(pc.get().add(b), len),
+                std::slice::from_raw_parts_mut(pt.get().add(b), len),
+            )
+        };
         if face_point[f] == NONE {
-            sizes.extend_from_slice(&[3, 3, 3, 3]);
             for (k, &h) in hs.iter().enumerate() {
                 let p = prev[h as usize];
-                let c = b + 3 * k;
+                let c = 3 * k;
                 cv[c] = vert[h as usize];
                 cv[c + 1] = nv + (h >> 1);
                 cv[c + 2] = nv + (p >> 1);
@@ -315,15 +354,14 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Prim
                 tw[c + 1] = (b + 9 + (k + 2) % 3) as u32;
                 tw[c + 2] = outer(p ^ 1).0;
                 // middle triangle side e(h_k) -> e(h_k+1)
-                cv[b + 9 + k] = nv + (h >> 1);
-                tw[b + 9 + k] = (b + 3 * ((k + 1) % 3) + 1) as u32;
+                cv[9 + k] = nv + (h >> 1);
+                tw[9 + k] = (b + 3 * ((k + 1) % 3) + 1) as u32;
             }
         } else {
             let fp = nv + ne + face_point[f];
             for (k, &h) in hs.iter().enumerate() {
-                sizes.push(4);
                 let p = prev[h as usize];
-                let c = b + 4 * k;
+                let c = 4 * k;
                 cv[c] = vert[h as usize];
                 cv[c + 1] = nv + (h >> 1);
                 cv[c + 2] = fp;
@@ -334,7 +372,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Prim
                 tw[c + 3] = outer(p ^ 1).0;
             }
         }
-    }
+    });
     Primal { sizes, verts: cv, twins: tw }
 }
 
@@ -437,3 +475,4 @@ pub(crate) mod test_meshes {
         m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
     }
 }
+

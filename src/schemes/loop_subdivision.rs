@@ -21,7 +21,7 @@
 //! them to the fanned mesh: V + F_≠3 vertices, E + Σ_≠3 n edges, F_3 + Σ_≠3 n
 //! triangles. Output vertices are `[vertex points | edge points]`.
 
-use super::hosts::{fan_triangulate, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
+use super::hosts::{check_output_size, fan_triangulate, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
@@ -46,6 +46,7 @@ pub fn loop_beta(n: usize) -> f64 {
 
 /// One Loop step on a mesh of triangles.
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("loop", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges())?;
     let fl = FaceLayout::new(m);
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, _) = m.halfedge_columns();

@@ -16,7 +16,7 @@
 //! Output vertices are `[old vertices | edge midpoints | centroids of the
 //! non-triangles, in face order]`.
 
-use super::hosts::{primal_host, with_point_spheres, FaceLayout, MIN_LEN};
+use super::hosts::{check_output_size, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
@@ -28,6 +28,7 @@ pub fn midpoint(m: &Mesh) -> Result<Mesh> {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("midpoint", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
     let fl = FaceLayout::new(m);
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, _) = m.halfedge_columns();

@@ -16,7 +16,7 @@
 //! 4-valent. Output vertex e is the midpoint of edge e; faces are
 //! `[F-faces | V-faces]`.
 
-use super::hosts::{with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use rayon::prelude::*;
@@ -27,6 +27,7 @@ pub fn simplest(m: &Mesh) -> Result<Mesh> {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
     let fl = FaceLayout::new(m);
     let vl = VertexLayout::new(m);
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
@@ -45,7 +46,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             *v = h >> 1;
             *t = hu + vl.vidx[next[h as usize] as usize];
         });
-        let (pc, pt) = (super::doo_sabin::SyncPtr(cvf.as_mut_ptr()), super::doo_sabin::SyncPtr(tvf.as_mut_ptr()));
+        let (pc, pt) = (super::hosts::SyncPtr(cvf.as_mut_ptr()), super::hosts::SyncPtr(tvf.as_mut_ptr()));
         (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|x| {
             let slot = vl.vidx[x] as usize;
             // SAFETY: vidx is a permutation of 0..nh.

@@ -18,7 +18,7 @@
 //! Output vertices are `[smoothed old vertices | face centroids]`; output
 //! triangle `h` is the one of half-edge `h`.
 
-use super::hosts::{neighbor_sum, with_point_spheres, MIN_LEN};
+use super::hosts::{check_output_size, neighbor_sum, with_point_spheres, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -36,6 +36,7 @@ pub fn sqrt3_alpha(n: usize) -> f64 {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
     let (nv, nh, nf) = (m.n_vertices(), m.n_halfedges(), m.n_faces());
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
