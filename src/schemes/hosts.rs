@@ -398,9 +398,17 @@ pub(crate) fn neighbor_sum(m: &Mesh, v: usize) -> (DVec3, usize) {
 #[cfg(test)]
 pub(crate) mod test_meshes {
     //! The corpus every scheme's unit tests run over.
-    use crate::mesh::{Corner, Mesh};
+
+    #[test]
+    fn sierpinski_counts() {
+        let s = sierpinski_tetrahedron();
+        s.validate().unwrap();
+        assert_eq!((s.n_vertices(), s.n_edges(), s.n_faces(), s.genus(), s.n_self_loops()), (10, 30, 16, 3, 6));
+    }
+    use crate::mesh::{BuildOptions, Mesh};
     use crate::primitives;
     use crate::FaceId;
+    use glam::DVec3;
 
     /// A cube with a self-loop splitting one face into a one-gon and a
     /// 5-corner face (the loop's vertex repeated in it).
@@ -410,8 +418,8 @@ pub(crate) mod test_meshes {
         m.insert_edge(c, c).unwrap();
         m
     }
-    /// A cube with a second edge along a diagonal... made a two-gon: an
-    /// edge parallel to an existing one (a multi-edge) splitting a face.
+    /// A cube with a second edge beside an existing one (a multi-edge),
+    /// splitting a two-gon off a face.
     pub fn cube_with_two_gon() -> Mesh {
         let mut m = primitives::cube();
         // corners 0 and 1 of face 0 are joined by an edge already; a second
@@ -446,12 +454,46 @@ pub(crate) mod test_meshes {
     }
     pub fn with_point_sphere() -> Mesh {
         let mut m = primitives::tetrahedron();
-        m.create_vertex(glam::DVec3::new(5.0, 0.0, 0.0)).unwrap();
+        m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
         m
+    }
+    /// Level 1 of the Sierpinski paper's scheme on a tetrahedron: four corner
+    /// tetrahedra whose back faces are hexagons `[x, x, y, y, z, z]` with a
+    /// zero-length self-loop at every edge midpoint; each loop joins the back
+    /// faces of two corner pyramids. V = 10, E = 30, F = 16, genus 3.
+    pub fn sierpinski_tetrahedron() -> Mesh {
+        let t = primitives::tetrahedron();
+        let tp = t.positions().to_vec();
+        let mut pos = tp.clone();
+        let mut mid = std::collections::HashMap::new();
+        let mut m = |a: u32, b: u32, pos: &mut Vec<DVec3>| -> i64 {
+            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                pos.push((tp[a as usize] + tp[b as usize]) * 0.5);
+                pos.len() as i64 - 1
+            })
+        };
+        let (mut sizes, mut idx) = (Vec::new(), Vec::new());
+        for f in t.faces() {
+            let v: Vec<u32> = t.face_vertices(f).map(|x| x.0).collect();
+            let (a, b, c) = (v[0], v[1], v[2]);
+            let (ab, bc, ca) = (m(a, b, &mut pos), m(b, c, &mut pos), m(c, a, &mut pos));
+            idx.extend([a as i64, ab, ca, b as i64, bc, ab, c as i64, ca, bc]);
+            sizes.extend([3, 3, 3]);
+        }
+        for a in 0..4u32 {
+            let o: Vec<i64> = (0..4u32).filter(|&o| o != a).map(|o| m(a, o, &mut pos)).collect();
+            let (x, mut y, mut z) = (o[0], o[1], o[2]);
+            let n = (pos[y as usize] - pos[x as usize]).cross(pos[z as usize] - pos[x as usize]);
+            if n.dot(pos[x as usize] - tp[a as usize]) < 0.0 {
+                std::mem::swap(&mut y, &mut z);
+            }
+            idx.extend([x, x, y, y, z, z]);
+            sizes.push(6);
+        }
+        Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
     }
 
     pub fn corpus() -> Vec<(&'static str, Mesh)> {
-        let _ = Corner::Point; // keep the import meaningful if unused
         vec![
             ("tetrahedron", primitives::tetrahedron()),
             ("cube", primitives::cube()),
@@ -464,10 +506,11 @@ pub(crate) mod test_meshes {
             ("two_gon", cube_with_two_gon()),
             ("handle_loop", cube_with_handle_loop()),
             ("point_sphere", with_point_sphere()),
+            ("sierpinski", sierpinski_tetrahedron()),
         ]
     }
 
-    /// Σ over faces of (number of faces with n corners) as a vector indexed by n.
+    /// The degree of every face, in face order.
     pub fn face_sizes(m: &Mesh) -> Vec<usize> {
         m.faces().map(|f| m.face_degree(f)).collect()
     }
@@ -475,4 +518,5 @@ pub(crate) mod test_meshes {
         m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
     }
 }
+
 
