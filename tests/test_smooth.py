@@ -100,6 +100,20 @@ def sierpinski_tetrahedron() -> Mesh:
     return Mesh.from_polygons(np.array(V), F)
 
 
+def dihedron(n: int) -> Mesh:
+    """Two n-gons glued along their whole boundary: every vertex has valence 2."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    V = np.column_stack([np.cos(t), np.sin(t), 0.1 * np.sin(3 * t)])
+    return Mesh.from_polygons(V, [list(range(n)), list(range(n))[::-1]])
+
+
+def loop_sphere() -> Mesh:
+    """The smallest sphere with an edge: one vertex, one self-loop, two one-gons."""
+    p = Mesh.from_polygons(np.zeros((1, 3)), [[0]])
+    m, _ = p.insert_edge(0, 0, 0, 0)
+    return m
+
+
 CLEAN = {
     "tetrahedron": topomesh.tetrahedron,
     "cube": topomesh.cube,
@@ -109,7 +123,11 @@ CLEAN = {
     "torus": lambda: topomesh.torus(12, 6),
     "genus3": lambda: topomesh.genus_surface(3),
 }
-DEGENERATE = {"sierpinski": sierpinski_tetrahedron, "self_loop": self_loop_cube, "two_gon": two_gon_cube, "handle_loop": handle_loop_cube}
+DEGENERATE = {
+    "dihedron3": lambda: dihedron(3),
+    "dihedron5": lambda: dihedron(5),
+    "loop_sphere": loop_sphere,
+    "sierpinski": sierpinski_tetrahedron, "self_loop": self_loop_cube, "two_gon": two_gon_cube, "handle_loop": handle_loop_cube}
 CORPUS = {**CLEAN, **DEGENERATE}
 
 
@@ -534,3 +552,37 @@ def test_point_sphere_carried_through() -> None:
         r.validate()
         assert r.n_components == 2
         assert np.any(np.all(r.vertices == [5.0, 0.0, 0.0], axis=1))
+
+
+# ------------------------------------------------------ random degenerate meshes
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+
+@st.composite
+def random_mesh(draw) -> Mesh:
+    """A Platonic solid after a few random InsertEdge calls: self-loops,
+    multi-edges, one-gons, two-gons, handles and repeated vertices."""
+    m = draw(st.sampled_from([topomesh.tetrahedron, topomesh.cube, topomesh.octahedron]))()
+    for _ in range(draw(st.integers(0, 6))):
+        sizes = m.face_sizes
+        f1 = draw(st.integers(0, len(sizes) - 1))
+        f2 = draw(st.integers(0, len(sizes) - 1))
+        p1 = draw(st.integers(0, int(sizes[f1]) - 1))
+        p2 = draw(st.integers(0, int(sizes[f2]) - 1))
+        m, _ = m.insert_edge(f1, p1, f2, p2)
+    return m
+
+
+@settings(max_examples=60, deadline=None)
+@given(random_mesh(), st.sampled_from(SCHEMES))
+def test_random_meshes_follow_formulas(m: Mesh, scheme: str) -> None:
+    m.validate()
+    r = getattr(m, scheme)()
+    r.validate()
+    v, e, f, hist = expected(scheme, m)
+    assert (r.n_vertices, r.n_edges, r.n_faces) == (v, e, f)
+    assert Counter(r.face_size_histogram) == hist
+    assert r.genus == m.genus
+    assert r.n_components == m.n_components
+    assert np.isfinite(r.vertices).all()
