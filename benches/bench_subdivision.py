@@ -9,8 +9,8 @@ Inputs: an icosphere with 81,920 triangles (Loop, midpoint, sqrt3) and a
 dual). Every case (tool × scheme × input × levels × threads) runs in a fresh
 subprocess, so its peak RSS (``resource.getrusage(...).ru_maxrss``, which sees
 Rust and C++ allocations, unlike tracemalloc) is its own; the subprocess
-builds the input in the tool's native format, then times only the
-subdivision call: median of ``--runs`` (default 5) runs. "1 thread" sets
+builds the input in the tool's native format, makes one untimed warm-up call,
+then times only the subdivision call: median of ``--runs`` (default 5) runs. "1 thread" sets
 RAYON_NUM_THREADS / OMP_NUM_THREADS / similar to 1; "all" leaves them unset.
 A peer whose estimated time for a case (its level-1 time × 4^levels / 3,
 the sum over the levels) exceeds ``--budget`` seconds per run is not run;
@@ -159,6 +159,8 @@ def worker(args) -> None:
     times = []
     n_out = None
     base_kb = rss_now_kb()
+    del_out = run(setup())  # warm-up (thread pools, lazy imports), not timed
+    del del_out
     for _ in range(args.runs):
         state = setup()
         t0 = time.perf_counter()
@@ -204,6 +206,7 @@ def main() -> None:
     ap.add_argument("--budget", type=float, default=8.0, help="skip peer runs estimated above this (s)")
     ap.add_argument("--levels", type=int, nargs="*", default=[1, 3])
     ap.add_argument("--schemes", nargs="*", default=list(CASES))
+    ap.add_argument("--readme", type=Path, default=None, help="where to write the table (default benches/README.md; --quick writes none unless given)")
     ap.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--tool")
     ap.add_argument("--scheme")
@@ -216,6 +219,7 @@ def main() -> None:
 
     ncpu = os.cpu_count() or 1
     rows = []
+    args.load_before = os.getloadavg()
     for scheme in args.schemes:
         inp, tools = CASES[scheme]
         for levels in args.levels:
@@ -248,11 +252,12 @@ def main() -> None:
                     rows.append(row)
                     print(f"{scheme:14s} {inp:6s} L{levels} t{threads} {tool:13s} {med*1e3:9.2f} ms "
                           f"{r['faces']:>9} faces {r['faces']/med/1e6:7.1f} Mf/s peak {r['peak_mb']:.0f} MB", flush=True)
-    if not args.quick:
-        write_readme(rows, ncpu, args)
+    args.load_after = os.getloadavg()
+    if args.readme is not None or not args.quick:
+        write_readme(rows, ncpu, args, args.readme or HERE / "README.md")
 
 
-def write_readme(rows, ncpu, args) -> None:
+def write_readme(rows, ncpu, args, path: Path) -> None:
     import numpy as np  # noqa: F401  (version below)
     import topomesh  # noqa: F401
 
@@ -279,13 +284,52 @@ def write_readme(rows, ncpu, args) -> None:
         "`M faces/s` = topomesh's output face count / time, for every tool (pymeshlab stores polygons as",
         "triangles, so its own count, shown under `output faces`, is larger).",
         "`peak MB` = peak RSS of the process (input, imports and all runs included).",
+        f"Load average (1 min) before / after the run: {args.load_before[0]:.1f} / {args.load_after[0]:.1f}"
+        " — the machine is shared, so single runs can be noisy.",
+        "",
+    ]
+    # summary: one line per scheme
+    groups: dict = {}
+    for r in rows:
+        groups.setdefault((r["scheme"], r["input"], r["levels"], r["threads"]), []).append(r)
+
+    def ratio_of(scheme, levels, threads):
+        rs = [r for (sc, _, lv, th), g in groups.items() if (sc, lv, th) == (scheme, levels, threads) for r in g]
+        topo = next((r for r in rs if r["tool"] == "topomesh" and "time" in r), None)
+        peers = [r for r in rs if r["tool"] != "topomesh" and "time" in r]
+        if topo is None:
+            return None, "", ""
+        if peers:
+            best = min(peers, key=lambda r: r["time"])
+            return topo, best["tool"], f"{best['time'] / topo['time']:.1f}×"
+        ests = [r for r in rs if "est" in r]
+        if ests:
+            best = min(ests, key=lambda r: r["est"])
+            return topo, best["tool"] + " (est.)", f"~{best['est'] / topo['time']:.0f}×"
+        return topo, "–", ""
+
+    lines += [
+        "## Summary",
+        "",
+        "| scheme | input | topomesh L1, 1 thread (ms) | M faces/s | fastest peer | speed-up L1, 1 thread | L1, all cores | L3, 1 thread |",
+        "| --- | --- | ---: | ---: | --- | ---: | ---: | ---: |",
+    ]
+    for scheme in args.schemes:
+        topo, peer, r11 = ratio_of(scheme, 1, 1)
+        if topo is None:
+            continue
+        _, _, r1a = ratio_of(scheme, 1, ncpu)
+        _, _, r31 = ratio_of(scheme, 3, 1)
+        lines.append(
+            f"| {scheme} | {topo['input']} | {topo['time']*1e3:.1f} | {topo['faces']/topo['time']/1e6:.1f} | {peer} | {r11} | {r1a} | {r31} |"
+        )
+    lines += [
+        "",
+        "## All cases",
         "",
         "| scheme | input | levels | threads | tool | time (ms) | output faces | M faces/s | vs fastest peer | peak MB | note |",
         "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- |",
     ]
-    groups: dict = {}
-    for r in rows:
-        groups.setdefault((r["scheme"], r["input"], r["levels"], r["threads"]), []).append(r)
     for key, rs in groups.items():
         peers = [r for r in rs if r["tool"] != "topomesh" and "time" in r]
         canon = next((r["faces"] for r in rs if r["tool"] == "topomesh" and "faces" in r), None)
@@ -305,8 +349,8 @@ def write_readme(rows, ncpu, args) -> None:
                 f"| {key[0]} | {key[1]} | {key[2]} | {key[3]} | {r['tool']} | {r['time']*1e3:.1f} | {r['faces']:,} | "
                 f"{(canon or r['faces'])/r['time']/1e6:.1f} | {ratio} | {r['peak_mb']:.0f} | {note} |"
             )
-    (HERE / "README.md").write_text("\n".join(lines) + "\n")
-    print("wrote", HERE / "README.md")
+    path.write_text("\n".join(lines) + "\n")
+    print("wrote", path)
 
 
 if __name__ == "__main__":
