@@ -7,10 +7,13 @@
 //! the midpoints of the four edges that follow and precede its edge in the two
 //! faces beside it. Each old n-gon becomes the n-gon of its edge midpoints
 //! (F-face) and each old valence-k vertex the k-gon of the midpoints around
-//! it (V-face), which cuts every vertex off at the edge midpoints. Two steps
-//! on a regular quad mesh give the four-direction (Zwart–Powell) box spline,
-//! Peters & Reif's observation; their modified mask for extraordinary faces is
-//! not applied, so this is the plain averaging rule of their §2.
+//! it (V-face), which cuts every vertex off at the edge midpoints ("connect
+//! every edge midpoint to its four neighbouring edge midpoints", the paper's
+//! abstract). On a regular quad mesh two steps are one binary refinement of
+//! the four-direction (Zwart–Powell) box spline. The paper's improved weights for the
+//! extraordinary (non-4-sided) faces are *not* applied: every new point is a
+//! plain midpoint, so one step is exactly the rectification (medial
+//! polyhedron) of the input.
 //!
 //! Counts (H = 2E): V' = E, E' = H = 2E, F' = F + V; every new vertex is
 //! 4-valent. Output vertex e is the midpoint of edge e; faces are
