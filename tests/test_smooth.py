@@ -586,3 +586,14 @@ def test_random_meshes_follow_formulas(m: Mesh, scheme: str) -> None:
     assert r.genus == m.genus
     assert r.n_components == m.n_components
     assert np.isfinite(r.vertices).all()
+
+
+@pytest.mark.parametrize("scheme", SCHEMES)
+@pytest.mark.parametrize("mesh_name", list(CLEAN))
+def test_orientation_kept(scheme: str, mesh_name: str) -> None:
+    """Outward faces stay outward: the signed volume stays positive (and, for
+    these convex or smooth inputs, does not grow)."""
+    m = CLEAN[mesh_name]()
+    r = getattr(m, scheme)()
+    assert m.volume > 0
+    assert 0 < r.volume < 1.0 * m.volume + 1e-9
