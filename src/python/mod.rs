@@ -10,6 +10,7 @@ pub(crate) mod ifs;
 pub(crate) mod mesh;
 mod refine;
 mod ops;
+mod smooth;
 
 pyo3::create_exception!(
     topomesh,

@@ -4,3 +4,11 @@
 pub(crate) mod tables;
 pub mod honeycomb;
 pub mod vertex_truncation;
+pub(crate) mod hosts;
+pub mod catmull_clark;
+pub mod doo_sabin;
+pub mod dual;
+pub mod loop_subdivision;
+pub mod midpoint;
+pub mod simplest;
+pub mod sqrt3;

@@ -1,0 +1,129 @@
+//! Smoothing and refinement schemes as `Mesh` methods (`crate::schemes`).
+
+use super::mesh::PyMesh;
+use super::{arg_err, err};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::schemes;
+use pyo3::prelude::*;
+
+/// Applies `step` `iterations` times with the GIL released, one tqdm update
+/// per iteration when `progress`.
+fn iterate(py: Python<'_>, m: &Mesh, iterations: i64, progress: bool, name: &str, step: fn(&Mesh) -> Result<Mesh>) -> PyResult<PyMesh> {
+    if iterations < 0 {
+        return Err(arg_err(format!("{name}: iterations must be >= 0 (got {iterations})")));
+    }
+    let bar = if progress {
+        let kw = pyo3::types::PyDict::new(py);
+        kw.set_item("total", iterations)?;
+        kw.set_item("desc", name)?;
+        Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
+    } else {
+        None
+    };
+    let mut cur: Option<Mesh> = None;
+    for _ in 0..iterations {
+        let src = cur.as_ref().unwrap_or(m);
+        cur = Some(py.detach(|| step(src)).map_err(err)?);
+        if let Some(b) = &bar {
+            b.call_method1("update", (1,))?;
+        }
+    }
+    if let Some(b) = &bar {
+        b.call_method0("close")?;
+    }
+    Ok(PyMesh::wrap(cur.unwrap_or_else(|| m.clone())))
+}
+
+#[pymethods]
+impl PyMesh {
+    /// Catmull-Clark subdivision (Catmull & Clark 1978), original masks.
+    ///
+    /// Every face (any size) becomes one quad per corner. Face point =
+    /// centroid, edge point = (a + b + f1 + f2)/4, vertex point =
+    /// (Q + 2R + (n-3)S)/n. Per level: V' = V + E + F, E' = 4E, F' = 2E.
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    ///     Number of levels (0 returns an equal mesh).
+    /// progress : bool, default False
+    ///     Show a tqdm progress bar, one step per level.
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     If ``iterations`` is negative or the output would exceed 31-bit ids.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn catmull_clark(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "catmull_clark", schemes::catmull_clark::catmull_clark)
+    }
+
+    /// Doo-Sabin subdivision (Doo & Sabin 1978) with Doo & Sabin's weights
+    /// a_0 = 1/4 + 5/(4n), a_i = (3 + 2cos(2 pi i/n))/(4n).
+    ///
+    /// One new vertex per corner; faces for every old face, edge and vertex.
+    /// Per level: V' = 2E, E' = 4E, F' = F + E + V. Zero-length self-loops
+    /// open into tubes. Parameters, return and errors as :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn doo_sabin(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "doo_sabin", schemes::doo_sabin::doo_sabin)
+    }
+
+    /// Loop subdivision (Loop 1987) with Loop's original
+    /// beta = (5/8 - (3/8 + cos(2 pi/n)/4)^2)/n (as trimesh, VTK, pymeshlab).
+    ///
+    /// Non-triangles (n != 3) are first fanned into n triangles around their
+    /// centroid ("extended Loop"). Per level on triangles: V' = V + E,
+    /// E' = 2E + 3F, F' = 4F. Parameters, return and errors as
+    /// :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn r#loop(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "loop", schemes::loop_subdivision::loop_subdivision)
+    }
+
+    /// sqrt3 subdivision (Kobbelt 2000): a centroid per face, old edges
+    /// flipped, old vertices smoothed with alpha_n = (4 - 2cos(2 pi/n))/9.
+    ///
+    /// n-gons are treated like triangles (centroid, spokes, flips). Per
+    /// level: V' = V + F, E' = 3E, F' = 2E triangles. Parameters, return and
+    /// errors as :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn sqrt3(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "sqrt3", schemes::sqrt3::sqrt3)
+    }
+
+    /// The simplest subdivision scheme (Peters & Reif 1997): mid-edge
+    /// subdivision, new vertices at edge midpoints, one face per old face
+    /// and per old vertex.
+    ///
+    /// Per level: V' = E, E' = 2E, F' = F + V; every new vertex is
+    /// 4-valent. Parameters, return and errors as :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn simplest(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "simplest", schemes::simplest::simplest)
+    }
+
+    /// Midpoint (linear) subdivision: triangles split 1 -> 4 at edge
+    /// midpoints (as ``trimesh.remesh.subdivide``), other faces into one quad
+    /// per corner around their centroid. Old vertices do not move.
+    ///
+    /// Per level: V' = V + E + F_(n!=3), F' = 4 F_3 + sum_(n!=3) n.
+    /// Parameters, return and errors as :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn midpoint(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "midpoint", schemes::midpoint::midpoint)
+    }
+
+    /// The dual mesh: a vertex at every face centroid, a face around every
+    /// vertex (V' = F, E' = E, F' = V). Orientation is kept. Parameters,
+    /// return and errors as :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn dual(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "dual", schemes::dual::dual)
+    }
+}

@@ -1,0 +1,522 @@
+//! Shared machinery of the smoothing and refinement schemes (CGAL's
+//! Subdivision_method_3 calls the connectivity part a *refinement host*).
+//!
+//! Every scheme here builds its output in one pass: new points go into one
+//! buffer laid out by index arithmetic (e.g. `[vertex points | edge points |
+//! face points]`), the output faces and the twin of every output corner are
+//! computed from the half-edge columns of the input, and
+//! [`Mesh::from_corner_twins`] assembles the result. Nothing is ever paired by
+//! vertex ids, so self-loops, multi-edges, one-gons, two-gons and repeated
+//! vertices in a face are handled like any other element: a self-loop's two
+//! sides are two half-edges with their own corners and new points.
+//!
+//! Point-spheres (a vertex with one face and no edge) carry through every
+//! scheme unchanged ([`with_point_spheres`]). Hole faces (from
+//! `close_boundaries`) are refined like ordinary faces and the result has no
+//! hole marks.
+
+use crate::error::Result;
+use crate::mesh::{Mesh, NONE, POINT};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Fails when a scheme's output would need more corners (or vertices) than
+/// 31-bit ids allow; schemes call it before any index arithmetic.
+pub(crate) fn check_output_size(scheme: &str, n_corners: usize, n_vertices: usize) -> Result<()> {
+    if n_corners > crate::mesh::MAX_ELEMENTS / 2 || n_vertices > crate::mesh::MAX_ELEMENTS {
+        return Err(crate::error::MeshError::InvalidArgument(format!(
+            "{scheme}: the output would have {n_corners} corners and {n_vertices} vertices, more than 31-bit ids allow"
+        )));
+    }
+    Ok(())
+}
+
+/// A raw pointer shared by parallel writers of disjoint slots.
+#[derive(Clone, Copy)]
+pub(crate) struct SyncPtr<T>(pub *mut T);
+unsafe impl<T> Send for SyncPtr<T> {}
+unsafe impl<T> Sync for SyncPtr<T> {}
+impl<T> SyncPtr<T> {
+    #[inline]
+    pub fn get(self) -> *mut T {
+        self.0
+    }
+}
+
+/// Below this many elements a parallel loop runs on one thread.
+pub(crate) const MIN_LEN: usize = 2048;
+
+/// The corners of every face in cycle order, laid out face after face.
+pub(crate) struct FaceLayout {
+    /// Half-edge of each corner: face `f` owns `fh[off[f]..off[f + 1]]`,
+    /// starting at its first corner.
+    pub fh: Vec<u32>,
+    pub off: Vec<u32>,
+    /// Inverse of `fh`: the corner index of each half-edge.
+    pub cidx: Vec<u32>,
+}
+
+impl FaceLayout {
+    /// Needs a mesh without point-spheres.
+    pub fn new(m: &Mesh) -> Self {
+        let (next, _, _) = m.halfedge_columns();
+        let nf = m.n_faces();
+        let nh = m.n_halfedges();
+        let mut fh = Vec::with_capacity(nh);
+        let mut off = Vec::with_capacity(nf + 1);
+        let mut cidx = vec![0u32; nh];
+        off.push(0u32);
+        for f in 0..nf {
+            let s = m.f_start[f];
+            debug_assert!(s & POINT == 0);
+            let mut h = s;
+            loop {
+                cidx[h as usize] = fh.len() as u32;
+                fh.push(h);
+                h = next[h as usize];
+                if h == s {
+                    break;
+                }
+            }
+            off.push(fh.len() as u32);
+        }
+        FaceLayout { fh, off, cidx }
+    }
+
+    #[inline]
+    pub fn degree(&self, f: usize) -> usize {
+        (self.off[f + 1] - self.off[f]) as usize
+    }
+    /// Position of half-edge `h` in its face's cycle.
+    #[inline]
+    pub fn local(&self, h: u32, f: u32) -> usize {
+        (self.cidx[h as usize] - self.off[f as usize]) as usize
+    }
+}
+
+/// The outgoing half-edges of every vertex in rotation order
+/// (`h, rotate(h), ...`, counter-clockwise seen from outside), vertex after vertex.
+pub(crate) struct VertexLayout {
+    pub off: Vec<u32>,
+    /// Inverse: the rotation slot of each half-edge (index into the layout).
+    pub vidx: Vec<u32>,
+}
+
+impl VertexLayout {
+    /// Needs a mesh without point-spheres.
+    pub fn new(m: &Mesh) -> Self {
+        let nv = m.n_vertices();
+        let nh = m.n_halfedges();
+        let mut off = Vec::with_capacity(nv + 1);
+        let mut vidx = vec![0u32; nh];
+        off.push(0u32);
+        let mut k = 0u32;
+        for v in 0..nv {
+            let s = m.v_out[v];
+            debug_assert!(s & POINT == 0);
+            let mut h = s;
+            loop {
+                vidx[h as usize] = k;
+                k += 1;
+                h = m.he_prev[h as usize] ^ 1;
+                if h == s {
+                    break;
+                }
+            }
+            off.push(k);
+        }
+        VertexLayout { off, vidx }
+    }
+}
+
+/// Runs `scheme` on `m` with its point-spheres set aside, then appends them
+/// unchanged (same position, one vertex and one face each).
+pub(crate) fn with_point_spheres(m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh>) -> Result<Mesh> {
+    let n_points = m.v_out.iter().filter(|&&o| o & POINT != 0).count();
+    if n_points == 0 {
+        return scheme(m);
+    }
+    // strip: renumber the other vertices and faces, half-edges keep their ids
+    let mut vmap = vec![NONE; m.n_vertices()];
+    let mut fmap = vec![NONE; m.n_faces()];
+    let mut points = Vec::with_capacity(n_points);
+    let mut rest = Mesh::new();
+    for (v, &o) in m.v_out.iter().enumerate() {
+        if o & POINT != 0 {
+            points.push(m.pos[v]);
+        } else {
+            vmap[v] = rest.pos.len() as u32;
+            rest.pos.push(m.pos[v]);
+            rest.v_out.push(o);
+        }
+    }
+    for (f, &s) in m.f_start.iter().enumerate() {
+        if s & POINT == 0 {
+            fmap[f] = rest.f_start.len() as u32;
+            rest.f_start.push(s);
+            rest.f_hole.push(false);
+        }
+    }
+    rest.he_next = m.he_next.clone();
+    rest.he_prev = m.he_prev.clone();
+    rest.he_vert = m.he_vert.iter().map(|&v| vmap[v as usize]).collect();
+    rest.he_face = m.he_face.iter().map(|&f| fmap[f as usize]).collect();
+    let mut out = if rest.n_faces() == 0 { Mesh::new() } else { scheme(&rest)? };
+    for p in points {
+        let (v, f) = (out.pos.len() as u32, out.f_start.len() as u32);
+        out.pos.push(p);
+        out.v_out.push(POINT | f);
+        out.f_start.push(POINT | v);
+        out.f_hole.push(false);
+    }
+    Ok(out)
+}
+
+/// Mean of the corner positions of every face (a repeated vertex counts once
+/// per corner).
+pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
+    let (_, vert, _) = m.halfedge_columns();
+    out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
+        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
+        *c = s / hs.len() as f64;
+    });
+}
+
+/// Every face with other than three corners fanned into triangles around a
+/// new vertex at its centroid (the "extended" triangle schemes' first step).
+///
+/// Triangles are kept; an n-gon (n ≠ 3, one-gons and two-gons included)
+/// becomes the n triangles `[tail(h), head(h), c]`, one per corner, so its
+/// edges keep their twins and the n spokes are new edges. New vertices
+/// follow the input ones, in face order. Returns `None` when every face is
+/// already a triangle.
+///
+/// Counts: V' = V + F_≠3, E' = E + Σ_≠3 n, F' = F_3 + Σ_≠3 n.
+pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
+    let nf = m.n_faces();
+    let (next, _, _) = m.halfedge_columns();
+    let all_triangles = m.f_start.par_iter().with_min_len(MIN_LEN).all(|&s| {
+        let h1 = next[s as usize];
+        let h2 = next[h1 as usize];
+        h1 != s && h2 != s && next[h2 as usize] == s
+    });
+    if all_triangles {
+        return Ok(None);
+    }
+    check_output_size("loop", 3 * m.n_halfedges(), m.n_vertices() + nf)?;
+    let fl = FaceLayout::new(m);
+    let (next, vert, face) = m.halfedge_columns();
+    let nv = m.n_vertices();
+    // output corner base per face and centroid vertex per n-gon
+    let mut base = Vec::with_capacity(nf + 1);
+    let mut cvert = vec![NONE; nf];
+    let mut pos = m.pos.clone();
+    let mut n_faces = 0usize;
+    let mut b = 0u32;
+    for f in 0..nf {
+        base.push(b);
+        let n = fl.degree(f);
+        if n == 3 {
+            b += 3;
+            n_faces += 1;
+        } else {
+            b += 3 * n as u32;
+            n_faces += n;
+            cvert[f] = pos.len() as u32;
+            let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+            let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
+            pos.push(s / n as f64);
+        }
+    }
+    let nc = b as usize;
+    debug_assert!(pos.len() >= nv);
+    let mut sizes = Vec::with_capacity(n_faces);
+    let mut cv = vec![0u32; nc];
+    let mut tw = vec![0u32; nc];
+    // the output corner of the side along input half-edge h
+    let side = |h: u32| -> u32 {
+        let f = face[h as usize];
+        let k = fl.local(h, f) as u32;
+        if cvert[f as usize] == NONE {
+            base[f as usize] + k
+        } else {
+            base[f as usize] + 3 * k
+        }
+    };
+    for f in 0..nf {
+        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let b = base[f] as usize;
+        if cvert[f] == NONE {
+            sizes.push(3);
+            for (k, &h) in hs.iter().enumerate() {
+                cv[b + k] = vert[h as usize];
+                tw[b + k] = side(h ^ 1);
+            }
+        } else {
+            let n = hs.len();
+            for (k, &h) in hs.iter().enumerate() {
+                sizes.push(3);
+                let c = b + 3 * k;
+                cv[c] = vert[h as usize];
+                cv[c + 1] = vert[next[h as usize] as usize];
+                cv[c + 2] = cvert[f];
+                tw[c] = side(h ^ 1);
+                // spoke head(h) -> centroid pairs with centroid -> tail(next h)
+                tw[c + 1] = (b + 3 * ((k + 1) % n) + 2) as u32;
+                tw[c + 2] = (b + 3 * ((k + n - 1) % n) + 1) as u32;
+            }
+        }
+    }
+    Mesh::from_corner_twins(pos, &sizes, &cv, &tw).map(Some)
+}
+
+/// Output connectivity of the primal splits with edge points.
+///
+/// Output vertices are laid out `[V vertex points | E edge points | face
+/// points]`; `face_point[f]` is the index of face `f`'s point within the
+/// face-point block, or `NONE` if the face has none.
+///
+/// A face with a face point becomes n quads `[v, e(h), f, e(prev h)]`, one
+/// per corner `h` (Catmull-Clark's host). A face without one must be a
+/// triangle and becomes four: `[v, e(h), e(prev h)]` per corner and the
+/// middle `[e(h0), e(h1), e(h2)]` (Loop's host).
+pub(crate) struct Primal {
+    pub sizes: Vec<u32>,
+    pub verts: Vec<u32>,
+    pub twins: Vec<u32>,
+}
+
+pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Primal {
+    let (next, vert, face) = m.halfedge_columns();
+    let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
+    let prev = &m.he_prev;
+    // output corner base per face
+    let mut base = Vec::with_capacity(nf);
+    let mut b = 0u32;
+    let mut n_out_faces = 0usize;
+    for f in 0..nf {
+        base.push(b);
+        let n = fl.degree(f) as u32;
+        if face_point[f] == NONE {
+            debug_assert_eq!(n, 3);
+            b += 12;
+            n_out_faces += 4;
+        } else {
+            b += 4 * n;
+            n_out_faces += n as usize;
+        }
+    }
+    let nc = b as usize;
+    // the output corners of the two outer sides at corner h: v -> e(h) and e(prev h) -> v
+    let outer = |h: u32| -> (u32, u32) {
+        let f = face[h as usize];
+        let k = fl.local(h, f) as u32;
+        if face_point[f as usize] == NONE {
+            let c = base[f as usize] + 3 * k;
+            (c, c + 2)
+        } else {
+            let c = base[f as usize] + 4 * k;
+            (c, c + 3)
+        }
+    };
+    let mut sizes = Vec::with_capacity(n_out_faces);
+    for f in 0..nf {
+        if face_point[f] == NONE {
+            sizes.extend_from_slice(&[3, 3, 3, 3]);
+        } else {
+            sizes.extend(std::iter::repeat(4).take(fl.degree(f)));
+        }
+    }
+    let mut cv = vec![0u32; nc];
+    let mut tw = vec![0u32; nc];
+    let (pc, pt) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()));
+    (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
+        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let n = hs.len();
+        let b = base[f] as usize;
+        // SAFETY: face f writes only its own range base[f]..base[f + 1].
+        let (cv, tw) = unsafe {
+            let len = if face_point[f] == NONE { 12 } else { 4 * n };
+            (
+                std::slice::from_raw_parts_mut(pc.get().add(b), len),
+                std::slice::from_raw_parts_mut(pt.get().add(b), len),
+            )
+        };
+        if face_point[f] == NONE {
+            for (k, &h) in hs.iter().enumerate() {
+                let p = prev[h as usize];
+                let c = 3 * k;
+                cv[c] = vert[h as usize];
+                cv[c + 1] = nv + (h >> 1);
+                cv[c + 2] = nv + (p >> 1);
+                tw[c] = outer(next[(h ^ 1) as usize]).1;
+                tw[c + 1] = (b + 9 + (k + 2) % 3) as u32;
+                tw[c + 2] = outer(p ^ 1).0;
+                // middle triangle side e(h_k) -> e(h_k+1)
+                cv[9 + k] = nv + (h >> 1);
+                tw[9 + k] = (b + 3 * ((k + 1) % 3) + 1) as u32;
+            }
+        } else {
+            let fp = nv + ne + face_point[f];
+            for (k, &h) in hs.iter().enumerate() {
+                let p = prev[h as usize];
+                let c = 4 * k;
+                cv[c] = vert[h as usize];
+                cv[c + 1] = nv + (h >> 1);
+                cv[c + 2] = fp;
+                cv[c + 3] = nv + (p >> 1);
+                tw[c] = outer(next[(h ^ 1) as usize]).1;
+                tw[c + 1] = (b + 4 * ((k + 1) % n) + 2) as u32;
+                tw[c + 2] = (b + 4 * ((k + n - 1) % n) + 1) as u32;
+                tw[c + 3] = outer(p ^ 1).0;
+            }
+        }
+    });
+    Primal { sizes, verts: cv, twins: tw }
+}
+
+/// Sum of `pos[head(h)]` over the outgoing half-edges of `v` and their count.
+#[inline]
+pub(crate) fn neighbor_sum(m: &Mesh, v: usize) -> (DVec3, usize) {
+    let (_, vert, _) = m.halfedge_columns();
+    let s = m.v_out[v];
+    let mut h = s;
+    let mut sum = DVec3::ZERO;
+    let mut n = 0;
+    loop {
+        sum += m.pos[vert[(h ^ 1) as usize] as usize];
+        n += 1;
+        h = m.he_prev[h as usize] ^ 1;
+        if h == s {
+            break;
+        }
+    }
+    (sum, n)
+}
+
+#[cfg(test)]
+pub(crate) mod test_meshes {
+    //! The corpus every scheme's unit tests run over.
+
+    #[test]
+    fn sierpinski_counts() {
+        let s = sierpinski_tetrahedron();
+        s.validate().unwrap();
+        assert_eq!((s.n_vertices(), s.n_edges(), s.n_faces(), s.genus(), s.n_self_loops()), (10, 30, 16, 3, 6));
+    }
+    use crate::mesh::{BuildOptions, Mesh};
+    use crate::primitives;
+    use crate::FaceId;
+    use glam::DVec3;
+
+    /// A cube with a self-loop splitting one face into a one-gon and a
+    /// 5-corner face (the loop's vertex repeated in it).
+    pub fn cube_with_self_loop() -> Mesh {
+        let mut m = primitives::cube();
+        let c = m.corner(FaceId(0), 0).unwrap();
+        m.insert_edge(c, c).unwrap();
+        m
+    }
+    /// A cube with a second edge beside an existing one (a multi-edge),
+    /// splitting a two-gon off a face.
+    pub fn cube_with_two_gon() -> Mesh {
+        let mut m = primitives::cube();
+        // corners 0 and 1 of face 0 are joined by an edge already; a second
+        // edge between them splits off a two-gon.
+        let c0 = m.corner(FaceId(0), 0).unwrap();
+        let c1 = m.corner(FaceId(0), 1).unwrap();
+        m.insert_edge(c0, c1).unwrap();
+        m
+    }
+    /// Self-loop joining two different faces at one vertex (Sierpinski's
+    /// kind): merges them, genus +1.
+    pub fn cube_with_handle_loop() -> Mesh {
+        let mut m = primitives::cube();
+        let v = m.corner_vertex(m.corner(FaceId(0), 0).unwrap());
+        // another face around the same vertex
+        let mut other = None;
+        for f in m.faces() {
+            if f == FaceId(0) {
+                continue;
+            }
+            for (k, x) in m.face_vertices(f).enumerate() {
+                if x == v && other.is_none() {
+                    other = Some((f, k));
+                }
+            }
+        }
+        let (f, k) = other.unwrap();
+        let c0 = m.corner(FaceId(0), 0).unwrap();
+        let c1 = m.corner(f, k).unwrap();
+        m.insert_edge(c0, c1).unwrap();
+        m
+    }
+    pub fn with_point_sphere() -> Mesh {
+        let mut m = primitives::tetrahedron();
+        m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
+        m
+    }
+    /// Level 1 of the Sierpinski paper's scheme on a tetrahedron: four corner
+    /// tetrahedra whose back faces are hexagons `[x, x, y, y, z, z]` with a
+    /// zero-length self-loop at every edge midpoint; each loop joins the back
+    /// faces of two corner pyramids. V = 10, E = 30, F = 16, genus 3.
+    pub fn sierpinski_tetrahedron() -> Mesh {
+        let t = primitives::tetrahedron();
+        let tp = t.positions().to_vec();
+        let mut pos = tp.clone();
+        let mut mid = std::collections::HashMap::new();
+        let mut m = |a: u32, b: u32, pos: &mut Vec<DVec3>| -> i64 {
+            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                pos.push((tp[a as usize] + tp[b as usize]) * 0.5);
+                pos.len() as i64 - 1
+            })
+        };
+        let (mut sizes, mut idx) = (Vec::new(), Vec::new());
+        for f in t.faces() {
+            let v: Vec<u32> = t.face_vertices(f).map(|x| x.0).collect();
+            let (a, b, c) = (v[0], v[1], v[2]);
+            let (ab, bc, ca) = (m(a, b, &mut pos), m(b, c, &mut pos), m(c, a, &mut pos));
+            idx.extend([a as i64, ab, ca, b as i64, bc, ab, c as i64, ca, bc]);
+            sizes.extend([3, 3, 3]);
+        }
+        for a in 0..4u32 {
+            let o: Vec<i64> = (0..4u32).filter(|&o| o != a).map(|o| m(a, o, &mut pos)).collect();
+            let (x, mut y, mut z) = (o[0], o[1], o[2]);
+            let n = (pos[y as usize] - pos[x as usize]).cross(pos[z as usize] - pos[x as usize]);
+            if n.dot(pos[x as usize] - tp[a as usize]) < 0.0 {
+                std::mem::swap(&mut y, &mut z);
+            }
+            idx.extend([x, x, y, y, z, z]);
+            sizes.push(6);
+        }
+        Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
+    }
+
+    pub fn corpus() -> Vec<(&'static str, Mesh)> {
+        vec![
+            ("tetrahedron", primitives::tetrahedron()),
+            ("cube", primitives::cube()),
+            ("octahedron", primitives::octahedron()),
+            ("dodecahedron", primitives::dodecahedron()),
+            ("icosahedron", primitives::icosahedron()),
+            ("torus", primitives::torus(8, 5, 1.0, 0.4).unwrap()),
+            ("genus3", primitives::genus_surface(3).unwrap()),
+            ("self_loop", cube_with_self_loop()),
+            ("two_gon", cube_with_two_gon()),
+            ("handle_loop", cube_with_handle_loop()),
+            ("point_sphere", with_point_sphere()),
+            ("sierpinski", sierpinski_tetrahedron()),
+        ]
+    }
+
+    /// The degree of every face, in face order.
+    pub fn face_sizes(m: &Mesh) -> Vec<usize> {
+        m.faces().map(|f| m.face_degree(f)).collect()
+    }
+    pub fn n_point_spheres(m: &Mesh) -> usize {
+        m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
+    }
+}
+
+

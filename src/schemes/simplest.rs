@@ -1,0 +1,94 @@
+//! The simplest subdivision scheme (J. Peters & U. Reif, "The simplest
+//! subdivision scheme for smoothing polyhedra", ACM TOG 16(4), 1997), one
+//! level: mid-edge subdivision.
+//!
+//! What is implemented, exactly: every new vertex is the midpoint of an old
+//! edge (a self-loop's midpoint is its vertex); every new vertex is joined to
+//! the midpoints of the four edges that follow and precede its edge in the two
+//! faces beside it. Each old n-gon becomes the n-gon of its edge midpoints
+//! (F-face) and each old valence-k vertex the k-gon of the midpoints around
+//! it (V-face), which cuts every vertex off at the edge midpoints ("connect
+//! every edge midpoint to its four neighbouring edge midpoints", the paper's
+//! abstract). On a regular quad mesh two steps are one binary refinement of
+//! the four-direction (Zwart–Powell) box spline. The paper's improved weights for the
+//! extraordinary (non-4-sided) faces are *not* applied: every new point is a
+//! plain midpoint, so one step is exactly the rectification (medial
+//! polyhedron) of the input.
+//!
+//! Counts (H = 2E): V' = E, E' = H = 2E, F' = F + V; every new vertex is
+//! 4-valent. Output vertex e is the midpoint of edge e; faces are
+//! `[F-faces | V-faces]`.
+
+use super::hosts::{check_output_size, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use rayon::prelude::*;
+
+/// One level of mid-edge ("simplest") subdivision. See the module docs.
+pub fn simplest(m: &Mesh) -> Result<Mesh> {
+    with_point_spheres(m, step)
+}
+
+fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
+    let fl = FaceLayout::new(m);
+    let vl = VertexLayout::new(m);
+    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+    let (next, vert, _) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let p = &m.pos;
+    let pos: Vec<_> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5).collect();
+    let hu = nh as u32;
+    let mut cv = vec![0u32; 2 * nh];
+    let mut tw = vec![0u32; 2 * nh];
+    {
+        let (cf, cvf) = cv.split_at_mut(nh);
+        let (tf, tvf) = tw.split_at_mut(nh);
+        cf.par_iter_mut().zip(tf.par_iter_mut()).with_min_len(MIN_LEN).enumerate().for_each(|(c, (v, t))| {
+            let h = fl.fh[c];
+            *v = h >> 1;
+            *t = hu + vl.vidx[next[h as usize] as usize];
+        });
+        let (pc, pt) = (super::hosts::SyncPtr(cvf.as_mut_ptr()), super::hosts::SyncPtr(tvf.as_mut_ptr()));
+        (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|x| {
+            let slot = vl.vidx[x] as usize;
+            // SAFETY: vidx is a permutation of 0..nh.
+            unsafe {
+                *pc.get().add(slot) = (x >> 1) as u32;
+                *pt.get().add(slot) = fl.cidx[prev[x] as usize];
+            }
+        });
+    }
+    let mut sizes = Vec::with_capacity(nf + nv);
+    sizes.extend((0..nf).map(|f| fl.degree(f) as u32));
+    sizes.extend((0..nv).map(|v| vl.off[v + 1] - vl.off[v]));
+    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::schemes::hosts::test_meshes::*;
+
+    #[test]
+    fn counts_and_validity_on_corpus() {
+        for (name, m) in corpus() {
+            let ps = n_point_spheres(&m);
+            let (v, e, f) = (m.n_vertices() - ps, m.n_edges(), m.n_faces() - ps);
+            let r = simplest(&m).unwrap();
+            r.validate().unwrap_or_else(|err| panic!("{name}: {err}"));
+            assert_eq!(r.n_vertices() - ps, e, "{name} V'");
+            assert_eq!(r.n_edges(), 2 * e, "{name} E'");
+            assert_eq!(r.n_faces() - ps, f + v, "{name} F'");
+            assert_eq!(r.genus(), m.genus(), "{name} genus");
+            assert!(r.vertices().filter(|&x| r.point_sphere_face(x).is_none()).all(|x| r.valence(x) == 4), "{name} 4-valent");
+        }
+    }
+
+    #[test]
+    fn cube_gives_cuboctahedron() {
+        let r = simplest(&crate::primitives::cube()).unwrap();
+        assert_eq!(r.face_size_histogram().get(&3), Some(&8));
+        assert_eq!(r.face_size_histogram().get(&4), Some(&6));
+    }
+}
