@@ -4,6 +4,7 @@
 use super::{Mesh, NONE, POINT, MAX_ELEMENTS};
 use crate::error::{MeshError, Result};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Polygon faces as flat vertex indices plus one size per face, the layout
 /// of `face_sizes` / `face_indices` exports.
@@ -229,96 +230,113 @@ impl Mesh {
             return Err(MeshError::InvalidArgument("mesh too large for 31-bit ids".into()));
         }
         let mut offsets = Vec::with_capacity(nf + 1);
-        offsets.push(0usize);
+        offsets.push(0u32);
         for (f, &s) in sizes.iter().enumerate() {
             if s == 0 {
                 return Err(MeshError::EmptyFace { face: f });
             }
-            offsets.push(offsets[f] + s as usize);
+            offsets.push(offsets[f] + s);
         }
-        if offsets[nf] != n {
+        if offsets[nf] as usize != n {
             return Err(MeshError::InvalidArgument(format!(
                 "face sizes add up to {} but {n} corners were given",
                 offsets[nf]
             )));
         }
-        if let Some(c) = verts.iter().position(|&v| v as usize >= nv) {
-            return Err(MeshError::InvalidArgument(format!("corner {c}: vertex {} out of range", verts[c])));
+        // every corner: a vertex in range and a symmetric twin that starts
+        // where the corner's side ends (checked from both sides, this also
+        // makes the twin end where the corner starts)
+        let bad = (0..nf).into_par_iter().with_min_len(1024).find_first(|&f| {
+            let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+            (s..e).any(|c| {
+                let t = twin[c];
+                let cn = if c + 1 == e { s } else { c + 1 };
+                verts[c] as usize >= nv
+                    || if t == NONE {
+                        e - s != 1
+                    } else {
+                        t as usize >= n || t as usize == c || twin[t as usize] != c as u32 || verts[t as usize] != verts[cn]
+                    }
+            })
+        });
+        if let Some(f) = bad {
+            let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+            let c = (s..e)
+                .find(|&c| {
+                    let t = twin[c];
+                    verts[c] as usize >= nv || t == NONE || t as usize >= n || t as usize == c || twin[t as usize] != c as u32
+                })
+                .unwrap_or(s);
+            return Err(MeshError::InvalidArgument(if verts[c] as usize >= nv {
+                format!("face {f}: corner {c} refers to vertex {} out of range", verts[c])
+            } else if twin[c] == NONE {
+                format!("face {f}: a corner without twin must be the only corner of a point-sphere face")
+            } else {
+                format!("face {f}: corner {c} and its twin {} are not symmetric partners running between the same vertices in opposite directions", twin[c])
+            }));
         }
-        // half-edge id of each corner; edges numbered by their first corner
-        let mut he_of = vec![NONE; n];
-        let mut ne = 0u32;
-        for c in 0..n {
-            let t = twin[c];
-            if t == NONE {
-                continue;
-            }
-            if t as usize >= n || t as usize == c || twin[t as usize] != c as u32 {
-                return Err(MeshError::InvalidArgument(format!("corner {c}: twin {t} is not a symmetric partner")));
-            }
-            if (t as usize) > c {
-                he_of[c] = 2 * ne;
-                he_of[t as usize] = 2 * ne + 1;
-                ne += 1;
-            }
-        }
-        let nh = 2 * ne as usize;
+        // half-edge ids: edges numbered by their first corner (2e), the twin gets 2e + 1
+        let he_of = number_halfedges(twin);
+        let nh = n - twin.iter().filter(|&&t| t == NONE).count();
         let mut m = Mesh {
             pos: positions,
             v_out: vec![NONE; nv],
-            he_next: vec![NONE; nh],
-            he_prev: vec![NONE; nh],
-            he_vert: vec![NONE; nh],
-            he_face: vec![NONE; nh],
+            // every entry is written below; zeroed (calloc) memory is mapped
+            // lazily, so its page faults are taken by the parallel fill
+            he_next: vec![0; nh],
+            he_prev: vec![0; nh],
+            he_vert: vec![0; nh],
+            he_face: vec![0; nh],
             f_start: vec![NONE; nf],
             f_hole,
         };
-        for f in 0..nf {
-            let (s, e) = (offsets[f], offsets[f + 1]);
-            if twin[s] == NONE {
-                if e - s != 1 {
-                    return Err(MeshError::InvalidArgument(format!(
-                        "face {f}: a corner without twin must be the only corner of a point-sphere face"
-                    )));
+        // the half-edge columns, face by face in parallel. Writes are disjoint:
+        // `he_of` is a bijection from the corners with a twin onto 0..nh, and
+        // every half-edge is the `next` of exactly one corner.
+        {
+            let cols = [
+                SyncPtr(m.he_next.as_mut_ptr()),
+                SyncPtr(m.he_prev.as_mut_ptr()),
+                SyncPtr(m.he_vert.as_mut_ptr()),
+                SyncPtr(m.he_face.as_mut_ptr()),
+            ];
+            let f_start = SyncPtr(m.f_start.as_mut_ptr());
+            (0..nf).into_par_iter().with_min_len(1024).for_each(|f| {
+                let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+                if twin[s] == NONE {
+                    return; // point-sphere face: set below
                 }
+                // SAFETY: see the block comment; f_start[f] is written by face f only.
+                unsafe {
+                    *f_start.at(f) = he_of[s];
+                    for c in s..e {
+                        let cn = if c + 1 == e { s } else { c + 1 };
+                        let (h, hn) = (he_of[c] as usize, he_of[cn]);
+                        *cols[0].at(h) = hn;
+                        *cols[1].at(hn as usize) = h as u32;
+                        *cols[2].at(h) = verts[c];
+                        *cols[3].at(h) = f as u32;
+                    }
+                }
+            });
+        }
+        for (c, &v) in verts.iter().enumerate() {
+            if twin[c] != NONE {
+                m.v_out[v as usize] = he_of[c];
+            }
+        }
+        for f in 0..nf {
+            let s = offsets[f] as usize;
+            if twin[s] == NONE {
                 let v = verts[s];
                 if m.v_out[v as usize] != NONE {
                     return Err(MeshError::NonManifoldVertex { vertex: v as usize });
                 }
                 m.v_out[v as usize] = POINT | f as u32;
                 m.f_start[f] = POINT | v;
-                continue;
-            }
-            m.f_start[f] = he_of[s];
-            for c in s..e {
-                let cn = if c + 1 == e { s } else { c + 1 };
-                let h = he_of[c];
-                if h == NONE {
-                    return Err(MeshError::InvalidArgument(format!("face {f}: corner {c} has no twin")));
-                }
-                let hn = he_of[cn];
-                // the twin of c starts at head(c); checked from both sides this
-                // also gives head(twin) == tail(c)
-                let t = twin[c] as usize;
-                if verts[t] != verts[cn] {
-                    return Err(MeshError::InvalidArgument(format!(
-                        "face {f}: corner {c} ({} -> {}) and its twin {t} do not run between the same vertices in opposite directions",
-                        verts[c], verts[cn]
-                    )));
-                }
-                m.he_vert[h as usize] = verts[c];
-                m.he_face[h as usize] = f as u32;
-                m.he_next[h as usize] = hn;
-                m.he_prev[hn as usize] = h;
-                let vo = &mut m.v_out[verts[c] as usize];
-                if *vo == NONE {
-                    *vo = h;
-                } else if *vo & POINT != 0 {
-                    return Err(MeshError::NonManifoldVertex { vertex: verts[c] as usize });
-                }
             }
         }
-        if let Some(v) = m.v_out.iter().position(|&o| o == NONE) {
+        if let Some(v) = m.v_out.par_iter().position_first(|&o| o == NONE) {
             return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
         }
         m.check_vertex_umbrellas()?;
@@ -326,35 +344,99 @@ impl Mesh {
     }
 
     /// Every vertex's outgoing half-edges must form one rotation cycle (a disk).
+    ///
+    /// The rotation cycles partition the half-edges by tail, so the cycles
+    /// through each vertex's `v_out` add up to all half-edges exactly when no
+    /// vertex has a second one. Only when they do not is the culprit looked for.
     pub(crate) fn check_vertex_umbrellas(&self) -> Result<()> {
-        let nv = self.n_vertices();
-        let mut out_deg = vec![0u32; nv];
+        let nh = self.n_halfedges();
+        let walk = |v: usize| -> usize {
+            let o = self.v_out[v];
+            if o & POINT != 0 {
+                return 0;
+            }
+            let mut h = o;
+            let mut k = 0usize;
+            loop {
+                k += 1;
+                h = self.he_prev[h as usize] ^ 1;
+                if h == o || k > nh {
+                    return k;
+                }
+            }
+        };
+        let total: usize = (0..self.n_vertices()).into_par_iter().with_min_len(4096).map(walk).sum();
+        if total == nh {
+            return Ok(());
+        }
+        let mut out_deg = vec![0usize; self.n_vertices()];
         for &v in &self.he_vert {
             out_deg[v as usize] += 1;
         }
-        for v in 0..nv {
-            let o = self.v_out[v];
-            if o & POINT != 0 {
-                continue;
-            }
-            let start = o;
-            let mut h = start;
-            let mut k = 0u32;
-            loop {
-                k += 1;
-                if k > out_deg[v] {
-                    return Err(MeshError::NonManifoldVertex { vertex: v });
-                }
-                h = self.he_prev[h as usize] ^ 1;
-                if h == start {
-                    break;
-                }
-            }
-            if k != out_deg[v] {
-                return Err(MeshError::NonManifoldVertex { vertex: v });
+        let v = (0..self.n_vertices()).find(|&v| walk(v) != out_deg[v]).unwrap_or(0);
+        Err(MeshError::NonManifoldVertex { vertex: v })
+    }
+}
+
+/// Half-edge id of every corner with a twin: edges numbered by their first
+/// corner in corner order; that corner gets `2e`, its twin `2e + 1`.
+fn number_halfedges(twin: &[u32]) -> Vec<u32> {
+    let n = twin.len();
+    let is_first = |c: usize| twin[c] != NONE && twin[c] as usize > c;
+    // parallel exclusive scan of edge starts over fixed chunks
+    let counts: Vec<u32> = (0..n.div_ceil(PAR_CHUNK))
+        .into_par_iter()
+        .map(|k| (k * PAR_CHUNK..((k + 1) * PAR_CHUNK).min(n)).filter(|&c| is_first(c)).count() as u32)
+        .collect();
+    let mut base = Vec::with_capacity(counts.len());
+    let mut acc = 0u32;
+    for c in counts {
+        base.push(acc);
+        acc += c;
+    }
+    let mut first_ids = vec![NONE; n];
+    first_ids.par_chunks_mut(PAR_CHUNK).enumerate().for_each(|(k, chunk)| {
+        let mut e = base[k];
+        for (i, slot) in chunk.iter_mut().enumerate() {
+            if is_first(k * PAR_CHUNK + i) {
+                *slot = 2 * e;
+                e += 1;
             }
         }
-        Ok(())
+    });
+    (0..n)
+        .into_par_iter()
+        .with_min_len(PAR_CHUNK)
+        .map(|c| {
+            let t = twin[c];
+            if t == NONE {
+                NONE
+            } else if t as usize > c {
+                first_ids[c]
+            } else {
+                first_ids[t as usize] + 1
+            }
+        })
+        .collect()
+}
+
+/// Work unit of the parallel loops: large enough to amortize rayon's overhead.
+const PAR_CHUNK: usize = 1 << 14;
+
+/// A raw column pointer shared by the parallel fill in [`Mesh::build`], whose
+/// writes are disjoint by construction.
+#[derive(Copy, Clone)]
+struct SyncPtr(*mut u32);
+// SAFETY: only used for the disjoint writes documented at its use.
+unsafe impl Send for SyncPtr {}
+unsafe impl Sync for SyncPtr {}
+
+impl SyncPtr {
+    /// A method, not a field access, so closures capture the `Sync` wrapper.
+    #[inline]
+    fn at(self, i: usize) -> *mut u32 {
+        // SAFETY: callers index within the column's length.
+        unsafe { self.0.add(i) }
     }
 }
 
