@@ -320,7 +320,8 @@ impl Mesh {
                 }
             });
         }
-        for (c, &v) in verts.iter().enumerate() {
+        // the first corner of each vertex, as documented for exports
+        for (c, &v) in verts.iter().enumerate().rev() {
             if twin[c] != NONE {
                 m.v_out[v as usize] = he_of[c];
             }
