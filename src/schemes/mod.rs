@@ -1,2 +1,3 @@
 //! Schemes: one file each. Every scheme is a free function taking a `&Mesh`
 //! and returning a new `Mesh`; the mesh structure knows nothing about them.
+pub mod sierpinski;
