@@ -6,6 +6,7 @@
 use pyo3::prelude::*;
 
 pub(crate) mod convert;
+pub(crate) mod fractal;
 pub(crate) mod mesh;
 
 pyo3::create_exception!(
@@ -28,5 +29,6 @@ pub(crate) fn arg_err(msg: impl Into<String>) -> PyErr {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MeshError", m.py().get_type::<MeshError>())?;
     mesh::register(m)?;
+    fractal::register(m)?;
     Ok(())
 }

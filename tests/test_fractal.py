@@ -1,0 +1,185 @@
+"""Fractal schemes: Mesh.sierpinski and topomesh.menger_sponge.
+
+Count formulas are recomputed here from the closed forms of the module docs
+(src/schemes/sierpinski.rs, src/schemes/menger_sponge.rs) and compared with
+the meshes produced.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import topomesh
+from tests.harness import assert_agrees_with_peers
+
+PLATONIC = {
+    "tetrahedron": topomesh.tetrahedron,
+    "cube": topomesh.cube,
+    "octahedron": topomesh.octahedron,
+    "dodecahedron": topomesh.dodecahedron,
+    "icosahedron": topomesh.icosahedron,
+}
+
+
+def cube_with_two_gon() -> topomesh.Mesh:
+    """The cube with an edge doubled: one two-gon and a multi-edge."""
+    m, _ = topomesh.cube().insert_edge(0, 0, 0, 1)
+    assert m.face_size_histogram == {2: 1, 4: 6}
+    return m
+
+
+def cube_with_self_loop() -> topomesh.Mesh:
+    """The cube with a self-loop bounding a one-gon inside a face."""
+    m, _ = topomesh.cube().insert_edge(0, 0, 0, 0)
+    assert m.n_self_loops == 1 and m.face_size_histogram == {1: 1, 4: 5, 5: 1}
+    return m
+
+
+INPUTS = {
+    **{k: f for k, f in PLATONIC.items()},
+    "torus": lambda: topomesh.torus(6, 4),
+    "genus3": lambda: topomesh.genus_surface(3),
+    "two_gon": cube_with_two_gon,
+    "self_loop": cube_with_self_loop,
+}
+
+
+def expected_counts(m: topomesh.Mesh, n: int) -> dict:
+    """Closed forms after n >= 1 iterations for inputs whose vertices each
+    have one cone (K = V) and whose all-loop faces are one-gons (F0 = #one-gons)."""
+    v, e, loops = m.n_vertices, m.n_edges, m.n_self_loops
+    k, f0 = v, m.face_size_histogram.get(1, 0)
+    big_n = e - loops
+    s = (4**n - 1) // 3
+    chi = v - e + k + f0 - big_n * s
+    return {
+        "V": v + big_n * s,
+        "E": e + 4 * big_n * s,
+        "F": k + f0 + 2 * big_n * s,
+        "loops": loops + big_n * s,
+        "genus": m.n_components - chi // 2,
+    }
+
+
+@pytest.mark.parametrize("name", list(INPUTS))
+def test_sierpinski_counts_six_iterations(name):
+    m0 = INPUTS[name]()
+    m = m0
+    for n in range(1, 7):
+        m = m.sierpinski()
+        m.validate()
+        got = {"V": m.n_vertices, "E": m.n_edges, "F": m.n_faces, "loops": m.n_self_loops, "genus": m.genus}
+        assert got == expected_counts(m0, n), f"{name}, iteration {n}"
+        assert m.n_components == 1
+    assert m0.sierpinski(6) == m
+
+
+def test_sierpinski_tetrahedron_anchor():
+    t = topomesh.tetrahedron()
+    assert [t.sierpinski(k).genus for k in (1, 2, 3)] == [3, 15, 63]
+    # 4^3 tetrahedra, each face a triangle carrying self-loops
+    s = t.sierpinski(3)
+    assert s.n_faces == 4 * 64
+    assert set(s.face_size_histogram) == {3, 4, 6}  # corner triangles with 0 or 1 loop, back hexagons
+
+
+def test_sierpinski_keeps_old_vertices_and_adds_midpoints():
+    c = topomesh.cube()
+    s = c.sierpinski()
+    np.testing.assert_array_equal(s.vertices[:8], c.vertices)
+    mids = 0.5 * (c.vertices[c.edges[:, 0]] + c.vertices[c.edges[:, 1]])
+    np.testing.assert_allclose(s.vertices[8:], mids)
+    # zero-length self-loops: one at each midpoint
+    loops = s.edges[s.edges[:, 0] == s.edges[:, 1], 0]
+    assert sorted(loops.tolist()) == list(range(8, 20))
+
+
+def test_sierpinski_deformed_cube_and_zero_iterations():
+    c = topomesh.cube()
+    rng = np.random.default_rng(1)
+    d = c.with_vertices(c.vertices + 0.2 * rng.standard_normal(c.vertices.shape))
+    s = d.sierpinski(4)
+    s.validate()
+    assert s.genus == topomesh.cube().sierpinski(4).genus
+    assert c.sierpinski(0) == c
+
+
+def test_sierpinski_progress_bar(capsys):
+    s = topomesh.octahedron().sierpinski(2, progress=True)
+    assert s == topomesh.octahedron().sierpinski(2)
+    assert "sierpinski" in capsys.readouterr().err
+
+
+# --- geometric realization: one smoothing step opens the zero-length self-loops
+
+
+def _smoothers():
+    out = []
+    for name in ("doo_sabin", "catmull_clark"):
+        mark = pytest.mark.skipif(not hasattr(topomesh.Mesh, name), reason=f"Mesh.{name} not merged yet")
+        out.append(pytest.param(name, marks=mark))
+    return out
+
+
+@pytest.mark.parametrize("smoother", _smoothers())
+@pytest.mark.parametrize("name", list(PLATONIC))
+@pytest.mark.parametrize("k", [1, 2, 3])
+def test_sierpinski_smoothed_agrees_with_peers(name, k, smoother):
+    s = PLATONIC[name]().sierpinski(k)
+    smooth = getattr(s, smoother)(1)
+    assert smooth.genus == s.genus
+    assert_agrees_with_peers(smooth, expect_genus=s.genus)
+
+
+# --- classic Menger sponge
+
+
+def sponge_genus(n: int) -> int:
+    """1 − χ(solid) with χ(S_n) = 20 χ(S_{n−1}) − 24 χ(carpet_{n−1}), χ(S_0) = 1
+    (inclusion–exclusion over the 20 blocks; see src/schemes/menger_sponge.rs)."""
+    chi = 1
+    for m in range(1, n + 1):
+        carpet = 1 - (8 ** (m - 1) - 1) // 7
+        chi = 20 * chi - 24 * carpet
+    return 1 - chi
+
+
+def test_sponge_genus_recurrence_matches_closed_form():
+    assert [sponge_genus(n) for n in range(5)] == [0, 5, 81, 1409, 26433]
+    for n in range(8):
+        assert sponge_genus(n) * 133 == 21 * 20**n + 38 * 8**n - 59
+
+
+@pytest.mark.parametrize("level", [0, 1, 2, 3])
+def test_menger_sponge_agrees_with_peers(level):
+    m = topomesh.menger_sponge(level)
+    m.validate()
+    assert m.n_components == 1
+    assert m.face_size_histogram == {4: 2 * 20**level + 4 * 8**level}
+    assert m.n_edges == 2 * m.n_faces
+    assert m.volume == pytest.approx(8.0 * (20 / 27) ** level, rel=1e-10)
+    assert_agrees_with_peers(m, expect_genus=sponge_genus(level))
+
+
+def test_menger_sponge_level4():
+    m = topomesh.menger_sponge(4)
+    m.validate()
+    assert m.genus == sponge_genus(4) == 26433
+    assert m.volume == pytest.approx(8.0 * (20 / 27) ** 4, rel=1e-10)
+    assert_agrees_with_peers(m)
+
+
+def test_menger_sponge_vertices_on_grid_and_inside_cube():
+    m = topomesh.menger_sponge(2)
+    v = (m.vertices + 1.0) * 9 / 2
+    np.testing.assert_allclose(v, np.round(v), atol=1e-12)
+    assert v.min() == 0 and v.max() == 9
+    assert len(np.unique(np.round(v), axis=0)) == m.n_vertices
+
+
+def test_menger_sponge_rejects_bad_levels():
+    with pytest.raises(topomesh.MeshError):
+        topomesh.menger_sponge(6)
+    with pytest.raises(OverflowError):
+        topomesh.menger_sponge(-1)
