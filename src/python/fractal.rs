@@ -3,7 +3,7 @@
 use super::err;
 use super::mesh::PyMesh;
 use crate::mesh::Mesh;
-use crate::schemes::{menger_sponge as sponge, sierpinski as sp};
+use crate::schemes::{menger as mg, menger_sponge as sponge, sierpinski as sp};
 use pyo3::prelude::*;
 
 /// Runs `step` `iterations` times with the GIL released, one tqdm update per
@@ -69,6 +69,37 @@ impl PyMesh {
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn sierpinski(&self, py: Python<'_>, iterations: usize, progress: bool) -> PyResult<PyMesh> {
         iterate(py, &self.inner, iterations, progress, "sierpinski", sp::sierpinski).map(PyMesh::wrap)
+    }
+
+    /// Generalized Menger sponge (dissertation ch. VII): every face is
+    /// inset by the thickness ``D`` into a remeshing face, a copy is offset
+    /// inward by ``D``, the offset faces are joined across edges (collapsed
+    /// where the dihedral angle is at most ``collapse_angle``, split by a
+    /// miter vertex at non-convex edges), every original face is remeshed
+    /// into corner and edge quads, and a pipe joins each remeshing face to
+    /// its offset face.
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// thickness : float, default 1/3
+    ///     ``D`` as a fraction of each face's width (twice the distance from
+    ///     its centroid to its nearest side; the side of a square), below 1/2;
+    ///     with ``absolute=True`` a length.
+    /// absolute : bool, default False
+    /// collapse_angle : float, default 90
+    ///     Edges with an interior dihedral angle up to this (degrees) collapse.
+    /// progress : bool, default False
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///     Per iteration on a connected mesh: genus ``2g + F - 1``. On the
+    ///     cube the first iteration is the classic level-1 sponge.
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
+    fn menger(&self, py: Python<'_>, iterations: usize, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
+        let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
+        iterate(py, &self.inner, iterations, progress, "menger", |m| mg::menger(m, &o)).map(PyMesh::wrap)
     }
 }
 

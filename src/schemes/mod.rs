@@ -2,3 +2,4 @@
 //! and returning a new `Mesh`; the mesh structure knows nothing about them.
 pub mod sierpinski;
 pub mod menger_sponge;
+pub mod menger;
