@@ -52,12 +52,41 @@
 //! (per vertex: its valence minus its collapsed edge ends, or 1 when every
 //! edge at it collapses), `S` the strips of `90° < φ ≤ 180°` edges that keep
 //! three distinct corners, and `W` the vertex faces with at least three
-//! sides. [`MengerCounts`] evaluates them from the input's geometry. On the
+//! sides. Welding (below) lowers `G + 2E_m` and `S + 2E_m + W` and splitting
+//! non-planar faces raises `F'`; [`MengerCounts`] evaluates every term from
+//! the input's geometry. The genus formula is purely topological. On the
 //! cube with the default thickness every edge collapses, so the first
 //! iteration is the classic level-1 sponge (V 64, E 144, F 72, genus 5).
 //!
-//! The faces are emitted as polygons and paired by vertex pairs
-//! ([`Mesh::from_polygons`]), which also proves the result a manifold.
+//! # Thickness, welding, planarity
+//!
+//! With a relative thickness `t` (default 1/3), a face's `D` is `t` times the
+//! smallest width among the faces around its vertices (width: twice the
+//! distance from a face's centroid to its nearest side line), so a wide face
+//! next to a thin wall of an earlier iteration does not reach through it. On
+//! the cube every face of every iteration is a square and `D` is a third of
+//! its side, as in the dissertation's Fig. 62.
+//!
+//! Offset corners and miter points that coincide around one original vertex
+//! (the exact offset of an orthogonal corner is one point) are welded; a face
+//! that then passes a vertex twice is split there and pieces with fewer than
+//! three corners are dropped (their two sides become one edge); a miter strip
+//! whose ends are both single points is left out. Non-planar faces (the
+//! vertex face at a saddle-like vertex folds into two squares) are split along
+//! a diagonal into planar parts when one exists, else fanned into triangles.
+//! The faces are paired by vertex pairs ([`Mesh::from_polygons`]), which also
+//! proves the result a manifold.
+//!
+//! # Status (measured)
+//!
+//! Cube, iterations 1–4: quads only, genus 5, 81, 1121, 15585, the first two
+//! with the classic sponge's volume; trimesh and manifold3d agree (watertight,
+//! genus, volume). Tetrahedron 1–3 and dodecahedron 1–2 also pass both peers;
+//! dodecahedron 3 is a valid manifold whose volume manifold3d reads 0.07 %
+//! lower (an overlap), and the fourth iteration of the tetrahedron pinches
+//! (manifold3d splits vertices) while the dodecahedron's fails to build:
+//! their thin faces need a thickness rule tied to the material behind each
+//! face, which this implementation does not have.
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{BuildOptions, HalfedgeId, Mesh};
@@ -155,7 +184,23 @@ fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
             width = width.min(2.0 * d);
         }
         face_n[f.idx()] = n;
-        face_d[f.idx()] = if o.relative { o.thickness * width } else { o.thickness };
+        face_d[f.idx()] = width;
+    }
+    if o.relative {
+        // D = t · the smallest width among the faces around the face's
+        // vertices, so a wide face next to a thin wall does not reach through it
+        let width = face_d.clone();
+        let mut vmin = vec![f64::INFINITY; m.n_vertices()];
+        for h in m.halfedges() {
+            let v = m.vertex(h).idx();
+            vmin[v] = vmin[v].min(width[m.face(h).idx()]);
+        }
+        for f in m.faces() {
+            let w = m.face_halfedges(f).map(|h| vmin[m.vertex(h).idx()]).fold(f64::INFINITY, f64::min);
+            face_d[f.idx()] = o.thickness * w;
+        }
+    } else {
+        face_d.iter_mut().for_each(|d| *d = o.thickness);
     }
     // --- inset corners
     let mut q = vec![DVec3::ZERO; nh];
@@ -433,6 +478,8 @@ pub struct MengerCounts {
     pub inner_vertices: usize,
     /// Strip and miter quads and vertex faces with at least three corners.
     pub inner_faces: usize,
+    /// Faces added by splitting non-planar faces into planar pieces.
+    pub planar_splits: usize,
 }
 
 /// The counts one [`menger`] iteration will produce on `m` (module docs):
@@ -444,20 +491,13 @@ pub fn menger_counts(m: &Mesh, o: &MengerOptions) -> Result<MengerCounts> {
     let (e, f) = (m.n_edges(), m.n_faces());
     let n_miter = pl.kind.iter().filter(|&&k| k == EdgeKind::Miter).count();
     let n_coll = pl.kind.iter().filter(|&&k| k == EdgeKind::Collapse).count();
-    // the inner faces alone: old/trisection/inset ids never collide with inner ones
-    let big = u32::MAX / 2;
-    let (sizes, idx) = emit_faces(m, &pl, &inner, &|i| big + i as u32, &|h| big / 2 + h as u32, &|i| i);
-    let mut used = vec![false; inner.pos.len()];
-    for &i in &idx {
-        if (i as u32) < big / 2 {
-            used[i as usize] = true;
-        }
-    }
-    let inner_vertices = used.iter().filter(|&&u| u).count();
-    let inner_faces = sizes.len() - 3 * m.n_halfedges();
+    let built = build_polygons(m, o)?;
+    let inner_vertices = built.inner_vertices;
+    let inner_faces = built.sizes.len() - built.split_extra - 3 * m.n_halfedges();
+    let _ = inner;
     let chi2 = 2 * m.euler_characteristic() - 2 * f as i64;
     let vertices = m.n_vertices() + 4 * e + inner_vertices;
-    let faces = 6 * e + inner_faces;
+    let faces = 6 * e + inner_faces + built.split_extra;
     Ok(MengerCounts {
         vertices,
         edges: (vertices as i64 + faces as i64 - chi2) as usize,
@@ -468,11 +508,21 @@ pub fn menger_counts(m: &Mesh, o: &MengerOptions) -> Result<MengerCounts> {
         mitered: n_miter,
         inner_vertices,
         inner_faces,
+        planar_splits: built.split_extra,
     })
 }
 
-/// One generalized Menger iteration (module docs).
-pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
+/// Positions and polygon faces of one iteration, with the number of inner
+/// points used and of faces added by splitting non-planar faces.
+struct Built {
+    pos: Vec<DVec3>,
+    sizes: Vec<i64>,
+    idx: Vec<i64>,
+    inner_vertices: usize,
+    split_extra: usize,
+}
+
+fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
     let pl = plan(m, o)?;
     let inner = inner_points(m, &pl)?;
     let pos = m.positions();
@@ -507,7 +557,72 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
             *x = inner_id[i] as i64;
         }
     }
-    Mesh::from_polygons(out_pos, &sizes, &idx, BuildOptions::default())
+    let inner_vertices = out_pos.len() - i0;
+    // non-planar faces (vertex faces at saddle-like vertices, faces of a
+    // non-planar input) are split into planar pieces
+    let tol = 1e-9 * pl.face_d.iter().cloned().fold(f64::INFINITY, f64::min).max(1e-300);
+    let (mut sz2, mut idx2) = (Vec::with_capacity(sizes.len()), Vec::with_capacity(idx.len()));
+    let mut k = 0;
+    let mut pieces = Vec::new();
+    for &n in &sizes {
+        let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
+        k += n as usize;
+        pieces.clear();
+        split_planar(&poly, &out_pos, tol, &mut pieces);
+        for p in &pieces {
+            sz2.push(p.len() as i64);
+            idx2.extend(p.iter().map(|&x| x as i64));
+        }
+    }
+    let split_extra = sz2.len() - sizes.len();
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices, split_extra })
+}
+
+/// Largest distance of the polygon's points from its best-fit plane through
+/// the centroid along the Newell normal.
+fn planarity(poly: &[u32], pos: &[DVec3]) -> f64 {
+    let pts: Vec<DVec3> = poly.iter().map(|&i| pos[i as usize]).collect();
+    let c = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    let mut n = DVec3::ZERO;
+    for i in 0..pts.len() {
+        n += pts[i].cross(pts[(i + 1) % pts.len()]);
+    }
+    let n = n.normalize_or_zero();
+    pts.iter().map(|p| (p - c).dot(n).abs()).fold(0.0, f64::max)
+}
+
+/// Splits a non-planar polygon along a diagonal into planar parts when one
+/// exists (a saddle vertex face folds into squares), else fans it into
+/// triangles from its first corner.
+fn split_planar(poly: &[u32], pos: &[DVec3], tol: f64, out: &mut Vec<Vec<u32>>) {
+    let n = poly.len();
+    if n <= 3 || planarity(poly, pos) <= tol {
+        out.push(poly.to_vec());
+        return;
+    }
+    for i in 0..n {
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let a: Vec<u32> = poly[i..=j].to_vec();
+            let b: Vec<u32> = poly[j..].iter().chain(&poly[..=i]).copied().collect();
+            if planarity(&a, pos) <= tol && planarity(&b, pos) <= tol {
+                out.push(a);
+                out.push(b);
+                return;
+            }
+        }
+    }
+    for i in 1..n - 1 {
+        out.push(vec![poly[0], poly[i], poly[i + 1]]);
+    }
+}
+
+/// One generalized Menger iteration (module docs).
+pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
+    let b = build_polygons(m, o)?;
+    Mesh::from_polygons(b.pos, &b.sizes, &b.idx, BuildOptions::default())
 }
 
 /// `iterations` Menger steps with the same options.
@@ -557,8 +672,26 @@ mod tests {
     #[test]
     fn platonic_iterations() {
         let o = MengerOptions::default();
-        check(&primitives::cube(), 3, &o);
+        let c = check(&primitives::cube(), 4, &o);
+        assert_eq!(c.genus(), 15585); // 5, 81, 1121, 15585
+        assert_eq!(c.face_size_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
         check(&primitives::tetrahedron(), 3, &o);
-        check(&primitives::dodecahedron(), 2, &o);
+        check(&primitives::dodecahedron(), 3, &o);
+        // the second cube iteration has the classic level-2 volume
+        let c2 = menger_iterated(&primitives::cube(), 2, &o).unwrap();
+        assert!((c2.signed_volume() - 8.0 * (20.0f64 / 27.0).powi(2)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        let o = MengerOptions::default();
+        assert!(menger(&primitives::cube(), &MengerOptions { thickness: 0.5, ..o }).is_err());
+        assert!(menger(&primitives::cube(), &MengerOptions { thickness: -1.0, ..o }).is_err());
+        let s = crate::schemes::sierpinski::sierpinski(&primitives::cube()).unwrap();
+        assert!(menger(&s, &o).is_err()); // self-loops
+        // absolute thickness
+        let a = menger(&primitives::cube(), &MengerOptions { thickness: 0.25, relative: false, ..o }).unwrap();
+        a.validate().unwrap();
+        assert_eq!(a.genus(), 5);
     }
 }
