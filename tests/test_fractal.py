@@ -183,3 +183,61 @@ def test_menger_sponge_rejects_bad_levels():
         topomesh.menger_sponge(6)
     with pytest.raises(OverflowError):
         topomesh.menger_sponge(-1)
+
+
+# --- generalized Menger sponge (dissertation ch. VII)
+
+
+def test_menger_cube_first_iterations_are_classic():
+    c = topomesh.cube()
+    m1 = c.menger()
+    m1.validate()
+    assert (m1.n_vertices, m1.n_edges, m1.n_faces, m1.genus) == (64, 144, 72, 5)
+    assert m1.volume == pytest.approx(8 * 20 / 27, rel=1e-12)
+    # same vertex set as the classic level-1 sponge
+    s1 = topomesh.menger_sponge(1)
+    assert sorted(map(tuple, np.round(m1.vertices, 9))) == sorted(map(tuple, np.round(s1.vertices, 9)))
+    m2 = c.menger(2)
+    assert m2.genus == sponge_genus(2) == 81
+    assert m2.volume == pytest.approx(8 * (20 / 27) ** 2, rel=1e-12)
+
+
+MENGER_CASES = [("cube", 4), ("tetrahedron", 3), ("dodecahedron", 2)]
+
+
+@pytest.mark.parametrize("name,iterations", MENGER_CASES)
+def test_menger_genus_recurrence_and_peers(name, iterations):
+    m = PLATONIC[name]()
+    for k in range(1, iterations + 1):
+        g, f = m.genus, m.n_faces
+        m = m.menger()
+        m.validate()
+        assert m.genus == 2 * g + f - 1, f"{name} iteration {k}"
+        assert m.n_components == 1
+        assert min(m.face_size_histogram) >= 3  # no one-gons or two-gons
+        assert m.volume > 0
+        assert_agrees_with_peers(m)
+
+
+def test_menger_cube_counts():
+    # all quads; genus 5, 81, 1121, 15585
+    m = topomesh.cube()
+    got = []
+    for _ in range(4):
+        m = m.menger()
+        got.append((m.n_faces, m.genus))
+        assert set(m.face_size_histogram) == {4}
+    assert [g for _, g in got] == [5, 81, 1121, 15585]
+
+
+def test_menger_options_and_errors():
+    c = topomesh.cube()
+    a = c.menger(thickness=0.25, absolute=True)
+    a.validate()
+    assert a.genus == 5 and a.volume > 0
+    assert_agrees_with_peers(a)
+    with pytest.raises(topomesh.MeshError):
+        c.menger(thickness=0.5)
+    with pytest.raises(topomesh.MeshError):
+        c.sierpinski().menger()  # self-loops have no length
+    assert c.menger(0) == c

@@ -88,6 +88,14 @@ class Mesh:
     # --- schemes and operators added by topic below; keep one block per topic ---
     # --- fractal ---
     def sierpinski(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
+    def menger(
+        self,
+        iterations: int = 1,
+        thickness: float = 1.0 / 3.0,
+        absolute: bool = False,
+        collapse_angle: float = 90.0,
+        progress: bool = False,
+    ) -> Mesh: ...
 
 def tetrahedron() -> Mesh: ...
 def cube() -> Mesh: ...
