@@ -20,9 +20,11 @@
 //!      placed by least squares on the faces' offset planes;
 //!    * `90° < φ ≤ 180°`: a quad strip joins the two offset edges;
 //!    * `φ > 180°` (non-convex edge, VII.4 cases 5–6): the strip is split by a
-//!      new vertex at each end, on the intersection line of the two offset
-//!      planes (the fix of Fig. 61, which the dissertation left out and which
-//!      keeps the inner surface off the outer one), giving two quads.
+//!      new vertex at each end, on the two faces' offset planes (weighted
+//!      strongly) and as near as they allow to the offset planes of the other
+//!      faces around that end, within `2D` of it (the fix of Fig. 61, which the
+//!      dissertation left out and which keeps the inner surface off the outer
+//!      one), giving two quads.
 //!
 //!    Around each original vertex the connecting edges bound a *vertex face*.
 //!    Where collapses leave it with two sides it is removed and its two sides
@@ -73,7 +75,9 @@
 //! three corners are dropped (their two sides become one edge); a miter strip
 //! whose ends are both single points is left out. Non-planar faces (the
 //! vertex face at a saddle-like vertex folds into two squares) are split along
-//! a diagonal into planar parts when one exists, else fanned into triangles.
+//! a diagonal into planar parts when one exists; a vertex face that has none
+//! becomes a cone of triangles from a new vertex at its centroid, any other
+//! face a fan of triangles.
 //! The faces are paired by vertex pairs ([`Mesh::from_polygons`]), which also
 //! proves the result a manifold.
 //!
@@ -86,16 +90,16 @@
 //! Cube, iterations 1–4: quads only, genus 5, 81, 1121, 15585, the first two
 //! with the classic sponge's volume; trimesh and manifold3d agree (watertight,
 //! genus, volume) and a triangle-crossing scan finds no self-intersection.
-//! Tetrahedron and dodecahedron: the first iteration is crossing-free and
-//! passes both peers. From the second iteration on their output is a valid,
-//! oriented manifold with positive volume and the documented genus (both
-//! peers agree for tetrahedron 1–3 and dodecahedron 1–2), **but it
-//! self-intersects** (hundreds of crossing triangle pairs, whatever the
-//! thickness): around the small inner tetrahedron the pipes meet along
-//! concave edges of about 300° whose miter points, `2D` deep, reach into the
-//! neighbouring pipes. The fourth iteration of the tetrahedron pinches and
-//! the dodecahedron's fails to build. A thickness or miter rule tied to the
-//! material behind each face is the missing piece.
+//! Tetrahedron 1–4 and dodecahedron 1–3: valid oriented manifolds with
+//! positive volume and the genus formula, no one- or two-gons, accepted by
+//! both peers; the dodecahedron's fourth iteration (1.9 M faces) is valid too
+//! but manifold3d splits 29 vertices (near-coincident points, edges down to
+//! 6e-10). Crossing-free: tetrahedron 1 and dodecahedron 1–2. The second
+//! tetrahedron iteration has 24 crossing triangle pairs and the third
+//! iterations of both have thousands: near the small inner tetrahedron the
+//! pipes meet along sharp concave edges and the offset reaches into the
+//! neighbouring pipes. A thickness rule tied to the material behind each face
+//! (rather than to face widths) is the missing piece.
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{BuildOptions, HalfedgeId, Mesh};
@@ -129,6 +133,7 @@ enum EdgeKind {
 }
 
 const ANGLE_TOL: f64 = 1e-6; // radians
+
 
 /// Everything one iteration derives from the input's geometry.
 struct Plan {
@@ -340,11 +345,29 @@ fn inner_points(m: &Mesh, pl: &Plan) -> Result<Inner> {
         // end 0 at tail(h): corners h (f1) and next(th) (f2); end 1: next(h) and th
         for (end, (c1, c2)) in [(h, m.next(th)), (m.next(h), th)].into_iter().enumerate() {
             let pv = pos[m.vertex(c1).idx()];
+            // on both offset planes (weighted strongly) and as near as they
+            // allow to the offset planes of the other faces around this end
+            let (mut a, mut b) = (DMat3::ZERO, DVec3::ZERO);
+            let mut dmin = f64::INFINITY;
+            for hh in m.vertex_halfedges(m.vertex(c1)) {
+                let f = m.face(hh).idx();
+                let w = if f == f1 || f == f2 { 1e3 } else { 1.0 };
+                let n = pl.face_n[f];
+                a += w * DMat3::from_cols(n * n.x, n * n.y, n * n.z);
+                b += w * n * (n.dot(pv) - pl.face_d[f]);
+                dmin = dmin.min(pl.face_d[f]);
+            }
             let (r1, r2) = (pl.group_pos[pl.group[c1.idx()] as usize], pl.group_pos[pl.group[c2.idx()] as usize]);
-            // on both offset planes, at the mean edge coordinate of the corners it joins
-            let a = DMat3::from_cols(n1, n2, u).transpose();
-            let rhs = DVec3::new(n1.dot(pv) - pl.face_d[f1], n2.dot(pv) - pl.face_d[f2], 0.5 * (r1 + r2).dot(u));
-            let x = a.inverse() * rhs;
+            let lambda = 1e-6;
+            a += DMat3::from_diagonal(DVec3::splat(lambda));
+            b += lambda * 0.5 * (r1 + r2);
+            let _ = (n1, n2, u);
+            let mut x = a.inverse() * b;
+            let off = x - pv;
+            let dmax = 2.0 * dmin;
+            if off.length() > dmax {
+                x = pv + off * (dmax / off.length());
+            }
             if !x.is_finite() {
                 return Err(MeshError::InvalidArgument(format!("menger: edge {} folds back on itself (φ = 360°)", e.0)));
             }
@@ -385,7 +408,7 @@ fn inner_points(m: &Mesh, pl: &Plan) -> Result<Inner> {
 /// Corners of every output face, with vertices as: `0..V` old, then
 /// `tri(e, end)`, `qv(h)` and `inner(i)` (raw inner point ids, see [`Inner`]).
 /// Faces left with fewer than three distinct corners are dropped.
-fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> (Vec<i64>, Vec<i64>) {
+fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> (Vec<i64>, Vec<i64>, Vec<u8>) {
     let ng = pl.group_pos.len();
     let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
         let near_tail_of_2e = (h.0 & 1 == 0) == near_tail;
@@ -395,11 +418,13 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
     let mid = |e: usize, end: usize| iv(inner.rep[ng + 2 * e + end]);
     let mut sizes: Vec<i64> = Vec::new();
     let mut idx: Vec<i64> = Vec::new();
-    let mut push = |poly: &[u32]| {
+    let mut tags: Vec<u8> = Vec::new();
+    let mut push = |poly: &[u32], tag: u8| {
         for d in split_cycle(poly) {
             if d.len() >= 3 {
                 sizes.push(d.len() as i64);
                 idx.extend(d.iter().map(|&x| x as i64));
+                tags.push(tag);
             }
         }
     };
@@ -407,9 +432,9 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
     for f in m.faces() {
         for h in m.face_halfedges(f) {
             let (pr, nx) = (m.prev(h), m.next(h));
-            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)]);
-            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())]);
-            push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)]);
+            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], 0);
+            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())], 1);
+            push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)], 2);
         }
     }
     // inner surface: strips, miter quad pairs, vertex faces
@@ -418,7 +443,7 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
         let t = h.twin();
         match pl.kind[e.idx()] {
             EdgeKind::Collapse => {}
-            EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))]),
+            EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3),
             EdgeKind::Miter => {
                 if r(h) == r(m.next(t)) && r(m.next(h)) == r(t) {
                     // both ends already one offset corner (every other edge
@@ -426,8 +451,8 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
                     continue;
                 }
                 let (m0, m1) = (mid(e.idx(), 0), mid(e.idx(), 1));
-                push(&[r(h), r(m.next(h)), m1, m0]);
-                push(&[m0, m1, r(t), r(m.next(t))]);
+                push(&[r(h), r(m.next(h)), m1, m0], 4);
+                push(&[m0, m1, r(t), r(m.next(t))], 4);
             }
         }
     }
@@ -446,9 +471,9 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
                 break;
             }
         }
-        push(&poly);
+        push(&poly, 5);
     }
-    (sizes, idx)
+    (sizes, idx, tags)
 }
 
 /// A face cycle after welding: consecutive repeats removed, then split
@@ -539,6 +564,10 @@ struct Built {
     idx: Vec<i64>,
     inner_vertices: usize,
     split_extra: usize,
+    /// Per output polygon: 10 × kind (0 corner quad, 1 edge quad, 2 pipe,
+    /// 3 strip, 4 miter quad, 5 vertex face) + 1 if it is a piece of a split face.
+    #[allow(dead_code)]
+    piece_tags: Vec<u8>,
 }
 
 fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
@@ -564,7 +593,7 @@ fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
     out_pos.extend_from_slice(&pl.q);
     // inner points get ids in order of first use
     let base = u32::MAX / 2;
-    let (sizes, mut idx) = emit_faces(m, &pl, &inner, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32, &|i| base + i);
+    let (sizes, mut idx, tags) = emit_faces(m, &pl, &inner, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32, &|i| base + i);
     let mut inner_id = vec![u32::MAX; inner.pos.len()];
     for x in idx.iter_mut() {
         if *x >= base as i64 {
@@ -583,18 +612,32 @@ fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
     let (mut sz2, mut idx2) = (Vec::with_capacity(sizes.len()), Vec::with_capacity(idx.len()));
     let mut k = 0;
     let mut pieces = Vec::new();
-    for &n in &sizes {
+    let mut cone_vertices = 0usize;
+    let mut piece_tags = Vec::new();
+    for (fi, &n) in sizes.iter().enumerate() {
         let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
         k += n as usize;
         pieces.clear();
         split_planar(&poly, &out_pos, tol, &mut pieces);
+        if pieces.len() == poly.len() - 2 && poly.len() > 3 && tags[fi] == 5 {
+            // a vertex face with no planar split: a cone from its centroid
+            // (a fan from a corner can fold through the outer surface)
+            pieces.clear();
+            let c = out_pos.len() as u32;
+            out_pos.push(poly.iter().map(|&i| out_pos[i as usize]).sum::<DVec3>() / poly.len() as f64);
+            for i in 0..poly.len() {
+                pieces.push(vec![c, poly[i], poly[(i + 1) % poly.len()]]);
+            }
+            cone_vertices += 1;
+        }
         for p in &pieces {
+            piece_tags.push(10 * tags[fi] + u8::from(pieces.len() > 1));
             sz2.push(p.len() as i64);
             idx2.extend(p.iter().map(|&x| x as i64));
         }
     }
     let split_extra = sz2.len() - sizes.len();
-    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices, split_extra })
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + cone_vertices, split_extra, piece_tags })
 }
 
 /// Largest distance of the polygon's points from its best-fit plane through
@@ -721,6 +764,11 @@ mod tests {
 /// contacts are not counted.
 #[cfg(test)]
 pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
+    crossing_pairs(m).len()
+}
+
+#[cfg(test)]
+pub(crate) fn crossing_pairs(m: &Mesh) -> std::collections::HashSet<(u32, u32)> {
     let (tris, _) = m.triangles();
     let p = m.positions();
     let orient = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| (b - a).cross(c - a).dot(d - a);
@@ -781,7 +829,7 @@ pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
             }
         }
     }
-    found.len()
+    found
 }
 
 #[cfg(test)]
@@ -799,6 +847,52 @@ mod intersection_tests {
     }
 
     #[test]
+    #[ignore]
+    fn dbg_crossing_kinds() {
+        let o = MengerOptions::default();
+        for m0 in [primitives::dodecahedron(), primitives::tetrahedron()] {
+            let m1 = menger(&m0, &o).unwrap();
+            let b = build_polygons(&m1, &o).unwrap();
+            let tags = b.piece_tags.clone();
+            // planar splitting keeps order; map split pieces back by recomputing is skipped: count pieces per tag
+            let m2 = Mesh::from_polygons(b.pos.clone(), &b.sizes, &b.idx, BuildOptions::default()).unwrap();
+            let (tris, fid) = m2.triangles();
+            let _ = tris;
+            // face index -> tag (valid only when nothing was split)
+            eprintln!("split extra {} tags {} faces {}", b.split_extra, tags.len(), m2.n_faces());
+            let pairs = crossing_pairs(&m2);
+            let mut hist = std::collections::BTreeMap::new();
+            for (i, j) in pairs {
+                let (a, c) = (fid[i as usize] as usize, fid[j as usize] as usize);
+                let (ta, tc) = (tags[a], tags[c]);
+                *hist.entry((ta.min(tc), ta.max(tc))).or_insert(0) += 1;
+            }
+            eprintln!("{hist:?}");
+        }
+    }
+
+    #[test]
+    #[ignore]
+    fn dbg_crossing_table() {
+        for t in [1.0 / 3.0, 0.25] {
+            let o = MengerOptions { thickness: t, ..Default::default() };
+            for (name, m0, n) in [("cube", primitives::cube(), 4), ("tetrahedron", primitives::tetrahedron(), 3), ("dodecahedron", primitives::dodecahedron(), 3)] {
+                let mut m = m0;
+                for k in 1..=n {
+                    m = match menger(&m, &o) {
+                        Ok(x) => x,
+                        Err(e) => {
+                            eprintln!("t {t:.3} {name} {k}: {e}");
+                            break;
+                        }
+                    };
+                    eprintln!("t {t:.3} {name} {k}: F {} crossings {}", m.n_faces(), count_self_intersections(&m));
+                }
+            }
+        }
+    }
+
+    #[test]
     fn no_self_intersections() {
         let o = MengerOptions::default();
         let mut m = primitives::cube();
@@ -806,10 +900,10 @@ mod intersection_tests {
             m = menger(&m, &o).unwrap();
             assert_eq!(count_self_intersections(&m), 0);
         }
-        for m0 in [primitives::tetrahedron(), primitives::dodecahedron()] {
-            let m = menger(&m0, &o).unwrap();
-            assert_eq!(count_self_intersections(&m), 0);
-        }
+        let t1 = menger(&primitives::tetrahedron(), &o).unwrap();
+        assert_eq!(count_self_intersections(&t1), 0);
+        let d2 = menger_iterated(&primitives::dodecahedron(), 2, &o).unwrap();
+        assert_eq!(count_self_intersections(&d2), 0);
         // the checker does see crossings: two overlapping cubes in one mesh
         let c = primitives::cube();
         let p = c.to_polygons();
