@@ -111,7 +111,14 @@ def test_sierpinski_progress_bar(capsys):
     assert "sierpinski" in capsys.readouterr().err
 
 
-# --- geometric realization: one smoothing step opens the zero-length self-loops
+# --- geometric realization: smoothing opens the zero-length self-loops
+#
+# One step is not enough: Catmull-Clark turns each self-loop into two edges
+# between the same two points (its vertex point and its edge point), and
+# Doo-Sabin likewise, so the tube still has no cross-section there and the
+# peers (which name edges by vertex pairs) see four faces on one edge. Two
+# steps open every tube. Doo-Sabin faces are not planar, so for it the
+# volume comparison of the harness is left out.
 
 
 def _smoothers():
@@ -122,14 +129,44 @@ def _smoothers():
     return out
 
 
+def _agrees_on_topology(mesh: topomesh.Mesh, genus: int) -> None:
+    """The harness's checks without its volume comparison."""
+    import manifold3d as m3d
+
+    from tests.harness import peer_report
+
+    mesh.validate()
+    r = peer_report(mesh)
+    assert r["trimesh_watertight"] and r["trimesh_winding"], repr(mesh)
+    assert r["trimesh_euler"] == mesh.euler_characteristic
+    assert r["manifold_status"] == m3d.Error.NoError
+    assert r["manifold_vertices"] == mesh.n_vertices, "manifold3d split vertices: a geometric pinch"
+    assert r["manifold_genus"] == mesh.genus == genus
+    assert mesh.volume > 0
+
+
 @pytest.mark.parametrize("smoother", _smoothers())
 @pytest.mark.parametrize("name", list(PLATONIC))
 @pytest.mark.parametrize("k", [1, 2, 3])
 def test_sierpinski_smoothed_agrees_with_peers(name, k, smoother):
     s = PLATONIC[name]().sierpinski(k)
-    smooth = getattr(s, smoother)(1)
+    smooth = getattr(s, smoother)(2)
     assert smooth.genus == s.genus
-    assert_agrees_with_peers(smooth, expect_genus=s.genus)
+    if smoother == "catmull_clark":
+        assert_agrees_with_peers(smooth, expect_genus=s.genus)
+    else:
+        _agrees_on_topology(smooth, s.genus)
+
+
+@pytest.mark.skipif(not hasattr(topomesh.Mesh, "catmull_clark"), reason="Mesh.catmull_clark not merged yet")
+def test_one_smoothing_step_leaves_loops_closed():
+    """After one Catmull-Clark step every self-loop is a pair of edges
+    between the same two vertices (a zero-width tube)."""
+    s = topomesh.tetrahedron().sierpinski(1)
+    one = s.catmull_clark(1)
+    pairs = np.sort(one.edges, axis=1)
+    _, counts = np.unique(pairs, axis=0, return_counts=True)
+    assert (counts == 2).sum() == s.n_self_loops
 
 
 # --- classic Menger sponge
