@@ -407,7 +407,9 @@ fn inner_points(m: &Mesh, pl: &Plan) -> Result<Inner> {
 
 /// Corners of every output face, with vertices as: `0..V` old, then
 /// `tri(e, end)`, `qv(h)` and `inner(i)` (raw inner point ids, see [`Inner`]).
-/// Faces left with fewer than three distinct corners are dropped.
+/// Faces left with fewer than three distinct corners are dropped. Also
+/// returns each face's kind: 0 corner quad, 1 edge quad, 2 pipe quad,
+/// 3 strip, 4 miter quad, 5 vertex face.
 fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> (Vec<i64>, Vec<i64>, Vec<u8>) {
     let ng = pl.group_pos.len();
     let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
@@ -564,10 +566,6 @@ struct Built {
     idx: Vec<i64>,
     inner_vertices: usize,
     split_extra: usize,
-    /// Per output polygon: 10 × kind (0 corner quad, 1 edge quad, 2 pipe,
-    /// 3 strip, 4 miter quad, 5 vertex face) + 1 if it is a piece of a split face.
-    #[allow(dead_code)]
-    piece_tags: Vec<u8>,
 }
 
 fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
@@ -613,7 +611,6 @@ fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
     let mut k = 0;
     let mut pieces = Vec::new();
     let mut cone_vertices = 0usize;
-    let mut piece_tags = Vec::new();
     for (fi, &n) in sizes.iter().enumerate() {
         let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
         k += n as usize;
@@ -631,13 +628,12 @@ fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
             cone_vertices += 1;
         }
         for p in &pieces {
-            piece_tags.push(10 * tags[fi] + u8::from(pieces.len() > 1));
             sz2.push(p.len() as i64);
             idx2.extend(p.iter().map(|&x| x as i64));
         }
     }
     let split_extra = sz2.len() - sizes.len();
-    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + cone_vertices, split_extra, piece_tags })
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + cone_vertices, split_extra })
 }
 
 /// Largest distance of the polygon's points from its best-fit plane through
@@ -846,34 +842,11 @@ mod intersection_tests {
         assert_eq!(count_self_intersections(&m), 0);
     }
 
+    /// `cargo test --lib crossing_report -- --ignored --nocapture`: crossing
+    /// counts per iteration (the figures of the module docs).
     #[test]
     #[ignore]
-    fn dbg_crossing_kinds() {
-        let o = MengerOptions::default();
-        for m0 in [primitives::dodecahedron(), primitives::tetrahedron()] {
-            let m1 = menger(&m0, &o).unwrap();
-            let b = build_polygons(&m1, &o).unwrap();
-            let tags = b.piece_tags.clone();
-            // planar splitting keeps order; map split pieces back by recomputing is skipped: count pieces per tag
-            let m2 = Mesh::from_polygons(b.pos.clone(), &b.sizes, &b.idx, BuildOptions::default()).unwrap();
-            let (tris, fid) = m2.triangles();
-            let _ = tris;
-            // face index -> tag (valid only when nothing was split)
-            eprintln!("split extra {} tags {} faces {}", b.split_extra, tags.len(), m2.n_faces());
-            let pairs = crossing_pairs(&m2);
-            let mut hist = std::collections::BTreeMap::new();
-            for (i, j) in pairs {
-                let (a, c) = (fid[i as usize] as usize, fid[j as usize] as usize);
-                let (ta, tc) = (tags[a], tags[c]);
-                *hist.entry((ta.min(tc), ta.max(tc))).or_insert(0) += 1;
-            }
-            eprintln!("{hist:?}");
-        }
-    }
-
-    #[test]
-    #[ignore]
-    fn dbg_crossing_table() {
+    fn crossing_report() {
         for t in [1.0 / 3.0, 0.25] {
             let o = MengerOptions { thickness: t, ..Default::default() };
             for (name, m0, n) in [("cube", primitives::cube(), 4), ("tetrahedron", primitives::tetrahedron(), 3), ("dodecahedron", primitives::dodecahedron(), 3)] {
