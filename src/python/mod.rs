@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 
 pub(crate) mod convert;
 pub(crate) mod ifs;
+pub(crate) mod fractal;
 pub(crate) mod mesh;
 mod refine;
 mod ops;
@@ -34,5 +35,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     mesh::register(m)?;
     ops::register(m)?;
     ifs::register(m)?;
+    fractal::register(m)?;
     Ok(())
 }

@@ -12,3 +12,6 @@ pub mod loop_subdivision;
 pub mod midpoint;
 pub mod simplest;
 pub mod sqrt3;
+pub mod sierpinski;
+pub mod menger_sponge;
+pub mod menger;

@@ -1,0 +1,132 @@
+//! Fractal schemes: `Mesh.sierpinski` and `topomesh.menger_sponge`.
+
+use super::err;
+use super::mesh::PyMesh;
+use crate::mesh::Mesh;
+use crate::schemes::{menger as mg, menger_sponge as sponge, sierpinski as sp};
+use pyo3::prelude::*;
+
+/// Runs `step` `iterations` times with the GIL released, one tqdm update per
+/// iteration when `progress` is true.
+pub(crate) fn iterate(
+    py: Python<'_>,
+    m: &Mesh,
+    iterations: usize,
+    progress: bool,
+    desc: &str,
+    step: impl Fn(&Mesh) -> crate::Result<Mesh> + Sync,
+) -> PyResult<Mesh> {
+    let bar = if progress {
+        let kw = pyo3::types::PyDict::new(py);
+        kw.set_item("total", iterations)?;
+        kw.set_item("desc", desc)?;
+        Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
+    } else {
+        None
+    };
+    let mut cur: Option<Mesh> = None;
+    for _ in 0..iterations {
+        let src = cur.as_ref().unwrap_or(m);
+        let next = py.detach(|| step(src)).map_err(err)?;
+        cur = Some(next);
+        if let Some(b) = &bar {
+            b.call_method1("update", (1,))?;
+        }
+    }
+    if let Some(b) = &bar {
+        b.call_method0("close")?;
+    }
+    Ok(cur.unwrap_or_else(|| m.clone()))
+}
+
+#[pymethods]
+impl PyMesh {
+    /// Generalized Sierpinski polyhedron (Srinivasan & Akleman, section 4;
+    /// dissertation ch. VI.5).
+    ///
+    /// Each iteration subdivides every edge that is not a self-loop at its
+    /// midpoint, cuts off the corner triangle at every corner of every old
+    /// vertex, and inserts a self-loop at each midpoint between its two
+    /// corners on the central faces, which opens them. The result is one
+    /// connected manifold per input component; the self-loops have zero
+    /// length, so smooth it (Doo-Sabin, Catmull-Clark) for a geometric
+    /// realization without pinches.
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// progress : bool, default False
+    ///     Show a tqdm bar, one step per iteration.
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///     Vertices ``0..V`` are the input's; midpoints follow in edge order.
+    ///     With ``N`` non-loop edges, ``K`` vertex cones (``V`` when there are
+    ///     no self-loops) and no self-loop-only faces, one iteration gives
+    ///     ``V + N`` vertices, ``E + 4N`` edges, ``2N + K`` faces and
+    ///     ``N`` more self-loops; the tetrahedron's genus is 3, 15, 63, ...
+    #[pyo3(signature = (iterations = 1, progress = false))]
+    fn sierpinski(&self, py: Python<'_>, iterations: usize, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "sierpinski", sp::sierpinski).map(PyMesh::wrap)
+    }
+
+    /// Generalized Menger sponge (dissertation ch. VII): every face is
+    /// inset by the thickness ``D`` into a remeshing face, a copy is offset
+    /// inward by ``D``, the offset faces are joined across edges (collapsed
+    /// where the dihedral angle is at most ``collapse_angle``, split by a
+    /// miter vertex at non-convex edges), every original face is remeshed
+    /// into corner and edge quads, and a pipe joins each remeshing face to
+    /// its offset face.
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// thickness : float, default 1/3
+    ///     ``D`` as a fraction of each face's width (twice the distance from
+    ///     its centroid to its nearest side; the side of a square), below 1/2;
+    ///     with ``absolute=True`` a length.
+    /// absolute : bool, default False
+    /// collapse_angle : float, default 90
+    ///     Edges with an interior dihedral angle up to this (degrees) collapse.
+    /// progress : bool, default False
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///     Per iteration on a connected mesh: genus ``2g + F - 1``. On the
+    ///     cube the first iteration is the classic level-1 sponge.
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
+    fn menger(&self, py: Python<'_>, iterations: usize, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
+        let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
+        iterate(py, &self.inner, iterations, progress, "menger", |m| mg::menger(m, &o)).map(PyMesh::wrap)
+    }
+}
+
+/// The classic Menger sponge of ``level`` as one closed manifold mesh.
+///
+/// The cube ``[-1, 1]^3`` cut into ``3**level`` cells per side, keeping the
+/// ``20**level`` cells with at most one base-3 digit 1 per digit position
+/// among their coordinates; the mesh is the boundary of their union, unit
+/// squares kept (not merged), oriented outward.
+///
+/// Parameters
+/// ----------
+/// level : int
+///     0 (the cube) to 5 (6.5 M quads).
+///
+/// Returns
+/// -------
+/// Mesh
+///     ``F = 2*20**n + 4*8**n`` quads, ``E = 2F``, genus
+///     ``(21*20**n + 38*8**n - 59) / 133`` (0, 5, 81, 1409, 26433, 514625),
+///     volume ``8 * (20/27)**n``.
+#[pyfunction]
+fn menger_sponge(py: Python<'_>, level: u32) -> PyResult<PyMesh> {
+    py.detach(|| sponge::menger_sponge(level)).map(PyMesh::wrap).map_err(err)
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(menger_sponge, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,891 @@
+//! Generalized Menger sponges: the remeshing scheme of the high-genus
+//! dissertation, ch. VII.3–VII.5, on any closed manifold polygon mesh.
+//!
+//! One iteration with thickness `D` (per face, see [`MengerOptions`]):
+//!
+//! 1. **Remeshing faces** (VII.3 step 1): every corner `p` of a face `f` is
+//!    inset to `q = p + D (w₁ + w₂)/(1 + w₁·w₂)`, where `w₁, w₂` are the unit
+//!    in-plane inward normals of its two sides: the point at distance `D` from
+//!    both side lines. This one formula covers convex corners, non-convex
+//!    corners (VII.5.2: the offset reverses) and winged corners (VII.5.3:
+//!    `w₁ = w₂`, the offset is `D·(n × e₁)`).
+//! 2. **Offset faces** (step 2): `r = q − D n_f`, the remeshing face moved
+//!    inward by `D` along the face normal.
+//! 3. **ConnectEdges between offset faces** (step 3) with the edge-collapse
+//!    rule of VII.4 by the interior (material) dihedral angle `φ` of the
+//!    original edge:
+//!    * `φ ≤ 90°` (+ tolerance): the connecting edges are collapsed; the
+//!      offset faces meet along their common edge and the offset corners of
+//!      faces joined by collapsed edges around a vertex merge into one vertex,
+//!      placed by least squares on the faces' offset planes;
+//!    * `90° < φ ≤ 180°`: a quad strip joins the two offset edges;
+//!    * `φ > 180°` (non-convex edge, VII.4 cases 5–6): the strip is split by a
+//!      new vertex at each end, on the two faces' offset planes (weighted
+//!      strongly) and as near as they allow to the offset planes of the other
+//!      faces around that end, within `2D` of it (the fix of Fig. 61, which the
+//!      dissertation left out and which keeps the inner surface off the outer
+//!      one), giving two quads.
+//!
+//!    Around each original vertex the connecting edges bound a *vertex face*.
+//!    Where collapses leave it with two sides it is removed and its two sides
+//!    become one edge; with one side (a self-loop) the side is removed and the
+//!    strip ends in a point. No two-gon or one-gon is ever output.
+//! 4. **Outer remeshing** (step 4): every edge is trisected at distance
+//!    `d_e = ½(D₁ + D₂)` (capped at 0.4 |e|) from its ends and every face is
+//!    split into one corner quad per corner, one edge quad per side and its
+//!    remeshing face.
+//! 5. **CreatePipe** (step 5) between each remeshing face and its offset face:
+//!    one quad per side; both faces disappear.
+//!
+//! # Counts
+//!
+//! For a connected input with `V, E, F`, genus `g`: the outer surface (genus
+//! `g`) and the inner one (a copy of the input's surface, genus `g`) are
+//! joined by `F` pipes, so
+//!
+//! ```text
+//! genus' = 2g + F − 1         χ' = 2χ − 2F
+//! V' = V + 2E (trisection) + 2E (remeshing corners) + G + 2E_m
+//! F' = 4E (corner and edge quads) + 2E (pipe quads) + S + 2E_m + W
+//! E' = V' + F' − χ'
+//! ```
+//!
+//! where `E_m` counts non-convex edges, `G` the merged offset corners
+//! (per vertex: its valence minus its collapsed edge ends, or 1 when every
+//! edge at it collapses), `S` the strips of `90° < φ ≤ 180°` edges that keep
+//! three distinct corners, and `W` the vertex faces with at least three
+//! sides. Welding (below) lowers `G + 2E_m` and `S + 2E_m + W` and splitting
+//! non-planar faces raises `F'`; [`MengerCounts`] evaluates every term from
+//! the input's geometry. The genus formula is purely topological. On the
+//! cube with the default thickness every edge collapses, so the first
+//! iteration is the classic level-1 sponge (V 64, E 144, F 72, genus 5).
+//!
+//! # Thickness, welding, planarity
+//!
+//! With a relative thickness `t` (default 1/3), a face's `D` is `t` times the
+//! smallest width among the faces around its vertices (width: twice the
+//! distance from a face's centroid to its nearest side line), so a wide face
+//! next to a thin wall of an earlier iteration does not reach through it. On
+//! the cube every face of every iteration is a square and `D` is a third of
+//! its side, as in the dissertation's Fig. 62.
+//!
+//! Offset corners and miter points that coincide around one original vertex
+//! (the exact offset of an orthogonal corner is one point) are welded; a face
+//! that then passes a vertex twice is split there and pieces with fewer than
+//! three corners are dropped (their two sides become one edge); a miter strip
+//! whose ends are both single points is left out. Non-planar faces (the
+//! vertex face at a saddle-like vertex folds into two squares) are split along
+//! a diagonal into planar parts when one exists; a vertex face that has none
+//! becomes a cone of triangles from a new vertex at its centroid, any other
+//! face a fan of triangles.
+//! The faces are paired by vertex pairs ([`Mesh::from_polygons`]), which also
+//! proves the result a manifold.
+//!
+//! A merged offset corner is kept within `√3·D` of its vertex (the cube
+//! corner's offset): a sharp vertex would otherwise push it `D / sin(½·angle)`
+//! deep, through a thin corner.
+//!
+//! # Status (measured)
+//!
+//! Cube, iterations 1–4: quads only, genus 5, 81, 1121, 15585, the first two
+//! with the classic sponge's volume; trimesh and manifold3d agree (watertight,
+//! genus, volume) and a triangle-crossing scan finds no self-intersection.
+//! Tetrahedron 1–4 and dodecahedron 1–3: valid oriented manifolds with
+//! positive volume and the genus formula, no one- or two-gons, accepted by
+//! both peers; the dodecahedron's fourth iteration (1.9 M faces) is valid too
+//! but manifold3d splits 29 vertices (near-coincident points, edges down to
+//! 6e-10). Crossing-free: tetrahedron 1 and dodecahedron 1–2. The second
+//! tetrahedron iteration has 24 crossing triangle pairs and the third
+//! iterations of both have thousands: near the small inner tetrahedron the
+//! pipes meet along sharp concave edges and the offset reaches into the
+//! neighbouring pipes. A thickness rule tied to the material behind each face
+//! (rather than to face widths) is the missing piece.
+
+use crate::error::{MeshError, Result};
+use crate::mesh::{BuildOptions, HalfedgeId, Mesh};
+use glam::{DMat3, DVec3};
+
+/// Thickness and collapse rule of [`menger`].
+#[derive(Clone, Copy, Debug)]
+pub struct MengerOptions {
+    /// The thickness `D`: absolute, or (when `relative`) a fraction of each
+    /// face's width, twice the distance from its centroid to its nearest side
+    /// line (the side length for a square). Default 1/3: the classic cube.
+    pub thickness: f64,
+    /// Whether `thickness` is a fraction of each face's width (default true).
+    pub relative: bool,
+    /// Edges whose interior dihedral angle is at most this (degrees) are
+    /// collapsed (VII.4); default 90.
+    pub collapse_angle: f64,
+}
+
+impl Default for MengerOptions {
+    fn default() -> Self {
+        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0 }
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum EdgeKind {
+    Collapse,
+    Strip,
+    Miter,
+}
+
+const ANGLE_TOL: f64 = 1e-6; // radians
+
+
+/// Everything one iteration derives from the input's geometry.
+struct Plan {
+    face_n: Vec<DVec3>,
+    face_d: Vec<f64>,
+    /// Inset corner per half-edge (the corner at its tail in its face).
+    q: Vec<DVec3>,
+    kind: Vec<EdgeKind>,
+    /// Merged offset-corner group per half-edge, and the group positions.
+    group: Vec<u32>,
+    group_pos: Vec<DVec3>,
+}
+
+fn union_find_root(p: &mut [u32], mut x: u32) -> u32 {
+    while p[x as usize] != x {
+        p[x as usize] = p[p[x as usize] as usize];
+        x = p[x as usize];
+    }
+    x
+}
+
+fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
+    if !(o.thickness > 0.0 && o.thickness.is_finite()) || (o.relative && o.thickness >= 0.5) {
+        return Err(MeshError::InvalidArgument(format!(
+            "menger: thickness must be positive{} (got {})",
+            if o.relative { " and below 1/2 of the face width" } else { "" },
+            o.thickness
+        )));
+    }
+    let nh = m.n_halfedges();
+    let nf = m.n_faces();
+    for f in m.faces() {
+        if m.face_halfedge(f).is_none() || m.face_degree(f) < 3 {
+            return Err(MeshError::InvalidArgument(format!(
+                "menger: face {} has {} corner(s); every face needs at least three",
+                f.0,
+                m.face_degree(f)
+            )));
+        }
+    }
+    if m.n_self_loops() > 0 {
+        return Err(MeshError::InvalidArgument("menger: self-loops have no length to thicken; smooth the mesh first".into()));
+    }
+    let pos = m.positions();
+    let p = |h: HalfedgeId| pos[m.vertex(h).idx()];
+    // --- faces: normal, width, thickness
+    let mut face_n = vec![DVec3::ZERO; nf];
+    let mut face_d = vec![0.0; nf];
+    for f in m.faces() {
+        let nw = m.face_newell(f);
+        let n = nw.normalize_or_zero();
+        if n == DVec3::ZERO {
+            return Err(MeshError::InvalidArgument(format!("menger: face {} has zero area", f.0)));
+        }
+        let hs: Vec<HalfedgeId> = m.face_halfedges(f).collect();
+        let c = hs.iter().map(|&h| p(h)).sum::<DVec3>() / hs.len() as f64;
+        let mut width = f64::INFINITY;
+        for &h in &hs {
+            let (a, b) = (p(h), p(m.next(h)));
+            let t = (b - a).normalize_or_zero();
+            let d = ((c - a) - t * (c - a).dot(t)).length();
+            width = width.min(2.0 * d);
+        }
+        face_n[f.idx()] = n;
+        face_d[f.idx()] = width;
+    }
+    if o.relative {
+        // D = t · the smallest width among the faces around the face's
+        // vertices, so a wide face next to a thin wall does not reach through it
+        let width = face_d.clone();
+        let mut vmin = vec![f64::INFINITY; m.n_vertices()];
+        for h in m.halfedges() {
+            let v = m.vertex(h).idx();
+            vmin[v] = vmin[v].min(width[m.face(h).idx()]);
+        }
+        for f in m.faces() {
+            let w = m.face_halfedges(f).map(|h| vmin[m.vertex(h).idx()]).fold(f64::INFINITY, f64::min);
+            face_d[f.idx()] = o.thickness * w;
+        }
+    } else {
+        face_d.iter_mut().for_each(|d| *d = o.thickness);
+    }
+    // --- inset corners
+    let mut q = vec![DVec3::ZERO; nh];
+    for h in m.halfedges() {
+        let f = m.face(h).idx();
+        let n = face_n[f];
+        let pv = p(h);
+        let t1 = (p(m.next(h)) - pv).normalize_or_zero();
+        let t0 = (pv - p(m.prev(h))).normalize_or_zero();
+        // in-plane inward normals of the two sides (projected into the face plane)
+        let w1 = (n.cross(t1)).normalize_or_zero();
+        let w2 = (n.cross(t0)).normalize_or_zero();
+        let den = 1.0 + w1.dot(w2);
+        if den < 1e-9 || w1 == DVec3::ZERO || w2 == DVec3::ZERO {
+            return Err(MeshError::InvalidArgument(format!(
+                "menger: corner at vertex {} of face {} is a zero-angle spike",
+                m.vertex(h).0,
+                f
+            )));
+        }
+        q[h.idx()] = pv + face_d[f] * (w1 + w2) / den;
+    }
+    // --- edge classes by the interior dihedral angle
+    let collapse = o.collapse_angle.to_radians() + ANGLE_TOL;
+    let kind: Vec<EdgeKind> = m
+        .edges()
+        .map(|e| {
+            let h = e.halfedge();
+            let (n1, n2) = (face_n[m.face(h).idx()], face_n[m.face(h.twin()).idx()]);
+            let t = (pos[m.head(h).idx()] - p(h)).normalize_or_zero();
+            let phi = std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2));
+            if phi <= collapse {
+                EdgeKind::Collapse
+            } else if phi <= std::f64::consts::PI + ANGLE_TOL {
+                EdgeKind::Strip
+            } else {
+                EdgeKind::Miter
+            }
+        })
+        .collect();
+    // --- merge offset corners across collapsed edges, per vertex
+    let mut parent: Vec<u32> = (0..nh as u32).collect();
+    for h in m.halfedges() {
+        if kind[h.edge().idx()] == EdgeKind::Collapse {
+            // corners h and next(twin(h)) lie on either side of edge(h) at its tail
+            let (a, b) = (h.0, m.next(h.twin()).0);
+            let (ra, rb) = (union_find_root(&mut parent, a), union_find_root(&mut parent, b));
+            if ra != rb {
+                parent[ra.max(rb) as usize] = ra.min(rb);
+            }
+        }
+    }
+    let mut group = vec![u32::MAX; nh];
+    let mut members: Vec<Vec<u32>> = Vec::new();
+    for h in 0..nh as u32 {
+        let r = union_find_root(&mut parent, h);
+        if group[r as usize] == u32::MAX {
+            group[r as usize] = members.len() as u32;
+            members.push(Vec::new());
+        }
+        let g = group[r as usize];
+        group[h as usize] = g;
+        members[g as usize].push(h);
+    }
+    let group_pos: Vec<DVec3> = members
+        .iter()
+        .map(|hs| {
+            let raw = |h: u32| {
+                let f = m.face(HalfedgeId(h)).idx();
+                q[h as usize] - face_d[f] * face_n[f]
+            };
+            if hs.len() == 1 {
+                return raw(hs[0]);
+            }
+            // least squares on the offset planes, pulled weakly to the mean
+            let avg = hs.iter().map(|&h| raw(h)).sum::<DVec3>() / hs.len() as f64;
+            let lambda = 1e-6;
+            let mut a = DMat3::from_diagonal(DVec3::splat(lambda));
+            let mut b = lambda * avg;
+            let pv = p(HalfedgeId(hs[0]));
+            for &h in hs {
+                let f = m.face(HalfedgeId(h)).idx();
+                let n = face_n[f];
+                let c = n.dot(pv) - face_d[f];
+                a += DMat3::from_cols(n * n.x, n * n.y, n * n.z);
+                b += n * c;
+            }
+            let x = a.inverse() * b;
+            // a sharp vertex amplifies the offset (D / sin of its half
+            // angle); keep the merged corner within √3·D of the vertex, the
+            // cube corner's offset, so it stays inside thin corners
+            let dmax = 3f64.sqrt() * hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
+            let off = x - pv;
+            if off.length() > dmax * (1.0 + 1e-9) {
+                pv + off * (dmax / off.length())
+            } else {
+                x
+            }
+        })
+        .collect();
+    Ok(Plan { face_n, face_d, q, kind, group, group_pos })
+}
+
+/// The inner surface's points: merged offset corners (`group`), then two
+/// miter points per edge (`G + 2e + end`, end 0 at the tail of `2e`), welded
+/// where they coincide around one original vertex.
+struct Inner {
+    pos: Vec<DVec3>,
+    /// Representative of every inner point after welding.
+    rep: Vec<u32>,
+}
+
+fn inner_points(m: &Mesh, pl: &Plan) -> Result<Inner> {
+    let pos = m.positions();
+    let ng = pl.group_pos.len();
+    let ne = m.n_edges();
+    let mut ip = pl.group_pos.clone();
+    ip.resize(ng + 2 * ne, DVec3::NAN);
+    for e in m.edges() {
+        if pl.kind[e.idx()] != EdgeKind::Miter {
+            continue;
+        }
+        let h = e.halfedge();
+        let th = h.twin();
+        let (f1, f2) = (m.face(h).idx(), m.face(th).idx());
+        let (n1, n2) = (pl.face_n[f1], pl.face_n[f2]);
+        let u = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize();
+        // end 0 at tail(h): corners h (f1) and next(th) (f2); end 1: next(h) and th
+        for (end, (c1, c2)) in [(h, m.next(th)), (m.next(h), th)].into_iter().enumerate() {
+            let pv = pos[m.vertex(c1).idx()];
+            // on both offset planes (weighted strongly) and as near as they
+            // allow to the offset planes of the other faces around this end
+            let (mut a, mut b) = (DMat3::ZERO, DVec3::ZERO);
+            let mut dmin = f64::INFINITY;
+            for hh in m.vertex_halfedges(m.vertex(c1)) {
+                let f = m.face(hh).idx();
+                let w = if f == f1 || f == f2 { 1e3 } else { 1.0 };
+                let n = pl.face_n[f];
+                a += w * DMat3::from_cols(n * n.x, n * n.y, n * n.z);
+                b += w * n * (n.dot(pv) - pl.face_d[f]);
+                dmin = dmin.min(pl.face_d[f]);
+            }
+            let (r1, r2) = (pl.group_pos[pl.group[c1.idx()] as usize], pl.group_pos[pl.group[c2.idx()] as usize]);
+            let lambda = 1e-6;
+            a += DMat3::from_diagonal(DVec3::splat(lambda));
+            b += lambda * 0.5 * (r1 + r2);
+            let _ = (n1, n2, u);
+            let mut x = a.inverse() * b;
+            let off = x - pv;
+            let dmax = 2.0 * dmin;
+            if off.length() > dmax {
+                x = pv + off * (dmax / off.length());
+            }
+            if !x.is_finite() {
+                return Err(MeshError::InvalidArgument(format!("menger: edge {} folds back on itself (φ = 360°)", e.0)));
+            }
+            ip[ng + 2 * e.idx() + end] = x;
+        }
+    }
+    // weld coincident inner points around each original vertex
+    let mut parent: Vec<u32> = (0..ip.len() as u32).collect();
+    let mut ids: Vec<u32> = Vec::new();
+    for v in m.vertices() {
+        ids.clear();
+        let mut dmin = f64::INFINITY;
+        for h in m.vertex_halfedges(v) {
+            ids.push(pl.group[h.idx()]);
+            dmin = dmin.min(pl.face_d[m.face(h).idx()]);
+            if pl.kind[h.edge().idx()] == EdgeKind::Miter {
+                ids.push((ng + 2 * h.edge().idx() + (h.0 & 1) as usize) as u32);
+            }
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        let tol = 1e-7 * dmin;
+        for i in 0..ids.len() {
+            for j in i + 1..ids.len() {
+                if ip[ids[i] as usize].distance(ip[ids[j] as usize]) <= tol {
+                    let (a, b) = (union_find_root(&mut parent, ids[i]), union_find_root(&mut parent, ids[j]));
+                    if a != b {
+                        parent[a.max(b) as usize] = a.min(b);
+                    }
+                }
+            }
+        }
+    }
+    let rep = (0..ip.len() as u32).map(|i| union_find_root(&mut parent, i)).collect();
+    Ok(Inner { pos: ip, rep })
+}
+
+/// Corners of every output face, with vertices as: `0..V` old, then
+/// `tri(e, end)`, `qv(h)` and `inner(i)` (raw inner point ids, see [`Inner`]).
+/// Faces left with fewer than three distinct corners are dropped. Also
+/// returns each face's kind: 0 corner quad, 1 edge quad, 2 pipe quad,
+/// 3 strip, 4 miter quad, 5 vertex face.
+fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> (Vec<i64>, Vec<i64>, Vec<u8>) {
+    let ng = pl.group_pos.len();
+    let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
+        let near_tail_of_2e = (h.0 & 1 == 0) == near_tail;
+        tri(2 * h.edge().idx() + if near_tail_of_2e { 0 } else { 1 })
+    };
+    let r = |h: HalfedgeId| iv(inner.rep[pl.group[h.idx()] as usize]);
+    let mid = |e: usize, end: usize| iv(inner.rep[ng + 2 * e + end]);
+    let mut sizes: Vec<i64> = Vec::new();
+    let mut idx: Vec<i64> = Vec::new();
+    let mut tags: Vec<u8> = Vec::new();
+    let mut push = |poly: &[u32], tag: u8| {
+        for d in split_cycle(poly) {
+            if d.len() >= 3 {
+                sizes.push(d.len() as i64);
+                idx.extend(d.iter().map(|&x| x as i64));
+                tags.push(tag);
+            }
+        }
+    };
+    // outer remeshing (corner and edge quads) and the pipes
+    for f in m.faces() {
+        for h in m.face_halfedges(f) {
+            let (pr, nx) = (m.prev(h), m.next(h));
+            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], 0);
+            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())], 1);
+            push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)], 2);
+        }
+    }
+    // inner surface: strips, miter quad pairs, vertex faces
+    for e in m.edges() {
+        let h = e.halfedge();
+        let t = h.twin();
+        match pl.kind[e.idx()] {
+            EdgeKind::Collapse => {}
+            EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3),
+            EdgeKind::Miter => {
+                if r(h) == r(m.next(t)) && r(m.next(h)) == r(t) {
+                    // both ends already one offset corner (every other edge
+                    // around collapsed): the offset faces meet, no strip
+                    continue;
+                }
+                let (m0, m1) = (mid(e.idx(), 0), mid(e.idx(), 1));
+                push(&[r(h), r(m.next(h)), m1, m0], 4);
+                push(&[m0, m1, r(t), r(m.next(t))], 4);
+            }
+        }
+    }
+    let mut poly = Vec::new();
+    for v in m.vertices() {
+        let Some(h0) = m.vertex_halfedge(v) else { continue };
+        poly.clear();
+        let mut h = h0;
+        loop {
+            poly.push(r(h));
+            if pl.kind[h.edge().idx()] == EdgeKind::Miter {
+                poly.push(mid(h.edge().idx(), (h.0 & 1) as usize));
+            }
+            h = m.next(h.twin());
+            if h == h0 {
+                break;
+            }
+        }
+        push(&poly, 5);
+    }
+    (sizes, idx, tags)
+}
+
+/// A face cycle after welding: consecutive repeats removed, then split
+/// wherever it passes a vertex twice (the pieces touch only there).
+fn split_cycle(poly: &[u32]) -> Vec<Vec<u32>> {
+    let d = dedup_cycle(poly);
+    for i in 0..d.len() {
+        for j in i + 1..d.len() {
+            if d[i] == d[j] {
+                let mut out = split_cycle(&d[i..j]);
+                let rest: Vec<u32> = d[j..].iter().chain(&d[..i]).copied().collect();
+                out.extend(split_cycle(&rest));
+                return out;
+            }
+        }
+    }
+    vec![d]
+}
+
+/// The cycle with consecutive repeated vertices (cyclically) removed.
+fn dedup_cycle(poly: &[u32]) -> Vec<u32> {
+    let mut out: Vec<u32> = Vec::with_capacity(poly.len());
+    for &x in poly {
+        if out.last() != Some(&x) {
+            out.push(x);
+        }
+    }
+    while out.len() > 1 && out.first() == out.last() {
+        out.pop();
+    }
+    out
+}
+
+/// Quantities of the count formulas (module docs), measured on the input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct MengerCounts {
+    pub vertices: usize,
+    pub edges: usize,
+    pub faces: usize,
+    pub genus: i64,
+    /// Edges collapsed, kept as strips, split by miter points.
+    pub collapsed: usize,
+    pub strips: usize,
+    pub mitered: usize,
+    /// `G + 2E_m` after welding: the inner surface's vertices.
+    pub inner_vertices: usize,
+    /// Strip and miter quads and vertex faces with at least three corners.
+    pub inner_faces: usize,
+    /// Faces added by splitting non-planar faces into planar pieces.
+    pub planar_splits: usize,
+}
+
+/// The counts one [`menger`] iteration will produce on `m` (module docs):
+/// `V' = V + 4E + inner vertices`, `F' = 6E + inner faces`,
+/// `genus' = 2g + F − 1` per component, `E' = V' + F' − χ'`.
+pub fn menger_counts(m: &Mesh, o: &MengerOptions) -> Result<MengerCounts> {
+    let pl = plan(m, o)?;
+    let inner = inner_points(m, &pl)?;
+    let (e, f) = (m.n_edges(), m.n_faces());
+    let n_miter = pl.kind.iter().filter(|&&k| k == EdgeKind::Miter).count();
+    let n_coll = pl.kind.iter().filter(|&&k| k == EdgeKind::Collapse).count();
+    let built = build_polygons(m, o)?;
+    let inner_vertices = built.inner_vertices;
+    let inner_faces = built.sizes.len() - built.split_extra - 3 * m.n_halfedges();
+    let _ = inner;
+    let chi2 = 2 * m.euler_characteristic() - 2 * f as i64;
+    let vertices = m.n_vertices() + 4 * e + inner_vertices;
+    let faces = 6 * e + inner_faces + built.split_extra;
+    Ok(MengerCounts {
+        vertices,
+        edges: (vertices as i64 + faces as i64 - chi2) as usize,
+        faces,
+        genus: (m.n_components() as i64 * 2 - chi2) / 2,
+        collapsed: n_coll,
+        strips: e - n_coll - n_miter,
+        mitered: n_miter,
+        inner_vertices,
+        inner_faces,
+        planar_splits: built.split_extra,
+    })
+}
+
+/// Positions and polygon faces of one iteration, with the number of inner
+/// points used and of faces added by splitting non-planar faces.
+struct Built {
+    pos: Vec<DVec3>,
+    sizes: Vec<i64>,
+    idx: Vec<i64>,
+    inner_vertices: usize,
+    split_extra: usize,
+}
+
+fn build_polygons(m: &Mesh, o: &MengerOptions) -> Result<Built> {
+    let pl = plan(m, o)?;
+    let inner = inner_points(m, &pl)?;
+    let pos = m.positions();
+    let (nv, ne, nh) = (m.n_vertices(), m.n_edges(), m.n_halfedges());
+    // vertex layout: [old | trisection 2 per edge | inset corner per half-edge | used welded inner points]
+    let t0 = nv;
+    let q0 = t0 + 2 * ne;
+    let i0 = q0 + nh;
+    let mut out_pos: Vec<DVec3> = Vec::with_capacity(i0 + pl.group_pos.len());
+    out_pos.extend_from_slice(pos);
+    for e in m.edges() {
+        let h = e.halfedge();
+        let (a, b) = (pos[m.vertex(h).idx()], pos[m.head(h).idx()]);
+        let len = (b - a).length();
+        let d = (0.5 * (pl.face_d[m.face(h).idx()] + pl.face_d[m.face(h.twin()).idx()])).min(0.4 * len);
+        let u = (b - a) / len;
+        out_pos.push(a + d * u);
+        out_pos.push(b - d * u);
+    }
+    out_pos.extend_from_slice(&pl.q);
+    // inner points get ids in order of first use
+    let base = u32::MAX / 2;
+    let (sizes, mut idx, tags) = emit_faces(m, &pl, &inner, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32, &|i| base + i);
+    let mut inner_id = vec![u32::MAX; inner.pos.len()];
+    for x in idx.iter_mut() {
+        if *x >= base as i64 {
+            let i = (*x - base as i64) as usize;
+            if inner_id[i] == u32::MAX {
+                inner_id[i] = out_pos.len() as u32;
+                out_pos.push(inner.pos[i]);
+            }
+            *x = inner_id[i] as i64;
+        }
+    }
+    let inner_vertices = out_pos.len() - i0;
+    // non-planar faces (vertex faces at saddle-like vertices, faces of a
+    // non-planar input) are split into planar pieces
+    let tol = 1e-9 * pl.face_d.iter().cloned().fold(f64::INFINITY, f64::min).max(1e-300);
+    let (mut sz2, mut idx2) = (Vec::with_capacity(sizes.len()), Vec::with_capacity(idx.len()));
+    let mut k = 0;
+    let mut pieces = Vec::new();
+    let mut cone_vertices = 0usize;
+    for (fi, &n) in sizes.iter().enumerate() {
+        let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
+        k += n as usize;
+        pieces.clear();
+        split_planar(&poly, &out_pos, tol, &mut pieces);
+        if pieces.len() == poly.len() - 2 && poly.len() > 3 && tags[fi] == 5 {
+            // a vertex face with no planar split: a cone from its centroid
+            // (a fan from a corner can fold through the outer surface)
+            pieces.clear();
+            let c = out_pos.len() as u32;
+            out_pos.push(poly.iter().map(|&i| out_pos[i as usize]).sum::<DVec3>() / poly.len() as f64);
+            for i in 0..poly.len() {
+                pieces.push(vec![c, poly[i], poly[(i + 1) % poly.len()]]);
+            }
+            cone_vertices += 1;
+        }
+        for p in &pieces {
+            sz2.push(p.len() as i64);
+            idx2.extend(p.iter().map(|&x| x as i64));
+        }
+    }
+    let split_extra = sz2.len() - sizes.len();
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + cone_vertices, split_extra })
+}
+
+/// Largest distance of the polygon's points from its best-fit plane through
+/// the centroid along the Newell normal.
+fn planarity(poly: &[u32], pos: &[DVec3]) -> f64 {
+    let pts: Vec<DVec3> = poly.iter().map(|&i| pos[i as usize]).collect();
+    let c = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    let mut n = DVec3::ZERO;
+    for i in 0..pts.len() {
+        n += pts[i].cross(pts[(i + 1) % pts.len()]);
+    }
+    let n = n.normalize_or_zero();
+    pts.iter().map(|p| (p - c).dot(n).abs()).fold(0.0, f64::max)
+}
+
+/// Splits a non-planar polygon along a diagonal into planar parts when one
+/// exists (a saddle vertex face folds into squares), else fans it into
+/// triangles from its first corner.
+fn split_planar(poly: &[u32], pos: &[DVec3], tol: f64, out: &mut Vec<Vec<u32>>) {
+    let n = poly.len();
+    if n <= 3 || planarity(poly, pos) <= tol {
+        out.push(poly.to_vec());
+        return;
+    }
+    for i in 0..n {
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let a: Vec<u32> = poly[i..=j].to_vec();
+            let b: Vec<u32> = poly[j..].iter().chain(&poly[..=i]).copied().collect();
+            if planarity(&a, pos) <= tol && planarity(&b, pos) <= tol {
+                out.push(a);
+                out.push(b);
+                return;
+            }
+        }
+    }
+    for i in 1..n - 1 {
+        out.push(vec![poly[0], poly[i], poly[i + 1]]);
+    }
+}
+
+/// One generalized Menger iteration (module docs).
+pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
+    let b = build_polygons(m, o)?;
+    Mesh::from_polygons(b.pos, &b.sizes, &b.idx, BuildOptions::default())
+}
+
+/// `iterations` Menger steps with the same options.
+pub fn menger_iterated(m: &Mesh, iterations: usize, o: &MengerOptions) -> Result<Mesh> {
+    let mut cur = m.clone();
+    for _ in 0..iterations {
+        cur = menger(&cur, o)?;
+    }
+    Ok(cur)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::primitives;
+
+    fn check(m0: &Mesh, n: usize, o: &MengerOptions) -> Mesh {
+        let mut m = m0.clone();
+        for i in 1..=n {
+            let c = menger_counts(&m, o).unwrap();
+            let (g, f) = (m.genus(), m.n_faces() as i64);
+            m = menger(&m, o).unwrap();
+            m.validate().unwrap();
+            assert_eq!(
+                (m.n_vertices(), m.n_edges(), m.n_faces(), m.genus()),
+                (c.vertices, c.edges, c.faces, c.genus),
+                "iteration {i}: {c:?}"
+            );
+            assert_eq!(m.genus(), 2 * g + f - 1);
+            assert_eq!(m.n_components(), 1);
+            assert!(m.signed_volume() > 0.0);
+            let hist = m.face_size_histogram();
+            assert!(hist.keys().all(|&k| k >= 3), "iteration {i}: {hist:?}");
+        }
+        m
+    }
+
+    #[test]
+    fn cube_first_iteration_is_classic_level_one() {
+        let o = MengerOptions::default();
+        let m = menger(&primitives::cube(), &o).unwrap();
+        m.validate().unwrap();
+        assert_eq!((m.n_vertices(), m.n_edges(), m.n_faces(), m.genus()), (64, 144, 72, 5));
+        assert!((m.signed_volume() - 8.0 * 20.0 / 27.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn platonic_iterations() {
+        let o = MengerOptions::default();
+        let c = check(&primitives::cube(), 4, &o);
+        assert_eq!(c.genus(), 15585); // 5, 81, 1121, 15585
+        assert_eq!(c.face_size_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
+        check(&primitives::tetrahedron(), 3, &o);
+        check(&primitives::dodecahedron(), 3, &o);
+        // the second cube iteration has the classic level-2 volume
+        let c2 = menger_iterated(&primitives::cube(), 2, &o).unwrap();
+        assert!((c2.signed_volume() - 8.0 * (20.0f64 / 27.0).powi(2)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        let o = MengerOptions::default();
+        assert!(menger(&primitives::cube(), &MengerOptions { thickness: 0.5, ..o }).is_err());
+        assert!(menger(&primitives::cube(), &MengerOptions { thickness: -1.0, ..o }).is_err());
+        let s = crate::schemes::sierpinski::sierpinski(&primitives::cube()).unwrap();
+        assert!(menger(&s, &o).is_err()); // self-loops
+        // absolute thickness
+        let a = menger(&primitives::cube(), &MengerOptions { thickness: 0.25, relative: false, ..o }).unwrap();
+        a.validate().unwrap();
+        assert_eq!(a.genus(), 5);
+    }
+}
+
+/// Test support: proper crossings between the triangles of a mesh (its
+/// `triangles()`), found on a uniform grid. Triangles sharing a vertex are
+/// tested only with their edges that avoid the shared vertex; touching
+/// contacts are not counted.
+#[cfg(test)]
+pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
+    crossing_pairs(m).len()
+}
+
+#[cfg(test)]
+pub(crate) fn crossing_pairs(m: &Mesh) -> std::collections::HashSet<(u32, u32)> {
+    let (tris, _) = m.triangles();
+    let p = m.positions();
+    let orient = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| (b - a).cross(c - a).dot(d - a);
+    let seg_hits = |s0: DVec3, s1: DVec3, t: [DVec3; 3], eps: f64| -> bool {
+        let (d0, d1) = (orient(t[0], t[1], t[2], s0), orient(t[0], t[1], t[2], s1));
+        if !((d0 > eps && d1 < -eps) || (d0 < -eps && d1 > eps)) {
+            return false;
+        }
+        let o = [orient(s0, s1, t[0], t[1]), orient(s0, s1, t[1], t[2]), orient(s0, s1, t[2], t[0])];
+        (o.iter().all(|&x| x > eps)) || (o.iter().all(|&x| x < -eps))
+    };
+    let (lo, hi) = p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &x| (l.min(x), h.max(x)));
+    let n = ((4.0 * tris.len() as f64).cbrt().ceil() as usize).clamp(1, 256);
+    let cell = (hi - lo) / n as f64 + DVec3::splat(1e-12);
+    let key = |x: DVec3| {
+        let c = ((x - lo) / cell).floor();
+        [c.x.clamp(0.0, (n - 1) as f64) as usize, c.y.clamp(0.0, (n - 1) as f64) as usize, c.z.clamp(0.0, (n - 1) as f64) as usize]
+    };
+    let mut grid: std::collections::HashMap<[usize; 3], Vec<u32>> = std::collections::HashMap::new();
+    for (i, t) in tris.iter().enumerate() {
+        let pts = t.map(|v| p[v as usize]);
+        let (a, b) = (key(pts[0].min(pts[1]).min(pts[2])), key(pts[0].max(pts[1]).max(pts[2])));
+        for x in a[0]..=b[0] {
+            for y in a[1]..=b[1] {
+                for z in a[2]..=b[2] {
+                    grid.entry([x, y, z]).or_default().push(i as u32);
+                }
+            }
+        }
+    }
+    let scale = (hi - lo).length();
+    let eps = 1e-12 * scale * scale * scale;
+    let mut found = std::collections::HashSet::new();
+    for list in grid.values() {
+        for (k, &i) in list.iter().enumerate() {
+            for &j in &list[k + 1..] {
+                let (ti, tj) = (tris[i as usize], tris[j as usize]);
+                let shared = ti.iter().filter(|v| tj.contains(v)).count();
+                if shared >= 2 {
+                    continue;
+                }
+                let (pi, pj) = (ti.map(|v| p[v as usize]), tj.map(|v| p[v as usize]));
+                let mut hit = false;
+                for (ta, tb, pa, pb) in [(ti, tj, pi, pj), (tj, ti, pj, pi)] {
+                    for e in 0..3 {
+                        let (u, w) = (ta[e], ta[(e + 1) % 3]);
+                        if shared == 1 && (tb.contains(&u) || tb.contains(&w)) {
+                            continue;
+                        }
+                        if seg_hits(pa[e], pa[(e + 1) % 3], pb, eps) {
+                            hit = true;
+                        }
+                    }
+                }
+                if hit {
+                    found.insert((i.min(j), i.max(j)));
+                }
+            }
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod intersection_tests {
+    use super::*;
+    use crate::primitives;
+
+    /// Proper triangle crossings: none on the cube's iterations 1–3 nor on
+    /// the first iteration of the tetrahedron and dodecahedron. (Their
+    /// second iterations do cross; see the module docs.)
+    #[test]
+    fn cube4_no_crossings() {
+        let m = menger_iterated(&primitives::cube(), 4, &MengerOptions::default()).unwrap();
+        assert_eq!(count_self_intersections(&m), 0);
+    }
+
+    /// `cargo test --lib crossing_report -- --ignored --nocapture`: crossing
+    /// counts per iteration (the figures of the module docs).
+    #[test]
+    #[ignore]
+    fn crossing_report() {
+        for t in [1.0 / 3.0, 0.25] {
+            let o = MengerOptions { thickness: t, ..Default::default() };
+            for (name, m0, n) in [("cube", primitives::cube(), 4), ("tetrahedron", primitives::tetrahedron(), 3), ("dodecahedron", primitives::dodecahedron(), 3)] {
+                let mut m = m0;
+                for k in 1..=n {
+                    m = match menger(&m, &o) {
+                        Ok(x) => x,
+                        Err(e) => {
+                            eprintln!("t {t:.3} {name} {k}: {e}");
+                            break;
+                        }
+                    };
+                    eprintln!("t {t:.3} {name} {k}: F {} crossings {}", m.n_faces(), count_self_intersections(&m));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn no_self_intersections() {
+        let o = MengerOptions::default();
+        let mut m = primitives::cube();
+        for _ in 0..3 {
+            m = menger(&m, &o).unwrap();
+            assert_eq!(count_self_intersections(&m), 0);
+        }
+        let t1 = menger(&primitives::tetrahedron(), &o).unwrap();
+        assert_eq!(count_self_intersections(&t1), 0);
+        let d2 = menger_iterated(&primitives::dodecahedron(), 2, &o).unwrap();
+        assert_eq!(count_self_intersections(&d2), 0);
+        // the checker does see crossings: two overlapping cubes in one mesh
+        let c = primitives::cube();
+        let p = c.to_polygons();
+        let mut pos = c.positions().to_vec();
+        pos.extend(c.positions().iter().map(|&x| x + DVec3::new(0.5, 0.3, 0.1)));
+        let mut idx: Vec<i64> = p.indices.iter().map(|&i| i as i64).collect();
+        idx.extend(p.indices.iter().map(|&i| i as i64 + 8));
+        let sizes: Vec<i64> = p.sizes.iter().chain(&p.sizes).map(|&s| s as i64).collect();
+        let two = Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap();
+        assert!(count_self_intersections(&two) > 0);
+    }
+}

@@ -1,0 +1,662 @@
+//! Generalized Sierpinski polyhedra: the remeshing scheme of the Sierpinski
+//! paper, section 4 (Srinivasan & Akleman, "Connected & Manifold Sierpinsky
+//! Polyhedra"), also the high-genus dissertation, ch. VI.5.
+//!
+//! One iteration, on any closed orientable 2-manifold mesh:
+//!
+//! 1. every edge that is not a self-loop is subdivided at its midpoint;
+//! 2. at every corner of every old vertex the edge cutting the corner
+//!    triangle off is inserted (between the midpoints on either side);
+//! 3. at every midpoint a self-loop is inserted between its two corners on
+//!    the central faces left by step 2.
+//!
+//! The central faces disappear in step 3 and every old vertex becomes the
+//! apex of a pyramid whose base ("back face") runs through the midpoints
+//! around it, one self-loop at each. The pyramids touch only at midpoints and
+//! the self-loops join them: one connected manifold whose genus grows by a
+//! factor four per iteration.
+//!
+//! # Corners next to self-loops
+//!
+//! Self-loops are never subdivided, so an old vertex may have self-loops
+//! between the two non-loop sides of one of its corners (on the second
+//! iteration every corner of a midpoint of the first has one). The paper's
+//! corner `{a, v, b}` is read here as the *generalized corner*: the stretch of
+//! a face from one non-loop side to the next, self-loops at `v` in between
+//! included. The cut of step 2 joins the midpoints of those two non-loop
+//! sides, so the self-loops stay with the corner triangle: exactly what keeps
+//! two sub-pyramids at a former midpoint joined through their self-loop. A
+//! face whose sides are all self-loops (one vertex only) has no midpoint and is
+//! kept as it is, as are point-spheres.
+//!
+//! For a non-loop half-edge `h` let `ν(h)` be the next non-loop half-edge of
+//! its face. Step 3 closes, around each old vertex `v`, the cycles of
+//! `σ(h) = ν(twin(h))` on the non-loop half-edges leaving `v`: the *cones* of
+//! `v`. A vertex without self-loops has one cone (σ is then the rotation); a
+//! midpoint of an earlier iteration has two, one per pyramid it joins. Each
+//! cone gives one back face.
+//!
+//! # Count formulas
+//!
+//! With `L` self-loops, `N = E − L` non-loop edges, `K` cones, `D` cones with
+//! a single half-edge (a vertex met by one non-loop edge end only), `F₀` faces
+//! with no non-loop side (point-spheres included) and `C` components, one
+//! iteration gives
+//!
+//! ```text
+//! V' = V + N            E' = E + 4N          F' = 2N + K + F₀
+//! L' = L + N + D        K' = K + 2N          D' = 2D        F₀' = F₀ + D     C' = C
+//! N' = 4N − D           χ' = V − E − N + K + F₀         genus' = C − χ'/2
+//! ```
+//!
+//! (`2N` corner triangles, one per non-loop half-edge; `K` back faces; the
+//! `2N` cuts are self-loops only at the `D` single-half-edge cones, whose
+//! back faces are then two-gons of self-loops.) The
+//! usual case is `D = 0` (every vertex meets at least two non-loop edge ends);
+//! then after `n ≥ 1` iterations, with `s = (4ⁿ − 1)/3`,
+//!
+//! ```text
+//! Vₙ = V + N·s     Eₙ = E + 4N·s     Fₙ = K + F₀ + 2N·s     Lₙ = L + N·s
+//! χₙ = V − E + K + F₀ − N·s          genusₙ = C − χₙ/2
+//! ```
+//!
+//! For a mesh without self-loops or point-spheres `K = V`, `F₀ = 0`, so
+//! `χₙ = 2V − E − E·s`; the tetrahedron gives genus `4ⁿ − 1`: 3, 15, 63.
+//! [`SierpinskiCounts`] evaluates the recurrence (any `D`) for the tests.
+//!
+//! # Implementation
+//!
+//! [`sierpinski`] builds the output in one pass with
+//! [`Mesh::from_corner_twins`], O(output): corner triangles, then back faces,
+//! then the kept all-loop faces, every twin found by index arithmetic.
+//! [`sierpinski_by_operators`] is the paper's algorithm written with the
+//! fundamental operators (SubdivideEdge as CreateVertex + 2 InsertEdge +
+//! DeleteEdge); it is the readable statement and the tests prove both agree.
+
+use crate::error::{MeshError, Result};
+use crate::mesh::{Corner, FaceStart, HalfedgeId, Mesh, MAX_ELEMENTS};
+use glam::DVec3;
+use rayon::prelude::*;
+
+const NONE: u32 = u32::MAX;
+
+/// Per-half-edge data of the input shared by the builder and the counts.
+struct Walk {
+    /// For a non-loop half-edge: the next non-loop half-edge of its face (ν).
+    nu: Vec<u32>,
+    /// For a non-loop half-edge: self-loops between it and ν(h) in its face.
+    loops_after: Vec<u32>,
+}
+
+impl Walk {
+    fn of(m: &Mesh) -> Walk {
+        let (next, vert, _) = m.halfedge_columns();
+        let nh = next.len();
+        let is_loop = |h: usize| vert[h] == vert[h ^ 1];
+        let pairs: Vec<(u32, u32)> = (0..nh)
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|h| {
+                if is_loop(h) {
+                    return (NONE, 0);
+                }
+                let mut k = 0u32;
+                let mut x = next[h] as usize;
+                while is_loop(x) {
+                    k += 1;
+                    x = next[x] as usize;
+                }
+                (x as u32, k)
+            })
+            .collect();
+        let (nu, loops_after) = pairs.into_iter().unzip();
+        Walk { nu, loops_after }
+    }
+
+    #[inline]
+    fn is_nonloop(&self, h: usize) -> bool {
+        self.nu[h] != NONE
+    }
+
+    /// σ(h) = ν(twin(h)): the next non-loop half-edge leaving the tail of `h`
+    /// in its cone.
+    #[inline]
+    fn sigma(&self, h: usize) -> usize {
+        self.nu[h ^ 1] as usize
+    }
+}
+
+/// One Sierpinski iteration (see the module docs), built in one pass.
+///
+/// Vertex `i < V` of the output is vertex `i` of the input; the midpoint of
+/// the `k`-th non-loop edge (in edge order) is vertex `V + k`. Works on every
+/// closed manifold mesh, its own output included; a mesh made of self-loops
+/// and point-spheres only is returned unchanged.
+pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
+    let nv = m.n_vertices();
+    let nh = m.n_halfedges();
+    let (_, vert, _) = m.halfedge_columns();
+    let w = Walk::of(m);
+
+    // --- counts and the numbering of midpoints (non-loop edges in order)
+    let mut mid = vec![NONE; nh / 2];
+    let mut n_mid = 0usize;
+    for (e, slot) in mid.iter_mut().enumerate() {
+        if w.is_nonloop(2 * e) {
+            *slot = (nv + n_mid) as u32;
+            n_mid += 1;
+        }
+    }
+    let n_out_vertices = nv + n_mid;
+    // 2N pieces of (loops + 3) corners, back faces 2 corners per non-loop
+    // half-edge, kept faces as they are
+    let n_loops = nh / 2 - n_mid;
+    let piece_corners = 3 * 2 * n_mid + 2 * n_loops; // loops in pieces ≤ all loop half-edges
+    if n_out_vertices > MAX_ELEMENTS || piece_corners + 4 * n_mid > MAX_ELEMENTS {
+        return Err(MeshError::InvalidArgument(format!(
+            "sierpinski: the output ({n_out_vertices} vertices, about {} corners) exceeds the 31-bit id range",
+            piece_corners + 4 * n_mid
+        )));
+    }
+
+    // --- positions: old vertices, then midpoints
+    let mut pos = Vec::with_capacity(n_out_vertices);
+    pos.extend_from_slice(m.positions());
+    let old = m.positions();
+    let mids: Vec<DVec3> = (0..nh / 2)
+        .into_par_iter()
+        .with_min_len(4096)
+        .filter(|&e| w.is_nonloop(2 * e))
+        .map(|e| 0.5 * (old[vert[2 * e] as usize] + old[vert[2 * e + 1] as usize]))
+        .collect();
+    pos.extend(mids);
+
+    // --- layout: piece of h at base[h], back-face slots, kept faces last
+    let mut base = vec![NONE; nh];
+    let mut sizes: Vec<u32> = Vec::with_capacity(2 * n_mid + 2 * n_mid / 3 + 16);
+    let mut n_corners = 0u32;
+    for h in 0..nh {
+        if w.is_nonloop(h) {
+            base[h] = n_corners;
+            let s = w.loops_after[h] + 3;
+            sizes.push(s);
+            n_corners += s;
+        }
+    }
+    // cones: position of each non-loop half-edge in its back face
+    let back0 = n_corners;
+    let mut cone_pos = vec![NONE; nh];
+    let mut next_pos = 0u32;
+    for h in 0..nh {
+        if !w.is_nonloop(h) || cone_pos[h] != NONE {
+            continue;
+        }
+        let mut b = h;
+        let mut len = 0u32;
+        loop {
+            cone_pos[b] = next_pos;
+            next_pos += 1;
+            len += 1;
+            b = w.sigma(b);
+            if b == h {
+                break;
+            }
+        }
+        sizes.push(2 * len);
+    }
+    n_corners += 2 * next_pos;
+    // faces without a non-loop side
+    let kept: Vec<_> = m
+        .faces()
+        .filter(|&f| match m.face_start(f) {
+            FaceStart::Point(_) => true,
+            FaceStart::Halfedge(_) => m.face_halfedges(f).all(|h| !w.is_nonloop(h.idx())),
+        })
+        .collect();
+    let kept0 = n_corners;
+    for &f in &kept {
+        let s = m.face_degree(f) as u32;
+        sizes.push(s);
+        n_corners += s;
+    }
+    let nc = n_corners as usize;
+
+    // --- output slot of every input self-loop half-edge
+    let mut loop_slot = vec![NONE; nh];
+    for h in 0..nh {
+        if w.is_nonloop(h) {
+            let mut x = m.next(HalfedgeId(h as u32)).idx();
+            for j in 0..w.loops_after[h] {
+                loop_slot[x] = base[h] + 1 + j;
+                x = m.next(HalfedgeId(x as u32)).idx();
+            }
+        }
+    }
+    {
+        let mut c = kept0;
+        for &f in &kept {
+            for h in m.face_halfedges(f) {
+                loop_slot[h.idx()] = c;
+                c += 1;
+            }
+            if m.face_halfedge(f).is_none() {
+                c += 1;
+            }
+        }
+    }
+
+    // --- corners and twins
+    let mut cv = vec![0u32; nc];
+    let mut tw = vec![NONE; nc];
+    // π(h), the inverse of ν: h's first half is corner k + 1 of the
+    // triangle of π(h), the non-loop half-edge before h in its face
+    let mut pi = vec![NONE; nh];
+    for h in 0..nh {
+        if w.is_nonloop(h) {
+            pi[w.nu[h] as usize] = h as u32;
+        }
+    }
+    let fh_slot = |h: usize| -> u32 {
+        let p = pi[h] as usize;
+        base[p] + w.loops_after[p] + 1
+    };
+    for h in 0..nh {
+        if !w.is_nonloop(h) {
+            continue;
+        }
+        let b = base[h] as usize;
+        let k = w.loops_after[h] as usize;
+        let v = vert[h ^ 1]; // head of h: the apex of this corner triangle
+        let nu = w.nu[h] as usize;
+        let mh = mid[h >> 1];
+        // second half of h: mid(h) -> v
+        cv[b] = mh;
+        tw[b] = fh_slot(h ^ 1);
+        // self-loops at v
+        let mut x = m.next(HalfedgeId(h as u32)).idx();
+        for j in 0..k {
+            cv[b + 1 + j] = v;
+            tw[b + 1 + j] = loop_slot[x ^ 1];
+            x = m.next(HalfedgeId(x as u32)).idx();
+        }
+        // first half of ν(h): v -> mid(ν(h))
+        cv[b + k + 1] = v;
+        tw[b + k + 1] = base[nu ^ 1];
+        // cut, triangle side: mid(ν(h)) -> mid(h); twin in the back face of cone element twin(h)
+        cv[b + k + 2] = mid[nu >> 1];
+        tw[b + k + 2] = back0 + 2 * cone_pos[h ^ 1] + 1;
+    }
+    for bb in 0..nh {
+        if !w.is_nonloop(bb) {
+            continue;
+        }
+        let s = (back0 + 2 * cone_pos[bb]) as usize;
+        let mb = mid[bb >> 1];
+        // self-loop at mid(b); its twin lies in the back face of the other end's cone
+        cv[s] = mb;
+        tw[s] = back0 + 2 * cone_pos[bb ^ 1];
+        // cut, back side: mid(b) -> mid(σ(b)); twin in the triangle of twin(b)
+        cv[s + 1] = mb;
+        let t = bb ^ 1;
+        tw[s + 1] = base[t] + w.loops_after[t] + 2;
+    }
+    {
+        let mut c = kept0 as usize;
+        for &f in &kept {
+            match m.face_start(f) {
+                FaceStart::Point(v) => {
+                    cv[c] = v.0;
+                    tw[c] = NONE;
+                    c += 1;
+                }
+                FaceStart::Halfedge(_) => {
+                    for h in m.face_halfedges(f) {
+                        cv[c] = vert[h.idx()];
+                        tw[c] = loop_slot[h.idx() ^ 1];
+                        c += 1;
+                    }
+                }
+            }
+        }
+    }
+    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+}
+
+/// `iterations` Sierpinski steps.
+pub fn sierpinski_iterated(m: &Mesh, iterations: usize) -> Result<Mesh> {
+    let mut cur = m.clone();
+    for _ in 0..iterations {
+        cur = sierpinski(&cur)?;
+    }
+    Ok(cur)
+}
+
+/// The paper's algorithm (section 4) with the fundamental operators, on a
+/// copy of `m`: SubdivideEdge (as CreateVertex, two InsertEdge and a
+/// DeleteEdge), then InsertEdge for the corner cuts and for the self-loops.
+/// Quadratic in the worst case (DeleteEdge walks faces); meant for tests and
+/// as the readable statement of [`sierpinski`], which gives the same mesh up
+/// to the numbering of edges and faces (vertices are numbered alike).
+pub fn sierpinski_by_operators(m: &Mesh) -> Result<Mesh> {
+    let w = Walk::of(m);
+    let nh = m.n_halfedges();
+    let mut out = m.clone();
+
+    // 1. SubdivideEdge on every non-loop edge, in edge order. With e1 the
+    //    edge a → p and e2 the edge p → b, DeleteEdge(e) moves e2 (the last
+    //    edge) into id e, so afterwards 2e is p → b and 2e+1 is b → p.
+    let mut first_half = vec![NONE; nh];
+    let mut second_half = vec![NONE; nh];
+    for e in 0..nh / 2 {
+        let h = HalfedgeId(2 * e as u32);
+        if !w.is_nonloop(h.idx()) {
+            continue;
+        }
+        let (a, b) = (out.vertex(h), out.head(h));
+        let p = 0.5 * (out.position(a) + out.position(b));
+        let (pv, _) = out.create_vertex(p)?;
+        let e1 = out.insert_edge(Corner::Halfedge(h), Corner::Point(pv))?;
+        let at_p = e1.halfedge().twin(); // p -> a, the corner at p in the face of h
+        let e2 = out.insert_edge(Corner::Halfedge(at_p), Corner::Halfedge(out.next(h)))?;
+        debug_assert_eq!(e2.idx(), out.n_edges() - 1);
+        out.delete_edge(h.edge())?;
+        first_half[2 * e] = e1.halfedge().0;
+        second_half[2 * e] = 2 * e as u32;
+        first_half[2 * e + 1] = 2 * e as u32 + 1;
+        second_half[2 * e + 1] = e1.halfedge().0 + 1;
+    }
+
+    // 2. cut every generalized corner: from the corner at mid(h) (second
+    //    half of h) to the corner at mid(ν(h)) in the face being cut, i.e.
+    //    the corner after the first half of ν(h). The new half-edge 2e runs
+    //    mid(h) -> mid(ν(h)) on the central side.
+    let mut central = vec![NONE; nh];
+    for h in 0..nh {
+        if !w.is_nonloop(h) {
+            continue;
+        }
+        let c1 = HalfedgeId(second_half[h]);
+        let c2 = out.next(HalfedgeId(first_half[w.nu[h] as usize]));
+        let e = out.insert_edge(Corner::Halfedge(c1), Corner::Halfedge(c2))?;
+        central[h] = e.halfedge().0;
+    }
+
+    // 3. a self-loop at every midpoint between its two corners on central faces
+    for e in 0..nh / 2 {
+        if w.is_nonloop(2 * e) {
+            out.insert_edge(Corner::Halfedge(HalfedgeId(central[2 * e])), Corner::Halfedge(HalfedgeId(central[2 * e + 1])))?;
+        }
+    }
+    Ok(out)
+}
+
+/// The quantities that drive the Sierpinski count formulas (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SierpinskiCounts {
+    pub vertices: u64,
+    pub edges: u64,
+    pub faces: u64,
+    pub self_loops: u64,
+    /// `K`: cycles of σ(h) = ν(twin(h)) on the non-loop half-edges.
+    pub cones: u64,
+    /// `D`: cones with one half-edge.
+    pub lone_cones: u64,
+    /// `F₀`: faces without a non-loop side (point-spheres included).
+    pub loop_faces: u64,
+    pub components: u64,
+}
+
+impl SierpinskiCounts {
+    /// Measures `m`.
+    pub fn of(m: &Mesh) -> Self {
+        let w = Walk::of(m);
+        let nh = m.n_halfedges();
+        let mut seen = vec![false; nh];
+        let (mut cones, mut lone) = (0u64, 0u64);
+        for h in 0..nh {
+            if !w.is_nonloop(h) || seen[h] {
+                continue;
+            }
+            cones += 1;
+            let mut b = h;
+            let mut len = 0;
+            loop {
+                seen[b] = true;
+                len += 1;
+                b = w.sigma(b);
+                if b == h {
+                    break;
+                }
+            }
+            if len == 1 {
+                lone += 1;
+            }
+        }
+        let loop_faces = m
+            .faces()
+            .filter(|&f| m.face_halfedges(f).all(|h| !w.is_nonloop(h.idx())))
+            .count() as u64;
+        SierpinskiCounts {
+            vertices: m.n_vertices() as u64,
+            edges: m.n_edges() as u64,
+            faces: m.n_faces() as u64,
+            self_loops: m.n_self_loops() as u64,
+            cones,
+            lone_cones: lone,
+            loop_faces,
+            components: m.n_components() as u64,
+        }
+    }
+
+    /// The counts after one more iteration (the recurrence of the module docs).
+    pub fn next(&self) -> Self {
+        let n = self.edges - self.self_loops;
+        SierpinskiCounts {
+            vertices: self.vertices + n,
+            edges: self.edges + 4 * n,
+            faces: 2 * n + self.cones + self.loop_faces,
+            self_loops: self.self_loops + n + self.lone_cones,
+            cones: self.cones + 2 * n,
+            lone_cones: 2 * self.lone_cones,
+            loop_faces: self.loop_faces + self.lone_cones,
+            components: self.components,
+        }
+    }
+
+    /// The counts after `iterations` more iterations.
+    pub fn after(&self, iterations: usize) -> Self {
+        (0..iterations).fold(*self, |c, _| c.next())
+    }
+
+    pub fn euler_characteristic(&self) -> i64 {
+        self.vertices as i64 - self.edges as i64 + self.faces as i64
+    }
+
+    pub fn genus(&self) -> i64 {
+        self.components as i64 - self.euler_characteristic() / 2
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{BuildOptions, FaceId};
+    use crate::primitives;
+
+    fn measured(m: &Mesh) -> (u64, u64, u64, u64, i64) {
+        (m.n_vertices() as u64, m.n_edges() as u64, m.n_faces() as u64, m.n_self_loops() as u64, m.genus())
+    }
+    fn predicted(c: &SierpinskiCounts) -> (u64, u64, u64, u64, i64) {
+        (c.vertices, c.edges, c.faces, c.self_loops, c.genus())
+    }
+
+    /// Iterates `n` times, checking validity and the recurrence at each step,
+    /// and the closed forms when D = 0.
+    fn check_iterations(m0: &Mesh, n: usize) -> Mesh {
+        let c0 = SierpinskiCounts::of(m0);
+        let mut m = m0.clone();
+        for i in 1..=n {
+            m = sierpinski(&m).unwrap();
+            m.validate().unwrap();
+            let c = c0.after(i);
+            assert_eq!(measured(&m), predicted(&c), "iteration {i}");
+            assert_eq!(SierpinskiCounts::of(&m), c, "iteration {i}: K, D, F0");
+            assert_eq!(m.n_components() as u64, c0.components);
+            if c0.lone_cones == 0 {
+                let n0 = (c0.edges - c0.self_loops) as i64;
+                let s = (4i64.pow(i as u32) - 1) / 3;
+                let (v, e) = (c0.vertices as i64, c0.edges as i64);
+                let (k, f0) = (c0.cones as i64, c0.loop_faces as i64);
+                assert_eq!(m.n_vertices() as i64, v + n0 * s);
+                assert_eq!(m.n_edges() as i64, e + 4 * n0 * s);
+                assert_eq!(m.n_faces() as i64, k + f0 + 2 * n0 * s);
+                assert_eq!(m.n_self_loops() as i64, c0.self_loops as i64 + n0 * s);
+                assert_eq!(m.euler_characteristic(), v - e + k + f0 - n0 * s);
+            }
+        }
+        m
+    }
+
+    #[test]
+    fn tetrahedron_genus_anchor() {
+        let mut m = primitives::tetrahedron();
+        let mut genera = Vec::new();
+        for _ in 0..3 {
+            m = sierpinski(&m).unwrap();
+            genera.push(m.genus());
+        }
+        assert_eq!(genera, vec![3, 15, 63]);
+        // 4^3 tetrahedra: every face a triangle-looking face (3 + self-loops)
+        assert_eq!(m.n_faces(), 256);
+    }
+
+    #[test]
+    fn platonic_torus_genus3_six_iterations() {
+        for m in [
+            primitives::tetrahedron(),
+            primitives::cube(),
+            primitives::octahedron(),
+            primitives::dodecahedron(),
+            primitives::icosahedron(),
+            primitives::torus(5, 3, 2.0, 0.5).unwrap(),
+            primitives::genus_surface(3).unwrap(),
+        ] {
+            let c = SierpinskiCounts::of(&m);
+            assert_eq!((c.cones, c.loop_faces, c.lone_cones), (m.n_vertices() as u64, 0, 0));
+            check_iterations(&m, 6);
+        }
+    }
+
+    /// Two vertices, `n` edges, `n` two-gons (a hosohedron).
+    fn hosohedron(n: u32) -> Mesh {
+        let pos = vec![DVec3::new(0., 0., 1.), DVec3::new(0., 0., -1.)];
+        let cv: Vec<u32> = (0..n).flat_map(|_| [0, 1]).collect();
+        // side 0 -> 1 of face k is twin to side 1 -> 0 of face k + 1
+        let tw: Vec<u32> = (0..n).flat_map(|k| [2 * ((k + 1) % n) + 1, 2 * ((k + n - 1) % n)]).collect();
+        Mesh::from_corner_twins(pos, &vec![2; n as usize], &cv, &tw).unwrap()
+    }
+
+    #[test]
+    fn two_gons_and_multi_edges() {
+        for n in [2, 3, 5] {
+            let m = hosohedron(n);
+            m.validate().unwrap();
+            assert_eq!((m.n_vertices(), m.n_edges(), m.n_faces(), m.genus()), (2, n as usize, n as usize, 0));
+            check_iterations(&m, 6);
+        }
+    }
+
+    /// The cube with a self-loop bounding a one-gon in one face and a
+    /// self-loop handle between two faces at another vertex.
+    fn cube_with_loops() -> Mesh {
+        let mut m = primitives::cube();
+        let h = m.face_halfedge(FaceId(0)).unwrap();
+        m.insert_edge(Corner::Halfedge(h), Corner::Halfedge(h)).unwrap();
+        // a handle: self-loop between two corners of one vertex in different faces
+        let v = m.head(h);
+        let outs: Vec<_> = m.vertex_halfedges(v).collect();
+        let (a, b) = (outs[0], outs[1]);
+        assert!(!m.is_self_loop(a.edge()) && !m.is_self_loop(b.edge()));
+        assert_ne!(m.face(a), m.face(b));
+        m.insert_edge(Corner::Halfedge(a), Corner::Halfedge(b)).unwrap();
+        m.validate().unwrap();
+        m
+    }
+
+    #[test]
+    fn self_loop_inputs() {
+        let m = cube_with_loops();
+        assert_eq!((m.n_self_loops(), m.genus()), (2, 1));
+        let c = SierpinskiCounts::of(&m);
+        assert_eq!(c.loop_faces, 1);
+        check_iterations(&m, 6);
+        // the output of an earlier iteration as input: self-loops everywhere
+        let s = sierpinski(&primitives::octahedron()).unwrap();
+        check_iterations(&s, 5);
+    }
+
+    #[test]
+    fn degenerate_inputs() {
+        // a point-sphere and a one-gon sphere: no non-loop edge, unchanged
+        let mut p = Mesh::new();
+        p.create_vertex(DVec3::ZERO).unwrap();
+        let s = sierpinski(&p).unwrap();
+        s.validate().unwrap();
+        assert_eq!(measured(&s), measured(&p));
+        let mut l = p.clone();
+        l.insert_edge(Corner::Point(crate::VertexId(0)), Corner::Point(crate::VertexId(0))).unwrap();
+        let s = sierpinski(&l).unwrap();
+        s.validate().unwrap();
+        assert_eq!(measured(&s), measured(&l));
+        // a dangling edge: one face a -> b -> a; its far end is a lone cone (D = 1 at each end)
+        let seg = Mesh::from_polygons(vec![DVec3::ZERO, DVec3::X], &[2], &[0, 1], BuildOptions::default()).unwrap();
+        let c = SierpinskiCounts::of(&seg);
+        assert_eq!((c.cones, c.lone_cones), (2, 2));
+        check_iterations(&seg, 6);
+        // a cube plus a dangling vertex inside one face (made with InsertEdge)
+        let mut m = primitives::cube();
+        let (v, _) = m.create_vertex(DVec3::new(0.0, 0.0, 1.0)).unwrap();
+        let h = m.face_halfedge(FaceId(0)).unwrap();
+        m.insert_edge(Corner::Halfedge(h), Corner::Point(v)).unwrap();
+        assert_eq!(SierpinskiCounts::of(&m).lone_cones, 1);
+        check_iterations(&m, 5);
+    }
+
+    /// Faces as cyclic vertex sequences, each rotated to its smallest
+    /// rotation, sorted: equal for meshes that differ only in edge/face ids.
+    fn face_signature(m: &Mesh) -> Vec<Vec<u32>> {
+        let mut out: Vec<Vec<u32>> = m
+            .faces()
+            .map(|f| {
+                let c: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
+                (0..c.len()).map(|r| [&c[r..], &c[..r]].concat()).min().unwrap()
+            })
+            .collect();
+        out.sort();
+        out
+    }
+
+    #[test]
+    fn one_pass_equals_operators() {
+        let inputs = [
+            primitives::tetrahedron(),
+            primitives::cube(),
+            primitives::icosahedron(),
+            primitives::torus(4, 3, 2.0, 0.5).unwrap(),
+            primitives::genus_surface(2).unwrap(),
+            hosohedron(3),
+            cube_with_loops(),
+            sierpinski(&primitives::cube()).unwrap(),
+        ];
+        for m in inputs {
+            let a = sierpinski(&m).unwrap();
+            let b = sierpinski_by_operators(&m).unwrap();
+            b.validate().unwrap();
+            assert_eq!(measured(&a), measured(&b));
+            assert_eq!(a.face_size_histogram(), b.face_size_histogram());
+            assert_eq!(a.valence_histogram(), b.valence_histogram());
+            assert_eq!(a.positions(), b.positions());
+            assert_eq!(face_signature(&a), face_signature(&b));
+        }
+    }
+}
