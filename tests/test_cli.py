@@ -79,3 +79,20 @@ def test_gallery_draws_attractor_pictures(tmp_path):
         png = tmp_path / f"{n}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 5000
     assert "![](ifs_koch.png)" in (tmp_path / "summary.md").read_text()
+
+
+@pytest.mark.parametrize(
+    "args,check",
+    [
+        (["subdivide", "--scheme", "catmull_clark", "-n", "2"], lambda m: m.n_faces == 6 * 16 and m.genus == 0),
+        (["subdivide", "--scheme", "honeycomb", "-n", "1"], lambda m: m.n_faces == 6 + 8),
+        (["sierpinski", "-n", "2"], lambda m: m.genus == topomesh.cube().sierpinski(2).genus),
+        (["menger", "-n", "1", "--thickness", "0.25"], lambda m: m.genus == 5),
+    ],
+)
+def test_scheme_commands(tmp_path, capsys, args, check):
+    src, dst = tmp_path / "cube.obj", tmp_path / "out.ply"
+    topomesh.cube().save(src)
+    cmd, rest = args[0], args[1:]
+    assert cli.main([cmd, str(src), str(dst), *rest]) == 0
+    assert check(topomesh.load(dst, allow_multi_edges=True))
