@@ -110,7 +110,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let mut sizes = Vec::with_capacity(nf + ne + nv);
     sizes.extend((0..nf).map(|f| fl.degree(f) as u32));
     sizes.extend(std::iter::repeat(4u32).take(ne));
-    sizes.extend((0..nv).map(|v| vl.off[v + 1] - vl.off[v]));
+    sizes.extend((0..nv).map(|v| vl.valence(v)));
     let cidx = &fl.cidx;
     {
         let (cf, rest_c) = cv.split_at_mut(nh);

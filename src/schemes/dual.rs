@@ -46,7 +46,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             *pt.get().add(slot) = vl.vidx[next[r as usize] as usize];
         }
     });
-    let sizes: Vec<u32> = (0..nv).map(|v| vl.off[v + 1] - vl.off[v]).collect();
+    let sizes: Vec<u32> = (0..nv).map(|v| vl.valence(v)).collect();
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 

@@ -42,7 +42,7 @@
 //! subdivided like any other (its points are pulled towards the hole's
 //! centroid) and its front face is the new hole. O(output) time and memory.
 
-use super::tables::Tables;
+use super::hosts::{FaceLayout, VertexLayout};
 use crate::error::{MeshError, Result};
 use crate::mesh::{FaceStart, Mesh, NONE};
 use glam::DVec3;
@@ -62,7 +62,8 @@ pub fn default_tension(n: usize) -> f64 {
 /// Errors: `t` outside `[0, 1]` or `tension` outside `[0, 1]` (including NaN).
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
-    let tab = Tables::new(m);
+    let fl = FaceLayout::new(m);
+    let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     let nv = m.n_vertices();
@@ -83,7 +84,7 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
             let FaceStart::Halfedge(h0) = m.face_start(crate::FaceId(f as u32)) else {
                 return Sums::default();
             };
-            let n = tab.face_degree(f) as f64;
+            let n = fl.degree(f) as f64;
             let origin = pos[vert[h0.idx()] as usize];
             let mut out = Sums { origin, ..Sums::default() };
             let mut h = h0.0 as usize;
@@ -117,15 +118,15 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         .into_par_iter()
         .map(|h| {
             let f = face[h] as usize;
-            let nn = tab.face_degree(f);
+            let nn = fl.degree(f);
             let p = edge_point(pos, vert[h], vert[h ^ 1], t);
-            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn as usize)) };
+            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
             if a == 1.0 {
                 return p;
             }
             let sm = &sums[f];
             let p = p - sm.origin;
-            let th = std::f64::consts::TAU * tab.in_face[h] as f64 / nn as f64;
+            let th = std::f64::consts::TAU * fl.local(h as u32, f as u32) as f64 / nn as f64;
             let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
             let rest = 3.0 * sm.s - 5.0 * p + 2.0 * (th.cos() * sm.c + th.sin() * sm.sn);
             sm.origin + a * p + c1 * rest
@@ -143,12 +144,12 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
     out_off.push(0);
     for f in 0..nf {
-        let d = tab.face_degree(f).max(1); // a point-sphere face keeps its one corner
+        let d = (fl.degree(f) as u32).max(1); // a point-sphere face keeps its one corner
         sizes.push(d);
         out_off.push(out_off[f] + d);
     }
     for v in 0..nv {
-        let k = tab.valence(v);
+        let k = vl.valence(v);
         if k > 0 {
             sizes.push(2 * k);
         }
@@ -157,10 +158,10 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     let n_corners = vb as usize + 2 * nh;
     let mut cv = vec![0u32; n_corners];
     let mut tw = vec![NONE; n_corners];
-    let front = |h: usize| out_off[face[h] as usize] + tab.in_face[h];
+    let front = |h: usize| out_off[face[h] as usize] + fl.local(h as u32, face[h]) as u32;
     // corners 2j and 2j+1 of the face of vertex w for its j-th outgoing half-edge g:
     // v'_g, then v'_{prev g} (the back face's edge g -> prev g, then the inserted edge)
-    let vc_even = |g: usize| vb + 2 * (tab.vert_off[vert[g] as usize] + tab.in_vert[g]);
+    let vc_even = |g: usize| vb + 2 * vl.vidx[g];
     for h in 0..nh {
         let hp = m.he_prev[h] as usize;
         let hn = next[h] as usize;
@@ -210,7 +211,7 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, star_prism};
+    use crate::schemes::hosts::test_meshes::{counts, handle_cube, one_gon_two_gon_cube, star_prism};
 
     fn check_step(m: &Mesh) -> Mesh {
         let (v, e, f) = (m.n_vertices(), m.n_edges(), m.n_faces());

@@ -47,17 +47,20 @@ impl<T> SyncPtr<T> {
 pub(crate) const MIN_LEN: usize = 2048;
 
 /// The corners of every face in cycle order, laid out face after face.
+///
+/// Built in O(H + F). A point-sphere face has no half-edge and owns no
+/// corner here (`degree` 0).
 pub(crate) struct FaceLayout {
     /// Half-edge of each corner: face `f` owns `fh[off[f]..off[f + 1]]`,
     /// starting at its first corner.
     pub fh: Vec<u32>,
+    /// Prefix of face degrees.
     pub off: Vec<u32>,
     /// Inverse of `fh`: the corner index of each half-edge.
     pub cidx: Vec<u32>,
 }
 
 impl FaceLayout {
-    /// Needs a mesh without point-spheres.
     pub fn new(m: &Mesh) -> Self {
         let (next, _, _) = m.halfedge_columns();
         let nf = m.n_faces();
@@ -68,7 +71,10 @@ impl FaceLayout {
         off.push(0u32);
         for f in 0..nf {
             let s = m.f_start[f];
-            debug_assert!(s & POINT == 0);
+            if s & POINT != 0 {
+                off.push(fh.len() as u32);
+                continue;
+            }
             let mut h = s;
             loop {
                 cidx[h as usize] = fh.len() as u32;
@@ -96,14 +102,17 @@ impl FaceLayout {
 
 /// The outgoing half-edges of every vertex in rotation order
 /// (`h, rotate(h), ...`, counter-clockwise seen from outside), vertex after vertex.
+///
+/// Built in O(H + V). A point-sphere vertex has no half-edge and owns no
+/// slot here (`valence` 0).
 pub(crate) struct VertexLayout {
+    /// Prefix of valences: vertex `v` owns slots `off[v]..off[v + 1]`.
     pub off: Vec<u32>,
     /// Inverse: the rotation slot of each half-edge (index into the layout).
     pub vidx: Vec<u32>,
 }
 
 impl VertexLayout {
-    /// Needs a mesh without point-spheres.
     pub fn new(m: &Mesh) -> Self {
         let nv = m.n_vertices();
         let nh = m.n_halfedges();
@@ -113,7 +122,10 @@ impl VertexLayout {
         let mut k = 0u32;
         for v in 0..nv {
             let s = m.v_out[v];
-            debug_assert!(s & POINT == 0);
+            if s & POINT != 0 {
+                off.push(k);
+                continue;
+            }
             let mut h = s;
             loop {
                 vidx[h as usize] = k;
@@ -126,6 +138,12 @@ impl VertexLayout {
             off.push(k);
         }
         VertexLayout { off, vidx }
+    }
+
+    /// Number of outgoing half-edges of `v` (0 for a point-sphere).
+    #[inline]
+    pub fn valence(&self, v: usize) -> u32 {
+        self.off[v + 1] - self.off[v]
     }
 }
 
@@ -405,7 +423,7 @@ pub(crate) mod test_meshes {
         s.validate().unwrap();
         assert_eq!((s.n_vertices(), s.n_edges(), s.n_faces(), s.genus(), s.n_self_loops()), (10, 30, 16, 3, 6));
     }
-    use crate::mesh::{BuildOptions, Mesh};
+    use crate::mesh::{BuildOptions, Corner, Mesh};
     use crate::primitives;
     use crate::FaceId;
     use glam::DVec3;
@@ -516,6 +534,67 @@ pub(crate) mod test_meshes {
     }
     pub fn n_point_spheres(m: &Mesh) -> usize {
         m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
+    }
+
+    /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
+    /// merged face runs along both sides of the new edge.
+    pub fn handle_cube() -> Mesh {
+        let mut m = crate::primitives::cube();
+        let a = m.face_halfedge(FaceId(0)).unwrap();
+        let b = m.face_halfedge(FaceId(1)).unwrap();
+        m.insert_edge(Corner::Halfedge(a), Corner::Halfedge(b)).unwrap();
+        assert_eq!(m.genus(), 1);
+        m
+    }
+
+    /// A prism over a counter-clockwise simple polygon (may be non-convex):
+    /// planar faces, every vertex 3-valent.
+    pub fn prism(profile: &[[f64; 2]], height: f64) -> Mesh {
+        let n = profile.len() as i64;
+        let mut pos: Vec<DVec3> = profile.iter().map(|p| DVec3::new(p[0], p[1], 0.0)).collect();
+        pos.extend(profile.iter().map(|p| DVec3::new(p[0], p[1], height)));
+        let mut sizes = vec![n, n];
+        let mut idx: Vec<i64> = (0..n).rev().collect();
+        idx.extend(n..2 * n);
+        for i in 0..n {
+            let j = (i + 1) % n;
+            sizes.push(4);
+            idx.extend([i, j, n + j, n + i]);
+        }
+        Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
+    }
+
+    /// A five-pointed star prism (non-convex planar faces).
+    pub fn star_prism() -> Mesh {
+        let pts: Vec<[f64; 2]> = (0..10)
+            .map(|k| {
+                let r = if k % 2 == 0 { 1.0 } else { 0.4 };
+                let a = std::f64::consts::PI * k as f64 / 5.0;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        prism(&pts, 0.5)
+    }
+
+    pub fn counts(m: &Mesh) -> (usize, usize, usize) {
+        (m.n_vertices(), m.n_edges(), m.n_faces())
+    }
+
+    /// A cube with a self-loop (a one-gon inside a quad, made by InsertEdge
+    /// on one corner twice) and a two-gon (an edge doubling a cube edge).
+    pub fn one_gon_two_gon_cube() -> Mesh {
+        let mut m = crate::primitives::cube();
+        let h = m.face_halfedge(FaceId(0)).unwrap();
+        m.insert_edge(Corner::Halfedge(h), Corner::Halfedge(h)).unwrap();
+        let g = m.face_halfedge(FaceId(3)).unwrap();
+        let g2 = m.next(g);
+        m.insert_edge(Corner::Halfedge(g), Corner::Halfedge(g2)).unwrap();
+        m.validate().unwrap();
+        assert_eq!(m.n_self_loops(), 1);
+        let hist = m.face_size_histogram();
+        assert_eq!(hist.get(&1), Some(&1));
+        assert_eq!(hist.get(&2), Some(&1));
+        m
     }
 }
 

@@ -61,7 +61,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
     }
     let mut sizes = Vec::with_capacity(nf + nv);
     sizes.extend((0..nf).map(|f| fl.degree(f) as u32));
-    sizes.extend((0..nv).map(|v| vl.off[v + 1] - vl.off[v]));
+    sizes.extend((0..nv).map(|v| vl.valence(v)));
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 

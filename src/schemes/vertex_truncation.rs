@@ -45,7 +45,7 @@
 //! one-gons, two-gons, multi-edges and non-convex faces need no special case;
 //! point-spheres are copied unchanged; hole faces stay holes. O(output).
 
-use super::tables::Tables;
+use super::hosts::{FaceLayout, VertexLayout};
 use crate::error::{MeshError, Result};
 use crate::mesh::{FaceStart, Mesh, NONE, POINT};
 use glam::DVec3;
@@ -89,7 +89,8 @@ impl Truncation {
 pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     mode.check()?;
     let r = mode.ratio();
-    let tab = Tables::new(m);
+    let fl = FaceLayout::new(m);
+    let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     let nv = m.n_vertices();
@@ -119,12 +120,12 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
     out_off.push(0);
     for f in 0..nf {
-        let d = (per_corner * tab.face_degree(f)).max(1); // a point-sphere face keeps its corner
+        let d = (per_corner * fl.degree(f) as u32).max(1); // a point-sphere face keeps its corner
         sizes.push(d);
         out_off.push(out_off[f] + d);
     }
     for v in 0..nv {
-        let k = tab.valence(v);
+        let k = vl.valence(v);
         if k > 0 {
             sizes.push(k);
         }
@@ -134,9 +135,9 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     let mut cv = vec![0u32; n_corners];
     let mut tw = vec![NONE; n_corners];
     // first corner of half-edge h in its old face's image
-    let fc = |h: usize| out_off[face[h] as usize] + per_corner * tab.in_face[h];
+    let fc = |h: usize| out_off[face[h] as usize] + per_corner * fl.local(h as u32, face[h]) as u32;
     // corner of outgoing half-edge g in its tail's vertex face
-    let vc = |g: usize| vb + tab.vert_off[vert[g] as usize] + tab.in_vert[g];
+    let vc = |g: usize| vb + vl.vidx[g];
     for h in 0..nh {
         let hp = m.he_prev[h] as usize;
         let hn = next[h] as usize;
@@ -175,7 +176,7 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
+    use crate::schemes::hosts::test_meshes::{counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
 
     /// Largest distance of a face's corners from the plane through its
     /// centroid with its Newell normal, relative to the face's bounding-box
