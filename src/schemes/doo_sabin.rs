@@ -166,25 +166,18 @@ mod tests {
 
     #[test]
     fn counts_and_validity_on_corpus() {
-        for (name, m) in corpus() {
-            let ps = n_point_spheres(&m);
-            let (v, e, f) = (m.n_vertices() - ps, m.n_edges(), m.n_faces() - ps);
-            let r = doo_sabin(&m).unwrap();
-            r.validate().unwrap_or_else(|err| panic!("{name}: {err}"));
-            assert_eq!(r.n_vertices() - ps, 2 * e, "{name} V'");
-            assert_eq!(r.n_edges(), 4 * e, "{name} E'");
-            assert_eq!(r.n_faces() - ps, f + e + v, "{name} F'");
-            assert_eq!(r.genus(), m.genus(), "{name} genus");
-            let mut want = face_sizes(&m);
+        check_on_corpus(doo_sabin, |_, (v, e, f)| (2 * e, 4 * e, f + e + v), |name, m, r| {
+            let ps = n_point_spheres(m);
+            let mut want = face_sizes(m);
             want.truncate(m.n_faces() - ps);
-            want.extend(std::iter::repeat(4).take(e));
+            want.extend(std::iter::repeat(4).take(m.n_edges()));
             want.extend(m.vertices().filter(|&x| m.point_sphere_face(x).is_none()).map(|x| m.valence(x)));
             want.sort();
-            let mut got = face_sizes(&r);
+            let mut got = face_sizes(r);
             got.truncate(r.n_faces() - ps);
             got.sort();
             assert_eq!(got, want, "{name} face sizes");
-        }
+        });
     }
 
     #[test]

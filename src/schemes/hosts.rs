@@ -536,6 +536,44 @@ pub(crate) mod test_meshes {
         m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
     }
 
+    /// Whether every face of `m` other than a one-gon has `n` corners.
+    pub fn all_faces_but_one_gons_have(m: &Mesh, n: usize) -> bool {
+        face_sizes(m).iter().filter(|&&s| s != 1).all(|&s| s == n)
+    }
+
+    /// The checks every scheme's output `r` of input `m` must pass: it
+    /// validates, keeps the point-spheres, the genus and the number of
+    /// components, and has `(V', E', F')` = `want` with the point-spheres left
+    /// out of V' and F'.
+    pub fn check_output(name: &str, m: &Mesh, r: &Mesh, want: (usize, usize, usize)) {
+        let ps = n_point_spheres(m);
+        r.validate().unwrap_or_else(|err| panic!("{name}: {err}"));
+        assert_eq!(n_point_spheres(r), ps, "{name} point-spheres");
+        assert_eq!(r.n_vertices() - ps, want.0, "{name} V'");
+        assert_eq!(r.n_edges(), want.1, "{name} E'");
+        assert_eq!(r.n_faces() - ps, want.2, "{name} F'");
+        assert_eq!(r.genus(), m.genus(), "{name} genus");
+        assert_eq!(r.n_components(), m.n_components(), "{name} components");
+    }
+
+    /// Runs `scheme` on every mesh of the [`corpus`] and makes the checks of
+    /// [`check_output`], with the counts `counts(m, (V, E, F))` from the
+    /// input's `V`, `E`, `F` (point-spheres left out), then the scheme's own
+    /// checks `more(name, m, r)`.
+    pub fn check_on_corpus(
+        scheme: impl Fn(&Mesh) -> crate::error::Result<Mesh>,
+        counts: impl Fn(&Mesh, (usize, usize, usize)) -> (usize, usize, usize),
+        more: impl Fn(&str, &Mesh, &Mesh),
+    ) {
+        for (name, m) in corpus() {
+            let ps = n_point_spheres(&m);
+            let want = counts(&m, (m.n_vertices() - ps, m.n_edges(), m.n_faces() - ps));
+            let r = scheme(&m).unwrap_or_else(|err| panic!("{name}: {err}"));
+            check_output(name, &m, &r, want);
+            more(name, &m, &r);
+        }
+    }
+
     /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
     /// merged face runs along both sides of the new edge.
     pub fn handle_cube() -> Mesh {

@@ -176,7 +176,7 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::hosts::test_meshes::{counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
+    use crate::schemes::hosts::test_meshes::{check_output, counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
 
     /// Largest distance of a face's corners from the plane through its
     /// centroid with its Newell normal, relative to the face's bounding-box
@@ -202,9 +202,6 @@ mod tests {
     fn check_step(m: &Mesh, mode: Truncation) -> Mesh {
         let (v, e, f) = counts(m);
         let t = vertex_truncation(m, mode).unwrap();
-        t.validate().unwrap();
-        assert_eq!(t.genus(), m.genus());
-        assert_eq!(t.n_components(), m.n_components());
         let merged = mode.ratio() == 0.5;
         // n-gon -> 2n-gon (n-gon when merged); valence-m vertex -> m-gon
         let mut want = crate::mesh::Histogram::new();
@@ -216,10 +213,10 @@ mod tests {
         }
         assert_eq!(t.face_size_histogram(), want);
         if merged {
-            assert_eq!(counts(&t), (e, 2 * e, f + v));
+            check_output("rectification", m, &t, (e, 2 * e, f + v));
             assert_eq!(t.valence_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
         } else {
-            assert_eq!(counts(&t), (2 * e, 3 * e, f + v));
+            check_output("truncation", m, &t, (2 * e, 3 * e, f + v));
             assert_eq!(t.valence_histogram().keys().copied().collect::<Vec<_>>(), vec![3]);
         }
         t
