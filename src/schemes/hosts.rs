@@ -299,13 +299,9 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
 /// per corner `h` (Catmull-Clark's host). A face without one must be a
 /// triangle and becomes four: `[v, e(h), e(prev h)]` per corner and the
 /// middle `[e(h0), e(h1), e(h2)]` (Loop's host).
-pub(crate) struct Primal {
-    pub sizes: Vec<u32>,
-    pub verts: Vec<u32>,
-    pub twins: Vec<u32>,
-}
-
-pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Primal {
+///
+/// Returns the output mesh with the new points `pos` laid out as above.
+pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>) -> Result<Mesh> {
     let (next, vert, face) = m.halfedge_columns();
     let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
     let prev = &m.he_prev;
@@ -391,7 +387,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Prim
             }
         }
     });
-    Primal { sizes, verts: cv, twins: tw }
+    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
 /// Sum of `pos[head(h)]` over the outgoing half-edges of `v` and their count.

@@ -72,8 +72,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
     );
     let face_point = vec![NONE; nf];
-    let host = primal_host(m, &fl, &face_point);
-    Mesh::from_corner_twins(pos, &host.sizes, &host.verts, &host.twins)
+    primal_host(m, &fl, &face_point, pos)
 }
 
 #[cfg(test)]

@@ -51,8 +51,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             pos.push(s / hs.len() as f64);
         }
     }
-    let host = primal_host(m, &fl, &face_point);
-    Mesh::from_corner_twins(pos, &host.sizes, &host.verts, &host.twins)
+    primal_host(m, &fl, &face_point, pos)
 }
 
 #[cfg(test)]
