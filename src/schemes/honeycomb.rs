@@ -42,7 +42,7 @@
 //! subdivided like any other (its points are pulled towards the hole's
 //! centroid) and its front face is the new hole. O(output) time and memory.
 
-use super::hosts::{FaceLayout, VertexLayout};
+use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
 use crate::error::{MeshError, Result};
 use crate::mesh::{FaceStart, Mesh, NONE};
 use glam::DVec3;
@@ -66,7 +66,6 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
     let nf = m.n_faces();
-    let nv = m.n_vertices();
     let (next, vert, face) = m.halfedge_columns();
     let pos = m.positions();
 
@@ -106,14 +105,6 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         .collect();
 
     // ---- new positions: [one per old half-edge | point-spheres]
-    let mut point_id = vec![NONE; nv];
-    let mut n_points = 0u32;
-    for v in 0..nv {
-        if m.v_out[v] & crate::mesh::POINT != 0 {
-            point_id[v] = nh as u32 + n_points;
-            n_points += 1;
-        }
-    }
     let mut new_pos: Vec<DVec3> = (0..nh)
         .into_par_iter()
         .map(|h| {
@@ -132,29 +123,11 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
             sm.origin + a * p + c1 * rest
         })
         .collect();
-    new_pos.reserve_exact(n_points as usize);
-    for v in 0..nv {
-        if point_id[v] != NONE {
-            new_pos.push(pos[v]);
-        }
-    }
 
     // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex]
-    let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
-    let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
-    out_off.push(0);
-    for f in 0..nf {
-        let d = (fl.degree(f) as u32).max(1); // a point-sphere face keeps its one corner
-        sizes.push(d);
-        out_off.push(out_off[f] + d);
-    }
-    for v in 0..nv {
-        let k = vl.valence(v);
-        if k > 0 {
-            sizes.push(2 * k);
-        }
-    }
-    let vb = out_off[nf]; // first corner of the vertex faces
+    let faces = FaceThenVertexFaces::new(m, &fl, &vl, 1, 2, &mut new_pos);
+    let out_off = &faces.off;
+    let vb = faces.vertex_base();
     let n_corners = vb as usize + 2 * nh;
     let mut cv = vec![0u32; n_corners];
     let mut tw = vec![NONE; n_corners];
@@ -174,14 +147,7 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         cv[ce + 1] = hp as u32;
         tw[ce + 1] = vc_even(next[hp ^ 1] as usize) + 1;
     }
-    for f in 0..nf {
-        if let FaceStart::Point(v) = m.face_start(crate::FaceId(f as u32)) {
-            cv[out_off[f] as usize] = point_id[v.idx()];
-        }
-    }
-    let mut out = Mesh::from_corner_twins(new_pos, &sizes, &cv, &tw)?;
-    out.f_hole[..nf].copy_from_slice(&m.f_hole);
-    Ok(out)
+    faces.build(m, new_pos, cv, &tw)
 }
 
 #[inline]

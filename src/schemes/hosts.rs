@@ -147,6 +147,74 @@ impl VertexLayout {
     }
 }
 
+/// Output faces of the schemes that keep every old face as one new face (in
+/// old face order) and add one face per vertex after them (in old vertex
+/// order): honeycomb and vertex truncation. Point-spheres are carried
+/// through (a point-sphere face keeps its one corner), and so are hole marks.
+pub(crate) struct FaceThenVertexFaces {
+    /// Sizes of the output faces.
+    pub sizes: Vec<u32>,
+    /// `off[f]` is the first output corner of old face `f`'s image;
+    /// `off[nf]` the first corner of the vertex faces.
+    pub off: Vec<u32>,
+    /// The output vertex of each point-sphere vertex (`NONE` for the others).
+    point_id: Vec<u32>,
+}
+
+impl FaceThenVertexFaces {
+    /// Old face `f` gets `per_corner · degree(f)` corners, vertex `v`
+    /// `per_slot · valence(v)`. Appends the point-sphere vertices to `pos`,
+    /// in vertex order.
+    pub fn new(m: &Mesh, fl: &FaceLayout, vl: &VertexLayout, per_corner: u32, per_slot: u32, pos: &mut Vec<DVec3>) -> Self {
+        let (nf, nv) = (m.n_faces(), m.n_vertices());
+        let mut point_id = vec![NONE; nv];
+        let n_points = m.v_out.iter().filter(|&&o| o & POINT != 0).count();
+        if n_points > 0 {
+            pos.reserve_exact(n_points);
+            for v in 0..nv {
+                if m.v_out[v] & POINT != 0 {
+                    point_id[v] = pos.len() as u32;
+                    pos.push(m.pos[v]);
+                }
+            }
+        }
+        let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
+        let mut off: Vec<u32> = Vec::with_capacity(nf + 1);
+        off.push(0);
+        for f in 0..nf {
+            let d = (per_corner * fl.degree(f) as u32).max(1); // a point-sphere face keeps its one corner
+            sizes.push(d);
+            off.push(off[f] + d);
+        }
+        for v in 0..nv {
+            let k = vl.valence(v);
+            if k > 0 {
+                sizes.push(per_slot * k);
+            }
+        }
+        FaceThenVertexFaces { sizes, off, point_id }
+    }
+
+    /// The first corner of the vertex faces.
+    #[inline]
+    pub fn vertex_base(&self) -> u32 {
+        self.off[self.off.len() - 1]
+    }
+
+    /// Fills the corners of the point-sphere faces, builds the mesh and
+    /// copies the hole marks of the old faces to their images.
+    pub fn build(&self, m: &Mesh, pos: Vec<DVec3>, mut cv: Vec<u32>, tw: &[u32]) -> Result<Mesh> {
+        for (f, &s) in m.f_start.iter().enumerate() {
+            if s & POINT != 0 {
+                cv[self.off[f] as usize] = self.point_id[(s & !POINT) as usize];
+            }
+        }
+        let mut out = Mesh::from_corner_twins(pos, &self.sizes, &cv, tw)?;
+        out.f_hole[..m.n_faces()].copy_from_slice(&m.f_hole);
+        Ok(out)
+    }
+}
+
 /// Runs `scheme` on `m` with its point-spheres set aside, then appends them
 /// unchanged (same position, one vertex and one face each).
 pub(crate) fn with_point_spheres(m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh>) -> Result<Mesh> {

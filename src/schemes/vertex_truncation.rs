@@ -45,9 +45,9 @@
 //! one-gons, two-gons, multi-edges and non-convex faces need no special case;
 //! point-spheres are copied unchanged; hole faces stay holes. O(output).
 
-use super::hosts::{FaceLayout, VertexLayout};
+use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
 use crate::error::{MeshError, Result};
-use crate::mesh::{FaceStart, Mesh, NONE, POINT};
+use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -92,8 +92,6 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     let fl = FaceLayout::new(m);
     let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
-    let nf = m.n_faces();
-    let nv = m.n_vertices();
     let (next, vert, face) = m.halfedge_columns();
     let pos = m.positions();
     let merge = r == 0.5;
@@ -104,33 +102,12 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     } else {
         (0..nh).into_par_iter().map(|h| (1.0 - r) * pos[vert[h] as usize] + r * pos[vert[h ^ 1] as usize]).collect()
     };
-    let n_cut = new_pos.len() as u32;
-    let mut point_id = vec![NONE; nv];
-    for v in 0..nv {
-        if m.v_out[v] & POINT != 0 {
-            point_id[v] = new_pos.len() as u32;
-            new_pos.push(pos[v]);
-        }
-    }
-    debug_assert!(n_cut as usize <= new_pos.len());
 
     // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex]
     let per_corner = if merge { 1 } else { 2 };
-    let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
-    let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
-    out_off.push(0);
-    for f in 0..nf {
-        let d = (per_corner * fl.degree(f) as u32).max(1); // a point-sphere face keeps its corner
-        sizes.push(d);
-        out_off.push(out_off[f] + d);
-    }
-    for v in 0..nv {
-        let k = vl.valence(v);
-        if k > 0 {
-            sizes.push(k);
-        }
-    }
-    let vb = out_off[nf];
+    let faces = FaceThenVertexFaces::new(m, &fl, &vl, per_corner, 1, &mut new_pos);
+    let out_off = &faces.off;
+    let vb = faces.vertex_base();
     let n_corners = vb as usize + nh;
     let mut cv = vec![0u32; n_corners];
     let mut tw = vec![NONE; n_corners];
@@ -161,14 +138,7 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
             tw[cg] = fc(hp) + 1;
         }
     }
-    for f in 0..nf {
-        if let FaceStart::Point(v) = m.face_start(crate::FaceId(f as u32)) {
-            cv[out_off[f] as usize] = point_id[v.idx()];
-        }
-    }
-    let mut out = Mesh::from_corner_twins(new_pos, &sizes, &cv, &tw)?;
-    out.f_hole[..nf].copy_from_slice(&m.f_hole);
-    Ok(out)
+    faces.build(m, new_pos, cv, &tw)
 }
 
 #[cfg(test)]
