@@ -177,7 +177,7 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::hosts::test_meshes::{check_output, handle_cube, one_gon_two_gon_cube, star_prism};
+    use crate::schemes::hosts::test_meshes::{check_output, cube_with_hole, handle_cube, one_gon_two_gon_cube, star_prism};
 
     fn check_step(m: &Mesh) -> Mesh {
         let (v, e, f) = (m.n_vertices(), m.n_edges(), m.n_faces());
@@ -341,10 +341,7 @@ mod tests {
         assert_eq!(h.n_components(), 2);
         assert_eq!(h.n_vertices(), 24 + 1);
         // an open box capped by a hole: the hole's front face stays a hole
-        let c = cube().to_polygons();
-        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
-        let open = Mesh::from_polygons(cube().positions().to_vec(), &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+        let open = cube_with_hole();
         let h = honeycomb(&open, 0.5, None).unwrap();
         h.validate().unwrap();
         assert_eq!(h.n_holes(), 1);

@@ -638,6 +638,15 @@ pub(crate) mod test_meshes {
         }
     }
 
+    /// A cube without its first face, closed by a hole face.
+    pub fn cube_with_hole() -> Mesh {
+        let c = primitives::cube().to_polygons();
+        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
+        let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+        Mesh::from_polygons(primitives::cube().positions().to_vec(), &sizes, &idx, opts).unwrap()
+    }
+
     /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
     /// merged face runs along both sides of the new edge.
     pub fn handle_cube() -> Mesh {

@@ -144,9 +144,8 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::hosts::test_meshes::{check_output, counts, handle_cube, one_gon_two_gon_cube, prism, star_prism};
+    use crate::schemes::hosts::test_meshes::{check_output, counts, cube_with_hole, handle_cube, one_gon_two_gon_cube, prism, star_prism};
 
     /// Largest distance of a face's corners from the plane through its
     /// centroid with its Newell normal, relative to the face's bounding-box
@@ -276,10 +275,7 @@ mod tests {
         let t = vertex_truncation(&m, Truncation::Chaikin).unwrap();
         t.validate().unwrap();
         assert_eq!((t.n_components(), t.n_vertices()), (2, 25));
-        let c = cube().to_polygons();
-        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
-        let open = Mesh::from_polygons(cube().positions().to_vec(), &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+        let open = cube_with_hole();
         for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.5 }] {
             let t = vertex_truncation(&open, mode).unwrap();
             t.validate().unwrap();
