@@ -57,7 +57,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         .into_par_iter()
         .with_min_len(MIN_LEN)
         .map(|f| {
-            let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+            let hs = fl.corners(f);
             let n = hs.len();
             let mut s = [DVec3::ZERO; 3];
             let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
@@ -84,7 +84,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         rest = b;
     }
     chunks.into_par_iter().with_min_len(MIN_LEN).enumerate().for_each(|(f, out)| {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let n = hs.len();
         if n == 1 {
             out[0] = p[vert[hs[0] as usize] as usize];
@@ -186,7 +186,7 @@ mod tests {
         let r = doo_sabin(&m).unwrap();
         let fl = FaceLayout::new(&m);
         for f in 0..m.n_faces() {
-            let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+            let hs = fl.corners(f);
             let n = hs.len();
             for k in 0..n {
                 let want: DVec3 = (0..n).map(|i| m.positions()[m.vertex(crate::HalfedgeId(hs[i])).idx()] * doo_sabin_weight(n, (i + n - k) % n)).sum();

@@ -44,7 +44,7 @@
 
 use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
 use crate::error::{MeshError, Result};
-use crate::mesh::{FaceStart, Mesh, NONE};
+use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -80,25 +80,20 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     let sums: Vec<Sums> = (0..nf)
         .into_par_iter()
         .map(|f| {
-            let FaceStart::Halfedge(h0) = m.face_start(crate::FaceId(f as u32)) else {
-                return Sums::default();
+            let hs = fl.corners(f);
+            let Some(&h0) = hs.first() else {
+                return Sums::default(); // a point-sphere face
             };
-            let n = fl.degree(f) as f64;
-            let origin = pos[vert[h0.idx()] as usize];
+            let n = hs.len() as f64;
+            let origin = pos[vert[h0 as usize] as usize];
             let mut out = Sums { origin, ..Sums::default() };
-            let mut h = h0.0 as usize;
-            let mut k = 0.0f64;
-            loop {
+            for (k, &h) in hs.iter().enumerate() {
+                let h = h as usize;
                 let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
-                let th = std::f64::consts::TAU * k / n;
+                let th = std::f64::consts::TAU * k as f64 / n;
                 out.s += p;
                 out.c += p * th.cos();
                 out.sn += p * th.sin();
-                k += 1.0;
-                h = next[h] as usize;
-                if h == h0.idx() {
-                    break;
-                }
             }
             out
         })

@@ -89,6 +89,11 @@ impl FaceLayout {
         FaceLayout { fh, off, cidx }
     }
 
+    /// The half-edges of face `f`'s corners, in cycle order.
+    #[inline]
+    pub fn corners(&self, f: usize) -> &[u32] {
+        &self.fh[self.off[f] as usize..self.off[f + 1] as usize]
+    }
     #[inline]
     pub fn degree(&self, f: usize) -> usize {
         (self.off[f + 1] - self.off[f]) as usize
@@ -263,7 +268,7 @@ pub(crate) fn with_point_spheres(m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh
 pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
     let (_, vert, _) = m.halfedge_columns();
     out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
         *c = s / hs.len() as f64;
     });
@@ -310,7 +315,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
             b += 3 * n as u32;
             n_faces += n;
             cvert[f] = pos.len() as u32;
-            let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+            let hs = fl.corners(f);
             let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
             pos.push(s / n as f64);
         }
@@ -331,7 +336,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
         }
     };
     for f in 0..nf {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let b = base[f] as usize;
         if cvert[f] == NONE {
             sizes.push(3);
@@ -414,7 +419,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
     let mut tw = vec![0u32; nc];
     let (pc, pt) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()));
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let n = hs.len();
         let b = base[f] as usize;
         // SAFETY: face f writes only its own range base[f]..base[f + 1].

@@ -46,7 +46,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
     pos.par_extend((0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5));
     for f in 0..nf {
         if face_point[f] != NONE {
-            let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+            let hs = fl.corners(f);
             let s: DVec3 = hs.iter().map(|&h| p[vert[h as usize] as usize]).sum();
             pos.push(s / hs.len() as f64);
         }
