@@ -42,9 +42,9 @@
 //! subdivided like any other (its points are pulled towards the hole's
 //! centroid) and its front face is the new hole. O(output) time and memory.
 
-use super::tables::Tables;
+use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
 use crate::error::{MeshError, Result};
-use crate::mesh::{FaceStart, Mesh, NONE};
+use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -62,10 +62,10 @@ pub fn default_tension(n: usize) -> f64 {
 /// Errors: `t` outside `[0, 1]` or `tension` outside `[0, 1]` (including NaN).
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
-    let tab = Tables::new(m);
+    let fl = FaceLayout::new(m);
+    let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
     let nf = m.n_faces();
-    let nv = m.n_vertices();
     let (next, vert, face) = m.halfedge_columns();
     let pos = m.positions();
 
@@ -80,87 +80,56 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     let sums: Vec<Sums> = (0..nf)
         .into_par_iter()
         .map(|f| {
-            let FaceStart::Halfedge(h0) = m.face_start(crate::FaceId(f as u32)) else {
-                return Sums::default();
+            let hs = fl.corners(f);
+            let Some(&h0) = hs.first() else {
+                return Sums::default(); // a point-sphere face
             };
-            let n = tab.face_degree(f) as f64;
-            let origin = pos[vert[h0.idx()] as usize];
+            let n = hs.len() as f64;
+            let origin = pos[vert[h0 as usize] as usize];
             let mut out = Sums { origin, ..Sums::default() };
-            let mut h = h0.0 as usize;
-            let mut k = 0.0f64;
-            loop {
+            for (k, &h) in hs.iter().enumerate() {
+                let h = h as usize;
                 let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
-                let th = std::f64::consts::TAU * k / n;
+                let th = std::f64::consts::TAU * k as f64 / n;
                 out.s += p;
                 out.c += p * th.cos();
                 out.sn += p * th.sin();
-                k += 1.0;
-                h = next[h] as usize;
-                if h == h0.idx() {
-                    break;
-                }
             }
             out
         })
         .collect();
 
     // ---- new positions: [one per old half-edge | point-spheres]
-    let mut point_id = vec![NONE; nv];
-    let mut n_points = 0u32;
-    for v in 0..nv {
-        if m.v_out[v] & crate::mesh::POINT != 0 {
-            point_id[v] = nh as u32 + n_points;
-            n_points += 1;
-        }
-    }
     let mut new_pos: Vec<DVec3> = (0..nh)
         .into_par_iter()
         .map(|h| {
             let f = face[h] as usize;
-            let nn = tab.face_degree(f);
+            let nn = fl.degree(f);
             let p = edge_point(pos, vert[h], vert[h ^ 1], t);
-            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn as usize)) };
+            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
             if a == 1.0 {
                 return p;
             }
             let sm = &sums[f];
             let p = p - sm.origin;
-            let th = std::f64::consts::TAU * tab.in_face[h] as f64 / nn as f64;
+            let th = std::f64::consts::TAU * fl.local(h as u32, f as u32) as f64 / nn as f64;
             let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
             let rest = 3.0 * sm.s - 5.0 * p + 2.0 * (th.cos() * sm.c + th.sin() * sm.sn);
             sm.origin + a * p + c1 * rest
         })
         .collect();
-    new_pos.reserve_exact(n_points as usize);
-    for v in 0..nv {
-        if point_id[v] != NONE {
-            new_pos.push(pos[v]);
-        }
-    }
 
     // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex]
-    let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
-    let mut out_off: Vec<u32> = Vec::with_capacity(nf + 1);
-    out_off.push(0);
-    for f in 0..nf {
-        let d = tab.face_degree(f).max(1); // a point-sphere face keeps its one corner
-        sizes.push(d);
-        out_off.push(out_off[f] + d);
-    }
-    for v in 0..nv {
-        let k = tab.valence(v);
-        if k > 0 {
-            sizes.push(2 * k);
-        }
-    }
-    let vb = out_off[nf]; // first corner of the vertex faces
+    let faces = FaceThenVertexFaces::new(m, &fl, &vl, 1, 2, &mut new_pos);
+    let out_off = &faces.off;
+    let vb = faces.vertex_base();
     let n_corners = vb as usize + 2 * nh;
     let mut cv = vec![0u32; n_corners];
     let mut tw = vec![NONE; n_corners];
-    let front = |h: usize| out_off[face[h] as usize] + tab.in_face[h];
+    let front = |h: usize| out_off[face[h] as usize] + fl.local(h as u32, face[h]) as u32;
     // corners 2j and 2j+1 of the face of vertex w for its j-th outgoing half-edge g:
     // v'_g, then v'_{prev g} (the back face's edge g -> prev g, then the inserted edge)
-    let vc_even = |g: usize| vb + 2 * (tab.vert_off[vert[g] as usize] + tab.in_vert[g]);
+    let vc_even = |g: usize| vb + 2 * vl.vidx[g];
     for h in 0..nh {
         let hp = m.he_prev[h] as usize;
         let hn = next[h] as usize;
@@ -173,14 +142,7 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         cv[ce + 1] = hp as u32;
         tw[ce + 1] = vc_even(next[hp ^ 1] as usize) + 1;
     }
-    for f in 0..nf {
-        if let FaceStart::Point(v) = m.face_start(crate::FaceId(f as u32)) {
-            cv[out_off[f] as usize] = point_id[v.idx()];
-        }
-    }
-    let mut out = Mesh::from_corner_twins(new_pos, &sizes, &cv, &tw)?;
-    out.f_hole[..nf].copy_from_slice(&m.f_hole);
-    Ok(out)
+    faces.build(m, new_pos, cv, &tw)
 }
 
 #[inline]
@@ -210,15 +172,12 @@ mod tests {
     use super::*;
     use crate::mesh::BuildOptions;
     use crate::primitives::*;
-    use crate::schemes::tables::test_support::{counts, handle_cube, one_gon_two_gon_cube, star_prism};
+    use crate::schemes::hosts::test_meshes::{check_output, cube_with_hole, handle_cube, one_gon_two_gon_cube, star_prism};
 
     fn check_step(m: &Mesh) -> Mesh {
         let (v, e, f) = (m.n_vertices(), m.n_edges(), m.n_faces());
         let h = honeycomb(m, 0.5, None).unwrap();
-        h.validate().unwrap();
-        assert_eq!(counts(&h), (2 * e, 3 * e, f + v));
-        assert_eq!(h.genus(), m.genus());
-        assert_eq!(h.n_components(), m.n_components());
+        check_output("honeycomb", m, &h, (2 * e, 3 * e, f + v));
         // every vertex 3-valent; n-gon -> n-gon; valence-k vertex -> 2k-gon
         assert_eq!(h.valence_histogram().keys().copied().collect::<Vec<_>>(), vec![3]);
         let mut want = m.face_size_histogram();
@@ -377,10 +336,7 @@ mod tests {
         assert_eq!(h.n_components(), 2);
         assert_eq!(h.n_vertices(), 24 + 1);
         // an open box capped by a hole: the hole's front face stays a hole
-        let c = cube().to_polygons();
-        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
-        let open = Mesh::from_polygons(cube().positions().to_vec(), &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+        let open = cube_with_hole();
         let h = honeycomb(&open, 0.5, None).unwrap();
         h.validate().unwrap();
         assert_eq!(h.n_holes(), 1);

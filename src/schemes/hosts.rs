@@ -47,17 +47,20 @@ impl<T> SyncPtr<T> {
 pub(crate) const MIN_LEN: usize = 2048;
 
 /// The corners of every face in cycle order, laid out face after face.
+///
+/// Built in O(H + F). A point-sphere face has no half-edge and owns no
+/// corner here (`degree` 0).
 pub(crate) struct FaceLayout {
     /// Half-edge of each corner: face `f` owns `fh[off[f]..off[f + 1]]`,
     /// starting at its first corner.
     pub fh: Vec<u32>,
+    /// Prefix of face degrees.
     pub off: Vec<u32>,
     /// Inverse of `fh`: the corner index of each half-edge.
     pub cidx: Vec<u32>,
 }
 
 impl FaceLayout {
-    /// Needs a mesh without point-spheres.
     pub fn new(m: &Mesh) -> Self {
         let (next, _, _) = m.halfedge_columns();
         let nf = m.n_faces();
@@ -68,7 +71,10 @@ impl FaceLayout {
         off.push(0u32);
         for f in 0..nf {
             let s = m.f_start[f];
-            debug_assert!(s & POINT == 0);
+            if s & POINT != 0 {
+                off.push(fh.len() as u32);
+                continue;
+            }
             let mut h = s;
             loop {
                 cidx[h as usize] = fh.len() as u32;
@@ -83,6 +89,11 @@ impl FaceLayout {
         FaceLayout { fh, off, cidx }
     }
 
+    /// The half-edges of face `f`'s corners, in cycle order.
+    #[inline]
+    pub fn corners(&self, f: usize) -> &[u32] {
+        &self.fh[self.off[f] as usize..self.off[f + 1] as usize]
+    }
     #[inline]
     pub fn degree(&self, f: usize) -> usize {
         (self.off[f + 1] - self.off[f]) as usize
@@ -96,14 +107,17 @@ impl FaceLayout {
 
 /// The outgoing half-edges of every vertex in rotation order
 /// (`h, rotate(h), ...`, counter-clockwise seen from outside), vertex after vertex.
+///
+/// Built in O(H + V). A point-sphere vertex has no half-edge and owns no
+/// slot here (`valence` 0).
 pub(crate) struct VertexLayout {
+    /// Prefix of valences: vertex `v` owns slots `off[v]..off[v + 1]`.
     pub off: Vec<u32>,
     /// Inverse: the rotation slot of each half-edge (index into the layout).
     pub vidx: Vec<u32>,
 }
 
 impl VertexLayout {
-    /// Needs a mesh without point-spheres.
     pub fn new(m: &Mesh) -> Self {
         let nv = m.n_vertices();
         let nh = m.n_halfedges();
@@ -113,7 +127,10 @@ impl VertexLayout {
         let mut k = 0u32;
         for v in 0..nv {
             let s = m.v_out[v];
-            debug_assert!(s & POINT == 0);
+            if s & POINT != 0 {
+                off.push(k);
+                continue;
+            }
             let mut h = s;
             loop {
                 vidx[h as usize] = k;
@@ -126,6 +143,80 @@ impl VertexLayout {
             off.push(k);
         }
         VertexLayout { off, vidx }
+    }
+
+    /// Number of outgoing half-edges of `v` (0 for a point-sphere).
+    #[inline]
+    pub fn valence(&self, v: usize) -> u32 {
+        self.off[v + 1] - self.off[v]
+    }
+}
+
+/// Output faces of the schemes that keep every old face as one new face (in
+/// old face order) and add one face per vertex after them (in old vertex
+/// order): honeycomb and vertex truncation. Point-spheres are carried
+/// through (a point-sphere face keeps its one corner), and so are hole marks.
+pub(crate) struct FaceThenVertexFaces {
+    /// Sizes of the output faces.
+    pub sizes: Vec<u32>,
+    /// `off[f]` is the first output corner of old face `f`'s image;
+    /// `off[nf]` the first corner of the vertex faces.
+    pub off: Vec<u32>,
+    /// The output vertex of each point-sphere vertex (`NONE` for the others).
+    point_id: Vec<u32>,
+}
+
+impl FaceThenVertexFaces {
+    /// Old face `f` gets `per_corner · degree(f)` corners, vertex `v`
+    /// `per_slot · valence(v)`. Appends the point-sphere vertices to `pos`,
+    /// in vertex order.
+    pub fn new(m: &Mesh, fl: &FaceLayout, vl: &VertexLayout, per_corner: u32, per_slot: u32, pos: &mut Vec<DVec3>) -> Self {
+        let (nf, nv) = (m.n_faces(), m.n_vertices());
+        let mut point_id = vec![NONE; nv];
+        let n_points = m.v_out.iter().filter(|&&o| o & POINT != 0).count();
+        if n_points > 0 {
+            pos.reserve_exact(n_points);
+            for v in 0..nv {
+                if m.v_out[v] & POINT != 0 {
+                    point_id[v] = pos.len() as u32;
+                    pos.push(m.pos[v]);
+                }
+            }
+        }
+        let mut sizes: Vec<u32> = Vec::with_capacity(nf + nv);
+        let mut off: Vec<u32> = Vec::with_capacity(nf + 1);
+        off.push(0);
+        for f in 0..nf {
+            let d = (per_corner * fl.degree(f) as u32).max(1); // a point-sphere face keeps its one corner
+            sizes.push(d);
+            off.push(off[f] + d);
+        }
+        for v in 0..nv {
+            let k = vl.valence(v);
+            if k > 0 {
+                sizes.push(per_slot * k);
+            }
+        }
+        FaceThenVertexFaces { sizes, off, point_id }
+    }
+
+    /// The first corner of the vertex faces.
+    #[inline]
+    pub fn vertex_base(&self) -> u32 {
+        self.off[self.off.len() - 1]
+    }
+
+    /// Fills the corners of the point-sphere faces, builds the mesh and
+    /// copies the hole marks of the old faces to their images.
+    pub fn build(&self, m: &Mesh, pos: Vec<DVec3>, mut cv: Vec<u32>, tw: &[u32]) -> Result<Mesh> {
+        for (f, &s) in m.f_start.iter().enumerate() {
+            if s & POINT != 0 {
+                cv[self.off[f] as usize] = self.point_id[(s & !POINT) as usize];
+            }
+        }
+        let mut out = Mesh::from_corner_twins(pos, &self.sizes, &cv, tw)?;
+        out.f_hole[..m.n_faces()].copy_from_slice(&m.f_hole);
+        Ok(out)
     }
 }
 
@@ -177,7 +268,7 @@ pub(crate) fn with_point_spheres(m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh
 pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
     let (_, vert, _) = m.halfedge_columns();
     out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
         *c = s / hs.len() as f64;
     });
@@ -224,7 +315,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
             b += 3 * n as u32;
             n_faces += n;
             cvert[f] = pos.len() as u32;
-            let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+            let hs = fl.corners(f);
             let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
             pos.push(s / n as f64);
         }
@@ -245,7 +336,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
         }
     };
     for f in 0..nf {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let b = base[f] as usize;
         if cvert[f] == NONE {
             sizes.push(3);
@@ -281,13 +372,9 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
 /// per corner `h` (Catmull-Clark's host). A face without one must be a
 /// triangle and becomes four: `[v, e(h), e(prev h)]` per corner and the
 /// middle `[e(h0), e(h1), e(h2)]` (Loop's host).
-pub(crate) struct Primal {
-    pub sizes: Vec<u32>,
-    pub verts: Vec<u32>,
-    pub twins: Vec<u32>,
-}
-
-pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Primal {
+///
+/// Returns the output mesh with the new points `pos` laid out as above.
+pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>) -> Result<Mesh> {
     let (next, vert, face) = m.halfedge_columns();
     let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
     let prev = &m.he_prev;
@@ -332,7 +419,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Prim
     let mut tw = vec![0u32; nc];
     let (pc, pt) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()));
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
-        let hs = &fl.fh[fl.off[f] as usize..fl.off[f + 1] as usize];
+        let hs = fl.corners(f);
         let n = hs.len();
         let b = base[f] as usize;
         // SAFETY: face f writes only its own range base[f]..base[f + 1].
@@ -373,7 +460,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32]) -> Prim
             }
         }
     });
-    Primal { sizes, verts: cv, twins: tw }
+    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
 /// Sum of `pos[head(h)]` over the outgoing half-edges of `v` and their count.
@@ -405,7 +492,7 @@ pub(crate) mod test_meshes {
         s.validate().unwrap();
         assert_eq!((s.n_vertices(), s.n_edges(), s.n_faces(), s.genus(), s.n_self_loops()), (10, 30, 16, 3, 6));
     }
-    use crate::mesh::{BuildOptions, Mesh};
+    use crate::mesh::{BuildOptions, Corner, Mesh};
     use crate::primitives;
     use crate::FaceId;
     use glam::DVec3;
@@ -516,6 +603,114 @@ pub(crate) mod test_meshes {
     }
     pub fn n_point_spheres(m: &Mesh) -> usize {
         m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
+    }
+
+    /// Whether every face of `m` other than a one-gon has `n` corners.
+    pub fn all_faces_but_one_gons_have(m: &Mesh, n: usize) -> bool {
+        face_sizes(m).iter().filter(|&&s| s != 1).all(|&s| s == n)
+    }
+
+    /// The checks every scheme's output `r` of input `m` must pass: it
+    /// validates, keeps the point-spheres, the genus and the number of
+    /// components, and has `(V', E', F')` = `want` with the point-spheres left
+    /// out of V' and F'.
+    pub fn check_output(name: &str, m: &Mesh, r: &Mesh, want: (usize, usize, usize)) {
+        let ps = n_point_spheres(m);
+        r.validate().unwrap_or_else(|err| panic!("{name}: {err}"));
+        assert_eq!(n_point_spheres(r), ps, "{name} point-spheres");
+        assert_eq!(r.n_vertices() - ps, want.0, "{name} V'");
+        assert_eq!(r.n_edges(), want.1, "{name} E'");
+        assert_eq!(r.n_faces() - ps, want.2, "{name} F'");
+        assert_eq!(r.genus(), m.genus(), "{name} genus");
+        assert_eq!(r.n_components(), m.n_components(), "{name} components");
+    }
+
+    /// Runs `scheme` on every mesh of the [`corpus`] and makes the checks of
+    /// [`check_output`], with the counts `counts(m, (V, E, F))` from the
+    /// input's `V`, `E`, `F` (point-spheres left out), then the scheme's own
+    /// checks `more(name, m, r)`.
+    pub fn check_on_corpus(
+        scheme: impl Fn(&Mesh) -> crate::error::Result<Mesh>,
+        counts: impl Fn(&Mesh, (usize, usize, usize)) -> (usize, usize, usize),
+        more: impl Fn(&str, &Mesh, &Mesh),
+    ) {
+        for (name, m) in corpus() {
+            let ps = n_point_spheres(&m);
+            let want = counts(&m, (m.n_vertices() - ps, m.n_edges(), m.n_faces() - ps));
+            let r = scheme(&m).unwrap_or_else(|err| panic!("{name}: {err}"));
+            check_output(name, &m, &r, want);
+            more(name, &m, &r);
+        }
+    }
+
+    /// A cube without its first face, closed by a hole face.
+    pub fn cube_with_hole() -> Mesh {
+        let c = primitives::cube().to_polygons();
+        let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
+        let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+        Mesh::from_polygons(primitives::cube().positions().to_vec(), &sizes, &idx, opts).unwrap()
+    }
+
+    /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
+    /// merged face runs along both sides of the new edge.
+    pub fn handle_cube() -> Mesh {
+        let mut m = crate::primitives::cube();
+        let a = m.face_halfedge(FaceId(0)).unwrap();
+        let b = m.face_halfedge(FaceId(1)).unwrap();
+        m.insert_edge(Corner::Halfedge(a), Corner::Halfedge(b)).unwrap();
+        assert_eq!(m.genus(), 1);
+        m
+    }
+
+    /// A prism over a counter-clockwise simple polygon (may be non-convex):
+    /// planar faces, every vertex 3-valent.
+    pub fn prism(profile: &[[f64; 2]], height: f64) -> Mesh {
+        let n = profile.len() as i64;
+        let mut pos: Vec<DVec3> = profile.iter().map(|p| DVec3::new(p[0], p[1], 0.0)).collect();
+        pos.extend(profile.iter().map(|p| DVec3::new(p[0], p[1], height)));
+        let mut sizes = vec![n, n];
+        let mut idx: Vec<i64> = (0..n).rev().collect();
+        idx.extend(n..2 * n);
+        for i in 0..n {
+            let j = (i + 1) % n;
+            sizes.push(4);
+            idx.extend([i, j, n + j, n + i]);
+        }
+        Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
+    }
+
+    /// A five-pointed star prism (non-convex planar faces).
+    pub fn star_prism() -> Mesh {
+        let pts: Vec<[f64; 2]> = (0..10)
+            .map(|k| {
+                let r = if k % 2 == 0 { 1.0 } else { 0.4 };
+                let a = std::f64::consts::PI * k as f64 / 5.0;
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        prism(&pts, 0.5)
+    }
+
+    pub fn counts(m: &Mesh) -> (usize, usize, usize) {
+        (m.n_vertices(), m.n_edges(), m.n_faces())
+    }
+
+    /// A cube with a self-loop (a one-gon inside a quad, made by InsertEdge
+    /// on one corner twice) and a two-gon (an edge doubling a cube edge).
+    pub fn one_gon_two_gon_cube() -> Mesh {
+        let mut m = crate::primitives::cube();
+        let h = m.face_halfedge(FaceId(0)).unwrap();
+        m.insert_edge(Corner::Halfedge(h), Corner::Halfedge(h)).unwrap();
+        let g = m.face_halfedge(FaceId(3)).unwrap();
+        let g2 = m.next(g);
+        m.insert_edge(Corner::Halfedge(g), Corner::Halfedge(g2)).unwrap();
+        m.validate().unwrap();
+        assert_eq!(m.n_self_loops(), 1);
+        let hist = m.face_size_histogram();
+        assert_eq!(hist.get(&1), Some(&1));
+        assert_eq!(hist.get(&2), Some(&1));
+        m
     }
 }
 

@@ -1,7 +1,6 @@
 //! Schemes: one file each. Every scheme is a free function taking a `&Mesh`
 //! and returning a new `Mesh`; the mesh structure knows nothing about them.
 
-pub(crate) mod tables;
 pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
