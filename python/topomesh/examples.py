@@ -40,9 +40,11 @@ def star_prism(points: int = 5, inner: float = 0.45, height: float = 0.6, apex: 
     ``height + apex``; its ``2·points`` edges run to the star's corners on the
     top rim, so its link is the star polygon (non-convex, star-shaped about the
     axis) and all of it lies below the apex. The bottom is **one non-convex
-    face** (the flat ``2·points``-gon star); the sides are quads. The inner
-    (reflex) corners of the star are three-valent vertices with one concave edge
-    (the vertical one) and negative angle deficit.
+    face** (the flat ``2·points``-gon star); the sides are quads. The star's
+    reflex corners on the top rim are **saddle** vertices (four neighbours,
+    alternately above and below); on the bottom they are three-valent with
+    negative angle deficit (one concave edge, the vertical one). The tips are
+    convex.
 
     Parameters
     ----------
@@ -85,7 +87,9 @@ def dented_cube(depth: float = 0.5) -> Mesh:
     ``z = 1 − depth``; the top face is replaced by the four triangles from it
     to the top edges. Its four neighbours (the top corners) all lie *above* it,
     on the outer side: an inverted pyramid, angle deficit > 0. The other faces
-    are the cube's five quads; the eight corners are convex.
+    are the cube's five quads. The dent pulls the links of the four top corners
+    in: they become **star** vertices (the paper's Fig. 9 input also has both
+    star and concave vertices); the four bottom corners are convex.
 
     Parameters
     ----------
