@@ -87,6 +87,21 @@ def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
                     f"Sierpinski {name} ×2, {smooth.replace('_', '-')} ×2",
                     lambda n=name: getattr(solids[n]().sierpinski(iterations=2), smooth)(iterations=2),
                 )
+        if _method("doo_sabin"):
+            # inputs with star, concave, planar and saddle vertices (Sierpinski paper, section 5)
+            from topomesh import examples
+
+            for make, what in (
+                (examples.star_prism, "star vertex, non-convex face"),
+                (examples.dented_cube, "concave and star vertices"),
+                (examples.planar_vertex_box, "planar vertices"),
+                (examples.monkey_saddle, "saddle vertex"),
+            ):
+                yield Entry(
+                    f"{make.__name__}_sierpinski_doo_sabin",
+                    f"{make.__name__.replace('_', ' ').capitalize()} ({what}): Sierpinski ×2, Doo-Sabin ×2",
+                    lambda make=make: make().sierpinski(iterations=2).doo_sabin(iterations=2),
+                )
     if hasattr(topomesh, "menger_sponge"):
         for level in (1, 2, 3):
             yield Entry(f"menger_sponge_{level}", f"Classic Menger sponge, level {level}", lambda k=level: topomesh.menger_sponge(k))
