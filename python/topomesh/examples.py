@@ -155,7 +155,7 @@ def planar_vertex_box(size: tuple[float, float, float] = (1.5, 1.0, 1.0), n: int
                     for a, b in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)):
                         g = [0, 0, 0]
                         g[axis], g[u], g[w] = side, a, b
-                        quad.append(vid(tuple(g)))
+                        quad.append(vid((g[0], g[1], g[2])))
                     faces.append(quad if side == n else quad[::-1])
     return Mesh.from_polygons(np.array(verts), faces)
 
