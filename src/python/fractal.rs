@@ -1,43 +1,9 @@
 //! Fractal schemes: `Mesh.sierpinski` and `topomesh.menger_sponge`.
 
-use super::err;
+use super::{err, iterate};
 use super::mesh::PyMesh;
-use crate::mesh::Mesh;
 use crate::schemes::{menger as mg, menger_sponge as sponge, sierpinski as sp};
 use pyo3::prelude::*;
-
-/// Runs `step` `iterations` times with the GIL released, one tqdm update per
-/// iteration when `progress` is true.
-pub(crate) fn iterate(
-    py: Python<'_>,
-    m: &Mesh,
-    iterations: usize,
-    progress: bool,
-    desc: &str,
-    step: impl Fn(&Mesh) -> crate::Result<Mesh> + Sync,
-) -> PyResult<Mesh> {
-    let bar = if progress {
-        let kw = pyo3::types::PyDict::new(py);
-        kw.set_item("total", iterations)?;
-        kw.set_item("desc", desc)?;
-        Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
-    } else {
-        None
-    };
-    let mut cur: Option<Mesh> = None;
-    for _ in 0..iterations {
-        let src = cur.as_ref().unwrap_or(m);
-        let next = py.detach(|| step(src)).map_err(err)?;
-        cur = Some(next);
-        if let Some(b) = &bar {
-            b.call_method1("update", (1,))?;
-        }
-    }
-    if let Some(b) = &bar {
-        b.call_method0("close")?;
-    }
-    Ok(cur.unwrap_or_else(|| m.clone()))
-}
 
 #[pymethods]
 impl PyMesh {
@@ -67,8 +33,8 @@ impl PyMesh {
     ///     ``V + N`` vertices, ``E + 4N`` edges, ``2N + K`` faces and
     ///     ``N`` more self-loops; the tetrahedron's genus is 3, 15, 63, ...
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn sierpinski(&self, py: Python<'_>, iterations: usize, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "sierpinski", sp::sierpinski).map(PyMesh::wrap)
+    fn sierpinski(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "sierpinski", sp::sierpinski)
     }
 
     /// Generalized Menger sponge (dissertation ch. VII): every face is
@@ -97,9 +63,9 @@ impl PyMesh {
     ///     Per iteration on a connected mesh: genus ``2g + F - 1``. On the
     ///     cube the first iteration is the classic level-1 sponge.
     #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
-    fn menger(&self, py: Python<'_>, iterations: usize, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
+    fn menger(&self, py: Python<'_>, iterations: i64, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
-        iterate(py, &self.inner, iterations, progress, "menger", |m| mg::menger(m, &o)).map(PyMesh::wrap)
+        iterate(py, &self.inner, iterations, progress, "menger", |m| mg::menger(m, &o))
     }
 }
 

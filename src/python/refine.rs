@@ -2,46 +2,10 @@
 //! papers: `Mesh.honeycomb` and `Mesh.vertex_truncation`.
 
 use super::mesh::PyMesh;
-use super::{arg_err, err};
-use crate::mesh::Mesh;
+use super::{arg_err, err, iterate};
 use crate::schemes::honeycomb::{self, honeycomb};
 use crate::schemes::vertex_truncation::{vertex_truncation, Truncation};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-
-/// Applies `step` `iterations` times with the GIL released, one tqdm update
-/// per iteration when `progress` is true.
-fn iterate(
-    py: Python<'_>,
-    mesh: &Mesh,
-    iterations: i64,
-    progress: bool,
-    desc: &str,
-    step: impl Fn(&Mesh) -> crate::Result<Mesh> + Send + Sync,
-) -> PyResult<PyMesh> {
-    if iterations < 0 {
-        return Err(arg_err(format!("{desc}: iterations = {iterations} must be >= 0")));
-    }
-    let bar = if progress {
-        let kw = PyDict::new(py);
-        kw.set_item("total", iterations)?;
-        kw.set_item("desc", desc)?;
-        Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
-    } else {
-        None
-    };
-    let mut cur = mesh.clone();
-    for _ in 0..iterations {
-        cur = py.detach(|| step(&cur)).map_err(err)?;
-        if let Some(b) = &bar {
-            b.call_method1("update", (1,))?;
-        }
-    }
-    if let Some(b) = &bar {
-        b.call_method0("close")?;
-    }
-    Ok(PyMesh::wrap(cur))
-}
 
 #[pymethods]
 impl PyMesh {

@@ -1,39 +1,9 @@
 //! Smoothing and refinement schemes as `Mesh` methods (`crate::schemes`).
 
 use super::mesh::PyMesh;
-use super::{arg_err, err};
-use crate::error::Result;
-use crate::mesh::Mesh;
+use super::iterate;
 use crate::schemes;
 use pyo3::prelude::*;
-
-/// Applies `step` `iterations` times with the GIL released, one tqdm update
-/// per iteration when `progress`.
-fn iterate(py: Python<'_>, m: &Mesh, iterations: i64, progress: bool, name: &str, step: fn(&Mesh) -> Result<Mesh>) -> PyResult<PyMesh> {
-    if iterations < 0 {
-        return Err(arg_err(format!("{name}: iterations must be >= 0 (got {iterations})")));
-    }
-    let bar = if progress {
-        let kw = pyo3::types::PyDict::new(py);
-        kw.set_item("total", iterations)?;
-        kw.set_item("desc", name)?;
-        Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
-    } else {
-        None
-    };
-    let mut cur: Option<Mesh> = None;
-    for _ in 0..iterations {
-        let src = cur.as_ref().unwrap_or(m);
-        cur = Some(py.detach(|| step(src)).map_err(err)?);
-        if let Some(b) = &bar {
-            b.call_method1("update", (1,))?;
-        }
-    }
-    if let Some(b) = &bar {
-        b.call_method0("close")?;
-    }
-    Ok(PyMesh::wrap(cur.unwrap_or_else(|| m.clone())))
-}
 
 #[pymethods]
 impl PyMesh {
