@@ -294,3 +294,16 @@ def test_conversions():
     assert from_trimesh(tm).genus == 1
     man = m.to_manifold()
     assert man.genus() == 1
+
+
+@pytest.mark.parametrize(
+    "scheme",
+    ["catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual", "honeycomb", "vertex_truncation", "sierpinski", "menger"],
+)
+def test_every_scheme_rejects_negative_iterations_and_shows_progress(scheme, capsys):
+    cube = topomesh.cube()
+    with pytest.raises(MeshError, match=rf"{scheme}: iterations = -1 must be >= 0"):
+        getattr(cube, scheme)(iterations=-1)
+    assert getattr(cube, scheme)(iterations=0) == cube
+    getattr(cube, scheme)(iterations=1, progress=True)
+    assert "1/1" in capsys.readouterr().err  # the tqdm bar
