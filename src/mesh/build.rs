@@ -320,8 +320,8 @@ impl Mesh {
             }));
         }
         // half-edge ids: edges numbered by their first corner (2e), the twin gets 2e + 1
-        let he_of = number_halfedges(twin);
-        let nh = n - twin.iter().filter(|&&t| t == NONE).count();
+        let (he_of, ne) = number_halfedges(twin);
+        let nh = 2 * ne;
         let mut m = Mesh {
             pos: positions,
             v_out: vec![NONE; nv],
@@ -425,7 +425,8 @@ impl Mesh {
 
 /// Half-edge id of every corner with a twin: edges numbered by their first
 /// corner in corner order; that corner gets `2e`, its twin `2e + 1`.
-fn number_halfedges(twin: &[u32]) -> Vec<u32> {
+/// Also returns the number of edges.
+fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
     let n = twin.len();
     let is_first = |c: usize| twin[c] != NONE && twin[c] as usize > c;
     // parallel exclusive scan of edge starts over fixed chunks
@@ -449,7 +450,7 @@ fn number_halfedges(twin: &[u32]) -> Vec<u32> {
             }
         }
     });
-    (0..n)
+    let he_of = (0..n)
         .into_par_iter()
         .with_min_len(PAR_CHUNK)
         .map(|c| {
@@ -462,7 +463,8 @@ fn number_halfedges(twin: &[u32]) -> Vec<u32> {
                 first_ids[t as usize] + 1
             }
         })
-        .collect()
+        .collect();
+    (he_of, acc as usize)
 }
 
 /// Work unit of the parallel loops: large enough to amortize rayon's overhead.
