@@ -11,7 +11,8 @@
 //!
 //! Bounds: blocks of at least [`MIN_BLOCK`] bytes, at most [`SLOTS`] of them
 //! and [`MAX_CACHED`] bytes in total; a cached block is reused only for a
-//! request of at least half its size. Only topomesh's own (Rust)
+//! request of at least half its size, and a large request that no cached
+//! block fits empties the cache (see [`BlockCache::take`]). Only topomesh's own (Rust)
 //! allocations go through here; Python's and NumPy's are untouched.
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -46,6 +47,10 @@ impl BlockCache {
     /// A cached block of `size..=2 * size` bytes (the smallest), removed
     /// from the cache. The lock never allocates (a futex), so allocating
     /// under it cannot recurse.
+    ///
+    /// On a miss the whole cache is given back to the system first, so a
+    /// workload that does not repeat itself peaks no higher than without the
+    /// cache (its freed blocks are reused by malloc as before).
     fn take(&self, size: usize) -> Option<*mut u8> {
         let mut c = self.cache.lock().ok()?;
         let mut best: Option<usize> = None;
@@ -54,7 +59,16 @@ impl BlockCache {
                 best = Some(i);
             }
         }
-        let i = best?;
+        let Some(i) = best else {
+            for b in c.blocks.iter_mut().filter(|b| b.1 != 0) {
+                // SAFETY: a cached block was allocated by System and is owned
+                // by the cache alone; System's free ignores the layout size.
+                unsafe { System.dealloc(b.0 as *mut u8, Layout::from_size_align_unchecked(b.1, 1)) };
+                *b = (0, 0);
+            }
+            c.total = 0;
+            return None;
+        };
         let (p, s) = c.blocks[i];
         c.blocks[i] = (0, 0);
         c.total -= s;
