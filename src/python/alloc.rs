@@ -55,7 +55,7 @@ impl BlockCache {
         let mut c = self.cache.lock().ok()?;
         let mut best: Option<usize> = None;
         for (i, &(_, s)) in c.blocks.iter().enumerate() {
-            if s >= size && s / 2 <= size && best.is_none_or(|b| s < c.blocks[b].1) {
+            if s >= size && s / 2 <= size && best.map_or(true, |b| s < c.blocks[b].1) {
                 best = Some(i);
             }
         }
