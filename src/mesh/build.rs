@@ -242,7 +242,12 @@ impl Mesh {
                 holes.push(true);
             }
         }
-        Mesh::build(positions, &sizes_u, &verts, &twin, holes)
+        // Without hole faces every twin comes from `pair_sides`, which links
+        // a side a -> b only with a side b -> a (a self-loop side with one at
+        // the same vertex) and leaves only point-sphere corners (faces of
+        // size 1) without twin: the twin check of `build` cannot fail, so it
+        // is skipped. Hole corners are checked.
+        Mesh::build(positions, &sizes_u, &verts, &twin, holes, unmatched.is_empty())
     }
 
     /// The one-pass builder for schemes: faces as `sizes` + flat tail vertices
@@ -260,10 +265,14 @@ impl Mesh {
         twin: &[u32],
     ) -> Result<Mesh> {
         let holes = vec![false; sizes.len()];
-        Mesh::build(positions, sizes, corner_verts, twin, holes)
+        Mesh::build(positions, sizes, corner_verts, twin, holes, false)
     }
 
-    fn build(positions: Vec<DVec3>, sizes: &[u32], verts: &[u32], twin: &[u32], f_hole: Vec<bool>) -> Result<Mesh> {
+    /// `twins_valid`: the caller guarantees what the twin check below tests
+    /// (vertices in range, symmetric twins running between the same vertices
+    /// in opposite directions, twinless corners alone in their face); the
+    /// unsafe fill relies on it.
+    fn build(positions: Vec<DVec3>, sizes: &[u32], verts: &[u32], twin: &[u32], f_hole: Vec<bool>, twins_valid: bool) -> Result<Mesh> {
         let n = verts.len();
         let nv = positions.len();
         let nf = sizes.len();
@@ -290,7 +299,8 @@ impl Mesh {
         // every corner: a vertex in range and a symmetric twin that starts
         // where the corner's side ends (checked from both sides, this also
         // makes the twin end where the corner starts)
-        let bad = first_in_range(nf, |f| {
+        // (debug builds check even when the caller vouches for the twins)
+        let bad_face = |f: usize| {
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
             (s..e).any(|c| {
                 let t = twin[c];
@@ -302,7 +312,8 @@ impl Mesh {
                         t as usize >= n || t as usize == c || twin[t as usize] != c as u32 || verts[t as usize] != verts[cn]
                     }
             })
-        });
+        };
+        let bad = if twins_valid && !cfg!(debug_assertions) { None } else { first_in_range(nf, bad_face) };
         if let Some(f) = bad {
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
             let c = (s..e)
