@@ -53,20 +53,22 @@ impl Mesh {
                 MAX_ELEMENTS / 2
             )));
         }
-        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+        if let Some(v) = first_index(&positions, |p| !p.is_finite()) {
             return Err(MeshError::NonFinite { vertex: v });
         }
         // sizes and indices
+        if let Some(f) = first_index(sizes, |&s| s <= 0) {
+            if sizes[f] == 0 {
+                return Err(MeshError::EmptyFace { face: f });
+            }
+            return Err(MeshError::InvalidArgument(format!("face {f} has negative size {}", sizes[f])));
+        }
         let mut offsets = Vec::with_capacity(sizes.len() + 1);
         offsets.push(0usize);
-        for (f, &s) in sizes.iter().enumerate() {
-            if s <= 0 {
-                if s == 0 {
-                    return Err(MeshError::EmptyFace { face: f });
-                }
-                return Err(MeshError::InvalidArgument(format!("face {f} has negative size {s}")));
-            }
-            offsets.push(offsets[f] + s as usize);
+        let mut acc = 0usize;
+        for &s in sizes {
+            acc += s as usize;
+            offsets.push(acc);
         }
         if *offsets.last().unwrap() != indices.len() {
             return Err(MeshError::InvalidArgument(format!(
@@ -75,82 +77,124 @@ impl Mesh {
                 indices.len()
             )));
         }
-        let mut verts = Vec::with_capacity(indices.len());
-        let mut face_of = Vec::with_capacity(indices.len());
-        for f in 0..sizes.len() {
-            for (k, &i) in indices[offsets[f]..offsets[f + 1]].iter().enumerate() {
-                if i < 0 || i as usize >= nv {
-                    return Err(MeshError::IndexOutOfRange { face: f, position: k, index: i, n_vertices: nv });
-                }
-                verts.push(i as u32);
-                face_of.push(f as u32);
-            }
+        // the first bad index in corner order, i.e. of the lowest face
+        if let Some(c) = first_index(indices, |&i| i < 0 || i as usize >= nv) {
+            let f = face_of(&offsets, c as u32);
+            return Err(MeshError::IndexOutOfRange { face: f, position: c - offsets[f], index: indices[c], n_vertices: nv });
         }
+        let mut verts: Vec<u32> = indices.par_iter().with_min_len(PAR_CHUNK).map(|&i| i as u32).collect();
         let n = verts.len();
-        // head vertex of every corner's side
-        let mut head = vec![0u32; n];
+        // head vertex of every corner's side: the next corner's vertex, except
+        // at the end of a face, which wraps to its first corner
+        let mut head: Vec<u32> = (0..n).into_par_iter().with_min_len(PAR_CHUNK).map(|c| if c + 1 < n { verts[c + 1] } else { 0 }).collect();
         for f in 0..sizes.len() {
-            let (s, e) = (offsets[f], offsets[f + 1]);
-            for c in s..e {
-                head[c] = verts[if c + 1 == e { s } else { c + 1 }];
-            }
+            head[offsets[f + 1] - 1] = verts[offsets[f]];
         }
         // corners per vertex: point-spheres are size-1 faces whose vertex is used once
         let mut uses = vec![0u32; nv];
         for &v in &verts {
             uses[v as usize] += 1;
         }
-        if let Some(v) = uses.iter().position(|&u| u == 0) {
+        if let Some(v) = first_index(&uses, |&u| u == 0) {
             return Err(MeshError::InvalidArgument(format!(
                 "vertex {v} is not used by any face; remove unreferenced vertices first"
             )));
         }
-        let is_point = |c: usize| -> bool {
-            let f = face_of[c] as usize;
-            offsets[f + 1] - offsets[f] == 1 && uses[verts[c] as usize] == 1
-        };
+        // a side from a vertex to itself lies in a one-gon or ends at a repeat
+        // of its vertex, so (used once) it is the corner of a size-1 face
+        let is_point = |c: usize| -> bool { head[c] == verts[c] && uses[verts[c] as usize] == 1 };
 
         // --- pair corners into edges: bucket sides by their smaller vertex
-        let mut bucket_start = vec![0u32; nv + 1];
-        for c in 0..n {
-            if !is_point(c) {
-                bucket_start[verts[c].min(head[c]) as usize + 1] += 1;
-            }
-        }
-        for v in 0..nv {
-            bucket_start[v + 1] += bucket_start[v];
-        }
-        let mut fill = bucket_start.clone();
-        let mut bucket = vec![0u32; bucket_start[nv] as usize];
-        for c in 0..n {
-            if !is_point(c) {
-                let lo = verts[c].min(head[c]) as usize;
-                bucket[fill[lo] as usize] = c as u32;
-                fill[lo] += 1;
-            }
-        }
-        let mut twin = vec![NONE; n];
-        let mut unmatched: Vec<u32> = Vec::new();
-        let mut group: Vec<(u32, u32)> = Vec::new(); // (other vertex, corner)
-        for lo in 0..nv {
-            let b = &bucket[bucket_start[lo] as usize..bucket_start[lo + 1] as usize];
-            group.clear();
-            group.extend(b.iter().map(|&c| {
-                let (t, h) = (verts[c as usize], head[c as usize]);
-                (if t as usize == lo { h } else { t }, c)
-            }));
-            group.sort_unstable();
-            let mut i = 0;
-            while i < group.len() {
-                let hi = group[i].0;
-                let mut j = i;
-                while j < group.len() && group[j].0 == hi {
-                    j += 1;
+        // (a counting sort, in parallel over corner chunks: chunk k fills its
+        // own slots of every bucket, after those of chunks < k)
+        let lo_of: Vec<u32> = (0..n)
+            .into_par_iter()
+            .with_min_len(PAR_CHUNK)
+            .map(|c| if is_point(c) { NONE } else { verts[c].min(head[c]) })
+            .collect();
+        let n_chunks = rayon::current_num_threads().clamp(1, 8).min(n.div_ceil(PAR_CHUNK)).max(1);
+        let chunk_len = n.div_ceil(n_chunks).max(1);
+        let mut fill: Vec<Vec<u32>> = lo_of
+            .par_chunks(chunk_len)
+            .map(|ch| {
+                let mut cnt = vec![0u32; nv];
+                for &lo in ch {
+                    if lo != NONE {
+                        cnt[lo as usize] += 1;
+                    }
                 }
-                let sides = &group[i..j];
-                pair_sides(lo as u32, hi, sides, &verts, &face_of, opts, &mut twin, &mut unmatched)?;
-                i = j;
+                cnt
+            })
+            .collect();
+        let mut bucket_start = vec![0u32; nv + 1];
+        let mut acc = 0u32;
+        for v in 0..nv {
+            bucket_start[v] = acc;
+            for cnt in fill.iter_mut() {
+                let k = cnt[v];
+                cnt[v] = acc;
+                acc += k;
             }
+        }
+        bucket_start[nv] = acc;
+        let mut bucket = vec![0u32; acc as usize];
+        {
+            let out = SyncPtr(bucket.as_mut_ptr());
+            lo_of.par_chunks(chunk_len).zip(fill.par_iter_mut()).enumerate().for_each(|(k, (ch, slot))| {
+                for (i, &lo) in ch.iter().enumerate() {
+                    if lo != NONE {
+                        // SAFETY: slot[lo] runs through the slots reserved for
+                        // chunk k in bucket lo (the prefix above gives every
+                        // (bucket, chunk) pair its own range), so no two
+                        // writes, in this chunk or another, hit the same index.
+                        unsafe { *out.at(slot[lo as usize] as usize) = (k * chunk_len + i) as u32 };
+                        slot[lo as usize] += 1;
+                    }
+                }
+            });
+        }
+        drop(fill);
+        drop(lo_of);
+        // pair each bucket's sides, in parallel over vertex ranges; the error
+        // reported is the one of the lowest vertex, as in a sequential sweep,
+        // and unmatched sides are listed in vertex order
+        let mut twin = vec![NONE; n];
+        let tw = SyncPtr(twin.as_mut_ptr());
+        let pieces: Vec<Result<Vec<u32>>> = (0..nv.div_ceil(VERTEX_CHUNK))
+            .into_par_iter()
+            .map(|k| {
+                let mut unmatched: Vec<u32> = Vec::new();
+                let mut group: Vec<(u32, u32)> = Vec::new(); // (other vertex, corner)
+                for lo in k * VERTEX_CHUNK..((k + 1) * VERTEX_CHUNK).min(nv) {
+                    let b = &bucket[bucket_start[lo] as usize..bucket_start[lo + 1] as usize];
+                    group.clear();
+                    group.extend(b.iter().map(|&c| {
+                        let (t, h) = (verts[c as usize], head[c as usize]);
+                        (if t as usize == lo { h } else { t }, c)
+                    }));
+                    group.sort_unstable();
+                    let mut i = 0;
+                    while i < group.len() {
+                        let hi = group[i].0;
+                        let mut j = i;
+                        while j < group.len() && group[j].0 == hi {
+                            j += 1;
+                        }
+                        let sides = &group[i..j];
+                        // SAFETY: pair_sides writes twin only at the corners of
+                        // `sides`, all in bucket lo; every corner is in at most
+                        // one bucket, and each bucket is paired by one task.
+                        unsafe { pair_sides(lo as u32, hi, sides, &verts, &offsets, opts, tw, &mut unmatched)? };
+                        i = j;
+                    }
+                }
+                Ok(unmatched)
+            })
+            .collect();
+        drop(bucket);
+        let mut unmatched: Vec<u32> = Vec::new();
+        for p in pieces {
+            unmatched.extend(p?);
         }
 
         // --- cap boundaries with hole faces
@@ -198,7 +242,12 @@ impl Mesh {
                 holes.push(true);
             }
         }
-        Mesh::build(positions, &sizes_u, &verts, &twin, holes)
+        // Without hole faces every twin comes from `pair_sides`, which links
+        // a side a -> b only with a side b -> a (a self-loop side with one at
+        // the same vertex) and leaves only point-sphere corners (faces of
+        // size 1) without twin: the twin check of `build` cannot fail, so it
+        // is skipped. Hole corners are checked.
+        Mesh::build(positions, &sizes_u, &verts, &twin, holes, unmatched.is_empty())
     }
 
     /// The one-pass builder for schemes: faces as `sizes` + flat tail vertices
@@ -216,10 +265,14 @@ impl Mesh {
         twin: &[u32],
     ) -> Result<Mesh> {
         let holes = vec![false; sizes.len()];
-        Mesh::build(positions, sizes, corner_verts, twin, holes)
+        Mesh::build(positions, sizes, corner_verts, twin, holes, false)
     }
 
-    fn build(positions: Vec<DVec3>, sizes: &[u32], verts: &[u32], twin: &[u32], f_hole: Vec<bool>) -> Result<Mesh> {
+    /// `twins_valid`: the caller guarantees what the twin check below tests
+    /// (vertices in range, symmetric twins running between the same vertices
+    /// in opposite directions, twinless corners alone in their face); the
+    /// unsafe fill relies on it.
+    fn build(positions: Vec<DVec3>, sizes: &[u32], verts: &[u32], twin: &[u32], f_hole: Vec<bool>, twins_valid: bool) -> Result<Mesh> {
         let n = verts.len();
         let nv = positions.len();
         let nf = sizes.len();
@@ -246,7 +299,8 @@ impl Mesh {
         // every corner: a vertex in range and a symmetric twin that starts
         // where the corner's side ends (checked from both sides, this also
         // makes the twin end where the corner starts)
-        let bad = (0..nf).into_par_iter().with_min_len(1024).find_first(|&f| {
+        // (debug builds check even when the caller vouches for the twins)
+        let bad_face = |f: usize| {
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
             (s..e).any(|c| {
                 let t = twin[c];
@@ -258,7 +312,8 @@ impl Mesh {
                         t as usize >= n || t as usize == c || twin[t as usize] != c as u32 || verts[t as usize] != verts[cn]
                     }
             })
-        });
+        };
+        let bad = if twins_valid && !cfg!(debug_assertions) { None } else { first_in_range(nf, bad_face) };
         if let Some(f) = bad {
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
             let c = (s..e)
@@ -276,8 +331,8 @@ impl Mesh {
             }));
         }
         // half-edge ids: edges numbered by their first corner (2e), the twin gets 2e + 1
-        let he_of = number_halfedges(twin);
-        let nh = n - twin.iter().filter(|&&t| t == NONE).count();
+        let (he_of, ne) = number_halfedges(twin);
+        let nh = 2 * ne;
         let mut m = Mesh {
             pos: positions,
             v_out: vec![NONE; nv],
@@ -337,7 +392,7 @@ impl Mesh {
                 m.f_start[f] = POINT | v;
             }
         }
-        if let Some(v) = m.v_out.par_iter().position_first(|&o| o == NONE) {
+        if let Some(v) = first_index(&m.v_out, |&o| o == NONE) {
             return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
         }
         m.check_vertex_umbrellas()?;
@@ -381,7 +436,8 @@ impl Mesh {
 
 /// Half-edge id of every corner with a twin: edges numbered by their first
 /// corner in corner order; that corner gets `2e`, its twin `2e + 1`.
-fn number_halfedges(twin: &[u32]) -> Vec<u32> {
+/// Also returns the number of edges.
+fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
     let n = twin.len();
     let is_first = |c: usize| twin[c] != NONE && twin[c] as usize > c;
     // parallel exclusive scan of edge starts over fixed chunks
@@ -405,7 +461,7 @@ fn number_halfedges(twin: &[u32]) -> Vec<u32> {
             }
         }
     });
-    (0..n)
+    let he_of = (0..n)
         .into_par_iter()
         .with_min_len(PAR_CHUNK)
         .map(|c| {
@@ -418,11 +474,35 @@ fn number_halfedges(twin: &[u32]) -> Vec<u32> {
                 first_ids[t as usize] + 1
             }
         })
-        .collect()
+        .collect();
+    (he_of, acc as usize)
 }
 
 /// Work unit of the parallel loops: large enough to amortize rayon's overhead.
 const PAR_CHUNK: usize = 1 << 14;
+/// Vertices per task of the parallel pairing in [`Mesh::from_polygons`].
+const VERTEX_CHUNK: usize = 1 << 12;
+
+/// The index of the first element of `s` satisfying `pred`, searched in
+/// parallel over chunks (rayon's per-item `position_first` costs several ns
+/// per element; a chunk scan vectorizes).
+pub(crate) fn first_index<T: Sync>(s: &[T], pred: impl Fn(&T) -> bool + Sync) -> Option<usize> {
+    let k = s.par_chunks(PAR_CHUNK).position_first(|ch| ch.iter().any(&pred))?;
+    let base = k * PAR_CHUNK;
+    s[base..].iter().position(&pred).map(|i| base + i)
+}
+
+/// The first `i` in `0..n` satisfying `pred`, searched like [`first_index`].
+pub(crate) fn first_in_range(n: usize, pred: impl Fn(usize) -> bool + Sync) -> Option<usize> {
+    let chunk = 4096;
+    let k = (0..n.div_ceil(chunk)).into_par_iter().find_first(|&k| (k * chunk..((k + 1) * chunk).min(n)).any(&pred))?;
+    (k * chunk..((k + 1) * chunk).min(n)).find(|&i| pred(i))
+}
+
+/// The face of corner `c`, given the prefix of face sizes (all sizes > 0).
+fn face_of(offsets: &[usize], c: u32) -> usize {
+    offsets.partition_point(|&o| o <= c as usize) - 1
+}
 
 /// A raw column pointer shared by the parallel fill in [`Mesh::build`], whose
 /// writes are disjoint by construction.
@@ -443,29 +523,36 @@ impl SyncPtr {
 
 /// Pairs the face sides between vertices `lo` and `hi` (`lo <= hi`).
 #[allow(clippy::too_many_arguments)]
-fn pair_sides(
+///
+/// # Safety
+/// `twin` points to a column of one entry per corner, and no other thread
+/// writes the entries of the corners in `sides` (the only ones written).
+unsafe fn pair_sides(
     lo: u32,
     hi: u32,
     sides: &[(u32, u32)],
     verts: &[u32],
-    face_of: &[u32],
+    offsets: &[usize],
     opts: BuildOptions,
-    twin: &mut [u32],
+    twin: SyncPtr,
     unmatched: &mut Vec<u32>,
 ) -> Result<()> {
+    let link = |twin: SyncPtr, a: u32, b: u32| {
+        // SAFETY: a and b are corners of `sides` (the caller's contract).
+        unsafe {
+            *twin.at(a as usize) = b;
+            *twin.at(b as usize) = a;
+        }
+    };
     // the common case, one side each way, without allocating
     if let [(_, c0), (_, c1)] = *sides {
         if lo != hi && (verts[c0 as usize] == lo) != (verts[c1 as usize] == lo) {
-            twin[c0 as usize] = c1;
-            twin[c1 as usize] = c0;
+            link(twin, c0, c1);
             return Ok(());
         }
     }
-    let faces = || sides.iter().map(|&(_, c)| face_of[c as usize] as usize).collect::<Vec<_>>();
-    let link = |twin: &mut [u32], a: u32, b: u32| {
-        twin[a as usize] = b;
-        twin[b as usize] = a;
-    };
+    let face_of = |c: u32| face_of(offsets, c);
+    let faces = || sides.iter().map(|&(_, c)| face_of(c)).collect::<Vec<_>>();
     if lo == hi {
         // self-loop sides have no direction to tell apart: pair in order
         if sides.len() > 2 && !opts.allow_multi_edges {
@@ -477,7 +564,7 @@ fn pair_sides(
             } else if opts.close_boundaries {
                 unmatched.push(p[0].1);
             } else {
-                return Err(MeshError::Boundary { a: lo as usize, b: hi as usize, face: face_of[p[0].1 as usize] as usize });
+                return Err(MeshError::Boundary { a: lo as usize, b: hi as usize, face: face_of(p[0].1) });
             }
         }
         return Ok(());
@@ -496,12 +583,12 @@ fn pair_sides(
             let c = fwd.first().or(bwd.first()).copied().unwrap();
             if !opts.close_boundaries {
                 let (a, b) = if fwd.is_empty() { (hi, lo) } else { (lo, hi) };
-                return Err(MeshError::Boundary { a: a as usize, b: b as usize, face: face_of[c as usize] as usize });
+                return Err(MeshError::Boundary { a: a as usize, b: b as usize, face: face_of(c) });
             }
             unmatched.push(c);
         }
         (2, 0) | (0, 2) => {
-            let (f1, f2) = (face_of[sides[0].1 as usize] as usize, face_of[sides[1].1 as usize] as usize);
+            let (f1, f2) = (face_of(sides[0].1), face_of(sides[1].1));
             let (a, b) = if fwd.is_empty() { (hi, lo) } else { (lo, hi) };
             return Err(MeshError::InconsistentOrientation { a: a as usize, b: b as usize, face1: f1, face2: f2 });
         }

@@ -3,7 +3,7 @@
 use super::arg_err;
 use glam::DVec3;
 use numpy::ndarray::{Array1, Array2};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 
 /// `numpy.asarray(obj)` with a named error instead of numpy's own.
@@ -38,8 +38,24 @@ pub(crate) fn positions(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Vec<
     Ok(s.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect())
 }
 
+/// Integers read from Python: borrowed from a contiguous `int64` NumPy
+/// array when the input is one (no copy), owned otherwise.
+pub(crate) enum Ints<'py> {
+    Owned(Vec<i64>),
+    Array(PyReadonlyArrayDyn<'py, i64>),
+}
+
+impl Ints<'_> {
+    pub fn as_slice(&self) -> &[i64] {
+        match self {
+            Ints::Owned(v) => v,
+            Ints::Array(a) => a.as_slice().expect("ascontiguousarray gives a contiguous array"),
+        }
+    }
+}
+
 /// A 1-D array of integers → `i64`s (no silent float truncation).
-pub(crate) fn indices_1d(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<i64>> {
+pub(crate) fn indices_1d<'py>(py: Python<'py>, obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Ints<'py>> {
     let a = as_ndarray(py, obj, what)?;
     let kind = dtype_kind(&a)?;
     let shape: Vec<usize> = a.getattr("shape")?.extract()?;
@@ -50,13 +66,12 @@ pub(crate) fn indices_1d(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> 
         return Err(arg_err(format!("{what}: dtype {} is not an integer type", a.getattr("dtype")?.str()?)));
     }
     let a = py.import("numpy")?.call_method1("ascontiguousarray", (a, "int64"))?;
-    let arr = a.cast::<PyArray1<i64>>()?.readonly();
-    Ok(arr.as_slice()?.to_vec())
+    Ok(Ints::Array(a.cast_into::<PyArrayDyn<i64>>()?.readonly()))
 }
 
 /// Faces given as a 2-D integer array `(F, k)` or as any sequence of index
 /// sequences (ragged allowed) → `(sizes, flat indices)`.
-pub(crate) fn faces(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<(Vec<i64>, Vec<i64>)> {
+pub(crate) fn faces<'py>(py: Python<'py>, obj: &Bound<'py, PyAny>) -> PyResult<(Vec<i64>, Ints<'py>)> {
     // fast path: a rectangular integer ndarray
     if let Ok(kind) = dtype_kind(obj) {
         let shape: Vec<usize> = obj.getattr("shape")?.extract()?;
@@ -65,11 +80,11 @@ pub(crate) fn faces(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<(Vec<i64
                 return Err(arg_err(format!("faces: dtype {} is not an integer type", obj.getattr("dtype")?.str()?)));
             }
             let a = py.import("numpy")?.call_method1("ascontiguousarray", (obj, "int64"))?;
-            let arr = a.cast::<PyArray2<i64>>()?.readonly();
+            let arr = a.cast_into::<PyArrayDyn<i64>>()?.readonly();
             if shape[1] == 0 && shape[0] > 0 {
                 return Err(crate::python::err(crate::MeshError::EmptyFace { face: 0 }));
             }
-            return Ok((vec![shape[1] as i64; shape[0]], arr.as_slice()?.to_vec()));
+            return Ok((vec![shape[1] as i64; shape[0]], Ints::Array(arr)));
         }
         if shape.len() != 1 || kind != "O" {
             return Err(arg_err(format!("faces: array of shape {shape:?} is neither (F, k) nor a sequence of faces")));
@@ -84,13 +99,14 @@ pub(crate) fn faces(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<(Vec<i64
         let face = face?;
         let idx = indices_1d(py, &face, &format!("face {f}"))
             .map_err(|e| arg_err(format!("{}", e.value(py))))?;
+        let idx = idx.as_slice();
         if idx.is_empty() {
             return Err(crate::python::err(crate::MeshError::EmptyFace { face: f }));
         }
         sizes.push(idx.len() as i64);
-        flat.extend(idx);
+        flat.extend_from_slice(idx);
     }
-    Ok((sizes, flat))
+    Ok((sizes, Ints::Owned(flat)))
 }
 
 pub(crate) fn vec3_array<'py>(py: Python<'py>, v: &[DVec3]) -> Bound<'py, PyArray2<f64>> {

@@ -50,9 +50,9 @@ impl PyMesh {
     }
 }
 
-fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: Vec<i64>, idx: Vec<i64>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
-    let m = py.detach(|| Mesh::from_polygons(pos, &sizes, &idx, opts)).map_err(err)?;
+    let m = py.detach(|| Mesh::from_polygons(pos, sizes, idx, opts)).map_err(err)?;
     Ok(PyMesh::wrap(m))
 }
 
@@ -87,7 +87,7 @@ impl PyMesh {
     fn from_polygons(py: Python<'_>, vertices: &Bound<'_, PyAny>, faces: &Bound<'_, PyAny>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
         let pos = positions(py, vertices)?;
         let (sizes, idx) = self::faces(py, faces)?;
-        build(py, pos, sizes, idx, close_boundaries, allow_multi_edges)
+        build(py, pos, &sizes, idx.as_slice(), close_boundaries, allow_multi_edges)
     }
 
     /// Build a mesh from vertices, ``face_sizes`` (F,) and flat ``face_indices``,
@@ -99,7 +99,7 @@ impl PyMesh {
         let pos = positions(py, vertices)?;
         let sizes = indices_1d(py, face_sizes, "face_sizes")?;
         let idx = indices_1d(py, face_indices, "face_indices")?;
-        build(py, pos, sizes, idx, close_boundaries, allow_multi_edges)
+        build(py, pos, sizes.as_slice(), idx.as_slice(), close_boundaries, allow_multi_edges)
     }
 
     /// Vertex coordinates, float64 array of shape (V, 3) (a copy).

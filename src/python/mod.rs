@@ -5,6 +5,7 @@
 
 use pyo3::prelude::*;
 
+mod alloc;
 pub(crate) mod convert;
 pub(crate) mod ifs;
 pub(crate) mod fractal;
