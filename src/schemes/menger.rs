@@ -134,6 +134,15 @@ enum EdgeKind {
 
 const ANGLE_TOL: f64 = 1e-6; // radians
 
+/// Offset faces stay within this fraction of the material depth behind them.
+const FACE_DEPTH_FRACTION: f64 = 0.4;
+/// Merged offset corners and miter points stay within this fraction of the
+/// way from their vertex to the surface beyond.
+const VERTEX_DEPTH_FRACTION: f64 = 0.5;
+/// A miter point stays within this many `D` of its vertex.
+const MITER_REACH: f64 = 4.0;
+/// Inner points around one vertex closer than this many `D` are welded.
+const WELD_TOL: f64 = 0.3;
 
 /// Everything one iteration derives from the input's geometry.
 struct Plan {
@@ -145,6 +154,7 @@ struct Plan {
     /// Merged offset-corner group per half-edge, and the group positions.
     group: Vec<u32>,
     group_pos: Vec<DVec3>,
+    grid: Option<TriGrid>,
 }
 
 fn union_find_root(p: &mut [u32], mut x: u32) -> u32 {
@@ -200,6 +210,7 @@ fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
         face_n[f.idx()] = n;
         face_d[f.idx()] = width;
     }
+    let grid = Some(TriGrid::new(m));
     if o.relative {
         // D = t · the smallest width among the faces around the face's
         // vertices, so a wide face next to a thin wall does not reach through it
@@ -212,6 +223,15 @@ fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
         for f in m.faces() {
             let w = m.face_halfedges(f).map(|h| vmin[m.vertex(h).idx()]).fold(f64::INFINITY, f64::min);
             face_d[f.idx()] = o.thickness * w;
+        }
+        // the offset must stay inside the material behind the face
+        let c = FACE_DEPTH_FRACTION;
+        if c > 0.0 {
+            let reach: Vec<f64> = face_d.iter().map(|d| d / c).collect();
+            let depth = face_depths(m, grid.as_ref().unwrap(), &face_n, &reach);
+            for (d, h) in face_d.iter_mut().zip(&depth) {
+                *d = d.min(c * h);
+            }
         }
     } else {
         face_d.iter_mut().for_each(|d| *d = o.thickness);
@@ -308,14 +328,188 @@ fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
             // cube corner's offset, so it stays inside thin corners
             let dmax = 3f64.sqrt() * hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
             let off = x - pv;
-            if off.length() > dmax * (1.0 + 1e-9) {
-                pv + off * (dmax / off.length())
-            } else {
-                x
-            }
+            let x = if off.length() > dmax * (1.0 + 1e-9) { pv + off * (dmax / off.length()) } else { x };
+            keep_inside(m, grid.as_ref(), m.vertex(HalfedgeId(hs[0])), x)
         })
         .collect();
-    Ok(Plan { face_n, face_d, q, kind, group, group_pos })
+    Ok(Plan { face_n, face_d, q, kind, group, group_pos, grid })
+}
+
+/// A uniform grid over a mesh's triangles for short ray casts: the material
+/// depth behind each face (see the module docs, "Thickness").
+struct TriGrid {
+    lo: DVec3,
+    cell: DVec3,
+    n: [usize; 3],
+    /// CSR: triangles of cell `c` are `items[start[c]..start[c + 1]]`.
+    start: Vec<u32>,
+    items: Vec<u32>,
+    tris: Vec<[DVec3; 3]>,
+    tri_face: Vec<u32>,
+}
+
+impl TriGrid {
+    fn new(m: &Mesh) -> TriGrid {
+        let (t, tri_face) = m.triangles();
+        let p = m.positions();
+        let tris: Vec<[DVec3; 3]> = t.iter().map(|t| t.map(|v| p[v as usize])).collect();
+        let (lo, hi) = p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &x| (l.min(x), h.max(x)));
+        let ext = (hi - lo).max(DVec3::splat(1e-9 * (hi - lo).max_element().max(1e-300)));
+        // about two cells per triangle
+        let s = (ext.x * ext.y * ext.z / (2.0 * tris.len().max(1) as f64)).cbrt();
+        let n = [ext.x, ext.y, ext.z].map(|e| ((e / s).ceil() as usize).clamp(1, 1024));
+        let cell = ext / DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64);
+        let mut g = TriGrid { lo, cell, n, start: Vec::new(), items: Vec::new(), tris, tri_face };
+        let nc = n[0] * n[1] * n[2];
+        let mut count = vec![0u32; nc + 1];
+        for pass in 0..2 {
+            for (i, t) in g.tris.iter().enumerate() {
+                let (a, b) = (g.key(t[0].min(t[1]).min(t[2])), g.key(t[0].max(t[1]).max(t[2])));
+                for z in a[2]..=b[2] {
+                    for y in a[1]..=b[1] {
+                        for x in a[0]..=b[0] {
+                            let c = g.idx([x, y, z]);
+                            if pass == 0 {
+                                count[c + 1] += 1;
+                            } else {
+                                g.items[count[c] as usize] = i as u32;
+                                count[c] += 1;
+                            }
+                        }
+                    }
+                }
+            }
+            if pass == 0 {
+                for c in 0..nc {
+                    count[c + 1] += count[c];
+                }
+                g.start = count.clone();
+                g.items = vec![0; count[nc] as usize];
+            }
+        }
+        g
+    }
+
+    fn key(&self, x: DVec3) -> [usize; 3] {
+        let c = ((x - self.lo) / self.cell).floor();
+        [c.x, c.y, c.z].map(|v| v.max(0.0) as usize).iter().zip(self.n).map(|(&v, n)| v.min(n - 1)).collect::<Vec<_>>().try_into().unwrap()
+    }
+
+    fn idx(&self, k: [usize; 3]) -> usize {
+        (k[2] * self.n[1] + k[1]) * self.n[0] + k[0]
+    }
+
+    /// Distance along the unit direction `d` from `o` to the first triangle
+    /// not of face `skip`, or `tmax` when there is none closer.
+    fn first_hit(&self, o: DVec3, d: DVec3, tmax: f64, skip: &dyn Fn(u32) -> bool) -> f64 {
+        let mut best = tmax;
+        let eps = 1e-9 * tmax;
+        let mut k = self.key(o);
+        let step = [d.x, d.y, d.z].map(|v| if v > 0.0 { 1i64 } else { -1 });
+        let inv = DVec3::ONE / d;
+        let next_t = |k: [usize; 3], a: usize| -> f64 {
+            let (dv, ov, lo, c) = ([d.x, d.y, d.z][a], [o.x, o.y, o.z][a], [self.lo.x, self.lo.y, self.lo.z][a], [self.cell.x, self.cell.y, self.cell.z][a]);
+            if dv == 0.0 {
+                return f64::INFINITY;
+            }
+            let b = lo + c * (k[a] as f64 + if dv > 0.0 { 1.0 } else { 0.0 });
+            (b - ov) * [inv.x, inv.y, inv.z][a]
+        };
+        let mut tn = [next_t(k, 0), next_t(k, 1), next_t(k, 2)];
+        let cs = [self.cell.x, self.cell.y, self.cell.z];
+        let dt = [0, 1, 2].map(|a| (cs[a] * [inv.x, inv.y, inv.z][a]).abs());
+        loop {
+            let c = self.idx(k);
+            for &ti in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
+                if skip(self.tri_face[ti as usize]) {
+                    continue;
+                }
+                if let Some(t) = ray_triangle(o, d, &self.tris[ti as usize], eps) {
+                    best = best.min(t);
+                }
+            }
+            let a = if tn[0] <= tn[1] && tn[0] <= tn[2] { 0 } else if tn[1] <= tn[2] { 1 } else { 2 };
+            if tn[a] >= best {
+                return best;
+            }
+            let nk = k[a] as i64 + step[a];
+            if nk < 0 || nk >= self.n[a] as i64 {
+                return best;
+            }
+            k[a] = nk as usize;
+            tn[a] += dt[a];
+        }
+    }
+}
+
+/// `x` pulled toward the vertex `v` so that it lies at most `c` of the way
+/// from `v` to the surface beyond it (the faces around `v` excepted).
+fn keep_inside(m: &Mesh, g: Option<&TriGrid>, v: crate::mesh::VertexId, x: DVec3) -> DVec3 {
+    let c = VERTEX_DEPTH_FRACTION;
+    let Some(g) = g else { return x };
+    if c <= 0.0 {
+        return x;
+    }
+    let pv = m.positions()[v.idx()];
+    let off = x - pv;
+    let len = off.length();
+    if !(len > 0.0) {
+        return x;
+    }
+    let faces: Vec<u32> = m.vertex_halfedges(v).map(|h| m.face(h).0).collect();
+    let h = g.first_hit(pv, off / len, len / c, &|f| faces.contains(&f));
+    if c * h < len {
+        pv + off * (c * h / len)
+    } else {
+        x
+    }
+}
+
+/// Möller–Trumbore, closed triangle, hits beyond `eps` only.
+fn ray_triangle(o: DVec3, d: DVec3, t: &[DVec3; 3], eps: f64) -> Option<f64> {
+    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+    let pv = d.cross(e2);
+    let det = e1.dot(pv);
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = o - t[0];
+    let u = s.dot(pv) * inv;
+    let tol = 1e-9;
+    if u < -tol || u > 1.0 + tol {
+        return None;
+    }
+    let qv = s.cross(e1);
+    let v = d.dot(qv) * inv;
+    if v < -tol || u + v > 1.0 + tol {
+        return None;
+    }
+    let t = e2.dot(qv) * inv;
+    (t > eps).then_some(t)
+}
+
+/// Material depth behind every face: the shortest distance along `−n` from
+/// its centroid and from the midpoints between the centroid and its corners
+/// to another face, searched up to `reach[f]`.
+fn face_depths(m: &Mesh, g: &TriGrid, face_n: &[DVec3], reach: &[f64]) -> Vec<f64> {
+    use rayon::prelude::*;
+    let pos = m.positions();
+    (0..m.n_faces() as u32)
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|f| {
+            let fid = crate::mesh::FaceId(f);
+            let n = face_n[f as usize];
+            let pts: Vec<DVec3> = m.face_vertices(fid).map(|v| pos[v.idx()]).collect();
+            let c = pts.iter().sum::<DVec3>() / pts.len() as f64;
+            let mut h = g.first_hit(c, -n, reach[f as usize], &|x| x == f);
+            for &p in &pts {
+                h = h.min(g.first_hit(0.5 * (c + p), -n, h, &|x| x == f));
+            }
+            h
+        })
+        .collect()
 }
 
 /// The inner surface's points: merged offset corners (`group`), then two
@@ -363,14 +557,17 @@ fn inner_points(m: &Mesh, pl: &Plan) -> Result<Inner> {
             b += lambda * 0.5 * (r1 + r2);
             let _ = (n1, n2, u);
             let mut x = a.inverse() * b;
-            let off = x - pv;
-            let dmax = 2.0 * dmin;
-            if off.length() > dmax {
-                x = pv + off * (dmax / off.length());
-            }
             if !x.is_finite() {
                 return Err(MeshError::InvalidArgument(format!("menger: edge {} folds back on itself (φ = 360°)", e.0)));
             }
+            // a loose fixed bound (near-parallel planes), then the
+            // material behind this end decides (module docs, "Thickness")
+            let off = x - pv;
+            let dmax = MITER_REACH * dmin;
+            if off.length() > dmax {
+                x = pv + off * (dmax / off.length());
+            }
+            x = keep_inside(m, pl.grid.as_ref(), m.vertex(c1), x);
             ip[ng + 2 * e.idx() + end] = x;
         }
     }
@@ -389,7 +586,7 @@ fn inner_points(m: &Mesh, pl: &Plan) -> Result<Inner> {
         }
         ids.sort_unstable();
         ids.dedup();
-        let tol = 1e-7 * dmin;
+        let tol = WELD_TOL * dmin;
         for i in 0..ids.len() {
             for j in i + 1..ids.len() {
                 if ip[ids[i] as usize].distance(ip[ids[j] as usize]) <= tol {
@@ -889,3 +1086,4 @@ mod intersection_tests {
         assert!(count_self_intersections(&two) > 0);
     }
 }
+
