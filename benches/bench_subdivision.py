@@ -325,11 +325,10 @@ def write_readme(rows, ncpu, args, path: Path) -> None:
         )
     lines += [
         "",
-        "Where topomesh's time goes (Catmull-Clark, 1.6M → 6.4M quads, 1 thread, measured separately):",
-        "face layout 19 ms, new connectivity (primal host) 160 ms, positions ~175 ms,",
-        "`Mesh::from_corner_twins` 614 ms (of which the umbrella check 90 ms): the shared",
-        "one-pass builder, which is sequential and checks its input, is ~60% of the time and",
-        "is what keeps large levels below 10 M faces/s and limits the gain from a second core.",
+        "Where topomesh's time goes at large levels (profiled before the builder was parallelized:",
+        "Catmull-Clark 1.6M → 6.4M quads, 1 thread): face layout 19 ms, new connectivity 160 ms,",
+        "positions ~175 ms, `Mesh::from_corner_twins` 614 ms. The shared one-pass builder, which",
+        "checks its input, is still what keeps level 3 (5–7 M faces/s, 1 thread) below 10 M faces/s.",
         "",
         "## All cases",
         "",
