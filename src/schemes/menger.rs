@@ -175,8 +175,11 @@
 //! runs away), not a per-vertex point rule. The least-area triangulation of
 //! non-planar vertex faces (instead of the cone from the centroid) cuts the
 //! third iterations to 768 (tetrahedron) and 10380 (dodecahedron) pairs, but
-//! leaves coincident inner points in the dodecahedron's fourth iteration,
-//! which manifold3d then merges; left out until those are welded.
+//! leaves nearly folded edges (φ ≈ 0) in the dodecahedron's third
+//! iteration; in the fourth, the merged corner of such an edge's faces sits
+//! on a face plane (least squares between opposite normals), the pipe edge
+//! above it has zero length and manifold3d merges 26 vertices. Left out
+//! until folded edges are handled.
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{BuildOptions, HalfedgeId, Mesh};
