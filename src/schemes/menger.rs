@@ -256,6 +256,23 @@ fn least_squares_from(a: DMat3, b: DVec3, x0: DVec3) -> DVec3 {
     x
 }
 
+/// The corner at the tail of `h` in its face (unit normal `n`): the unit
+/// in-plane inward normals of its outgoing and incoming sides, and whether
+/// the corner is convex.
+fn corner_sides(m: &Mesh, n: DVec3, h: HalfedgeId) -> (DVec3, DVec3, bool) {
+    let pos = m.positions();
+    let pv = pos[m.vertex(h).idx()];
+    let t1 = (pos[m.head(h).idx()] - pv).normalize_or_zero();
+    let t0 = (pv - pos[m.vertex(m.prev(h)).idx()]).normalize_or_zero();
+    (n.cross(t1).normalize_or_zero(), n.cross(t0).normalize_or_zero(), t0.cross(t1).dot(n) > 0.0)
+}
+
+/// Whether `x` lies at least `dist` inside both sides of the corner at `pv`
+/// with inward side normals `w1, w2` ([`corner_sides`]).
+fn inside_corner(x: DVec3, pv: DVec3, (w1, w2): (DVec3, DVec3), dist: f64) -> bool {
+    (x - pv).dot(w1) >= dist && (x - pv).dot(w2) >= dist
+}
+
 fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
     if !(o.thickness > 0.0 && o.thickness.is_finite()) || (o.relative && o.thickness >= 0.5) {
         return Err(MeshError::InvalidArgument(format!(
@@ -323,11 +340,7 @@ fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
         let f = m.face(h).idx();
         let n = face_n[f];
         let pv = p(h);
-        let t1 = (p(m.next(h)) - pv).normalize_or_zero();
-        let t0 = (pv - p(m.prev(h))).normalize_or_zero();
-        // in-plane inward normals of the two sides (projected into the face plane)
-        let w1 = (n.cross(t1)).normalize_or_zero();
-        let w2 = (n.cross(t0)).normalize_or_zero();
+        let (w1, w2, _) = corner_sides(m, n, h);
         let den = 1.0 + w1.dot(w2);
         if den < 1e-9 || w1 == DVec3::ZERO || w2 == DVec3::ZERO {
             return Err(MeshError::InvalidArgument(format!(
@@ -414,6 +427,41 @@ fn plan(m: &Mesh, o: &MengerOptions) -> Result<Plan> {
     Ok(Plan { face_n, face_d, q, kind, group, group_pos })
 }
 
+/// A face's own offset corner (not merged) moves onto a miter vertex at the
+/// same original vertex that lies on the face's offset plane, inside the
+/// face's inset corner: the offset face is clipped by the offset of the
+/// concave corner instead of reaching into it (module docs, step 3).
+fn clip_to_miter_vertices(m: &Mesh, pl: &Plan, ip: &mut [DVec3]) {
+    let pos = m.positions();
+    let ng = pl.group_pos.len();
+    let mut gsize = vec![0u32; ng];
+    for h in m.halfedges() {
+        gsize[pl.group[h.idx()] as usize] += 1;
+    }
+    let mut ends: Vec<usize> = Vec::new();
+    for v in m.vertices() {
+        ends.clear();
+        ends.extend(m.vertex_halfedges(v).filter(|h| pl.kind[h.edge().idx()] == EdgeKind::Miter).map(|h| ng + 2 * h.edge().idx() + (h.0 & 1) as usize));
+        if ends.is_empty() {
+            continue;
+        }
+        let pv = pos[v.idx()];
+        for h in m.vertex_halfedges(v) {
+            let g = pl.group[h.idx()] as usize;
+            let f = m.face(h).idx();
+            let (n, d) = (pl.face_n[f], pl.face_d[f]);
+            let (w1, w2, convex) = corner_sides(m, n, h);
+            if gsize[g] != 1 || !convex {
+                continue;
+            }
+            let on_plane = |x: DVec3| (n.dot(x) - (n.dot(pv) - d)).abs() <= 1e-7 * d;
+            if let Some(&i) = ends.iter().find(|&&i| on_plane(ip[i]) && inside_corner(ip[i], pv, (w1, w2), d * (1.0 - 1e-7))) {
+                ip[g] = ip[i];
+            }
+        }
+    }
+}
+
 /// The inner surface's points: merged offset corners (`group`), then two
 /// miter points per edge (`G + 2e + end`, end 0 at the tail of `2e`), welded
 /// where they coincide around one original vertex.
@@ -473,66 +521,12 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool) -> Result<Inner> {
                 // away: pulled back towards the vertex, off the planes
                 pv + (x0 - pv) * (dmax / r0)
             } else {
-                x0 + u * s.clamp(-(dmax * dmax - r0 * r0).sqrt(), (dmax * dmax - r0 * r0).sqrt())
+                let smax = (dmax * dmax - r0 * r0).sqrt();
+                x0 + u * s.clamp(-smax, smax)
             };
         }
     }
-    {
-        // a face's own offset corner (not merged) moves onto a miter end at
-        // the same vertex that lies on the face's offset plane, inside the
-        // face's inset corner: the offset face is clipped by the dilated
-        // concave corner instead of reaching into it
-        let mut gsize = vec![0u32; ng];
-        for h in m.halfedges() {
-            gsize[pl.group[h.idx()] as usize] += 1;
-        }
-        for v in m.vertices() {
-            let Some(h0) = m.vertex_halfedge(v) else { continue };
-            let pv = pos[v.idx()];
-            let mut ends: Vec<usize> = Vec::new();
-            let mut h = h0;
-            loop {
-                if pl.kind[h.edge().idx()] == EdgeKind::Miter {
-                    ends.push(ng + 2 * h.edge().idx() + (h.0 & 1) as usize);
-                }
-                h = m.next(h.twin());
-                if h == h0 {
-                    break;
-                }
-            }
-            if ends.is_empty() {
-                continue;
-            }
-            let mut h = h0;
-            loop {
-                let g = pl.group[h.idx()] as usize;
-                if gsize[g] == 1 {
-                    let f = m.face(h).idx();
-                    let n = pl.face_n[f];
-                    let d = pl.face_d[f];
-                    let t1 = (pos[m.head(h).idx()] - pv).normalize_or_zero();
-                    let t0 = (pv - pos[m.vertex(m.prev(h)).idx()]).normalize_or_zero();
-                    let (w1, w2) = (n.cross(t1).normalize_or_zero(), n.cross(t0).normalize_or_zero());
-                    let convex = t0.cross(t1).dot(n) > 0.0;
-                    if convex {
-                        for &i in &ends {
-                            let x = ip[i];
-                            let on = (n.dot(x) - (n.dot(pv) - d)).abs() <= 1e-7 * d;
-                            let inside = (x - pv).dot(w1) >= d * (1.0 - 1e-7) && (x - pv).dot(w2) >= d * (1.0 - 1e-7);
-                            if on && inside {
-                                ip[g] = x;
-                                break;
-                            }
-                        }
-                    }
-                }
-                h = m.next(h.twin());
-                if h == h0 {
-                    break;
-                }
-            }
-        }
-    }
+    clip_to_miter_vertices(m, pl, &mut ip);
     // weld inner points around each original vertex: neighbours along the
     // vertex face's cycle when closer than WELD_TOL·D (an edge of the inner
     // surface collapses), any two when they coincide
@@ -792,10 +786,8 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool) -> Result<Built> {
             let r = inner.pos[inner.rep[pl.group[h.idx()] as usize] as usize];
             let depth = (pv - r).dot(n);
             let x = r + depth * n;
-            let t1 = (pos[m.head(h).idx()] - pv).normalize_or_zero();
-            let t0 = (pv - pos[m.vertex(m.prev(h)).idx()]).normalize_or_zero();
-            let convex = t0.cross(t1).dot(n) > 0.0;
-            let ok = convex && depth >= 0.5 * d && (x - pv).dot(n.cross(t1).normalize_or_zero()) >= 0.5 * d && (x - pv).dot(n.cross(t0).normalize_or_zero()) >= 0.5 * d;
+            let (w1, w2, convex) = corner_sides(m, n, h);
+            let ok = convex && depth >= 0.5 * d && inside_corner(x, pv, (w1, w2), 0.5 * d);
             out_pos.push(if ok { x } else { pl.q[h.idx()] });
         }
     }
