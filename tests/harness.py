@@ -21,6 +21,16 @@ import manifold3d as m3d
 import topomesh
 
 
+# the five Platonic solids by name, the corpus every scheme's tests start from
+PLATONIC = {
+    "tetrahedron": topomesh.tetrahedron,
+    "cube": topomesh.cube,
+    "octahedron": topomesh.octahedron,
+    "dodecahedron": topomesh.dodecahedron,
+    "icosahedron": topomesh.icosahedron,
+}
+
+
 def peer_report(mesh: topomesh.Mesh) -> dict:
     """What trimesh and manifold3d say about ``mesh`` (triangulated)."""
     verts = mesh.vertices

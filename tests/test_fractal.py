@@ -11,15 +11,8 @@ import numpy as np
 import pytest
 
 import topomesh
-from tests.harness import assert_agrees_with_peers
+from tests.harness import PLATONIC, assert_agrees_with_peers
 
-PLATONIC = {
-    "tetrahedron": topomesh.tetrahedron,
-    "cube": topomesh.cube,
-    "octahedron": topomesh.octahedron,
-    "dodecahedron": topomesh.dodecahedron,
-    "icosahedron": topomesh.icosahedron,
-}
 
 
 def cube_with_two_gon() -> topomesh.Mesh:

@@ -12,7 +12,7 @@ import pytest
 import trimesh
 
 import topomesh
-from tests.harness import assert_agrees_with_peers
+from tests.harness import PLATONIC, assert_agrees_with_peers
 
 
 # --------------------------------------------------------------------- corpus
@@ -57,11 +57,7 @@ def handle_cube():
 
 
 CORPUS = {
-    "tetrahedron": topomesh.tetrahedron,
-    "cube": topomesh.cube,
-    "octahedron": topomesh.octahedron,
-    "dodecahedron": topomesh.dodecahedron,
-    "icosahedron": topomesh.icosahedron,
+    **PLATONIC,
     "torus": topomesh.torus,
     "genus3": lambda: topomesh.genus_surface(3),
     "loop_two_gon_cube": loop_and_two_gon_cube,
@@ -280,7 +276,7 @@ def test_truncation_positions(ratio):
     assert m.vertex_truncation() == m.vertex_truncation(mode="polyhedral", ratio=0.25)
 
 
-@pytest.mark.parametrize("name", ["tetrahedron", "cube", "dodecahedron", "octahedron", "icosahedron"])
+@pytest.mark.parametrize("name", list(PLATONIC))
 def test_truncation_planar_platonic(name):
     m = CORPUS[name]()
     assert max_planarity_deviation(m) < 1e-12

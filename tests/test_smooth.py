@@ -38,6 +38,7 @@ from scipy.spatial import cKDTree
 
 import topomesh
 from topomesh import Mesh, MeshError
+from tests.harness import PLATONIC
 
 SCHEMES = ["catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual"]
 
@@ -115,11 +116,7 @@ def loop_sphere() -> Mesh:
 
 
 CLEAN = {
-    "tetrahedron": topomesh.tetrahedron,
-    "cube": topomesh.cube,
-    "octahedron": topomesh.octahedron,
-    "dodecahedron": topomesh.dodecahedron,
-    "icosahedron": topomesh.icosahedron,
+    **PLATONIC,
     "torus": lambda: topomesh.torus(12, 6),
     "genus3": lambda: topomesh.genus_surface(3),
 }
@@ -498,7 +495,7 @@ def pymeshlab_run(m: Mesh, filt: str):
     return ms.current_mesh().vertex_matrix()
 
 
-@pytest.mark.parametrize("mesh_name", ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron"])
+@pytest.mark.parametrize("mesh_name", list(PLATONIC))
 def test_doo_sabin_matches_pymeshlab(mesh_name: str) -> None:
     m = CLEAN[mesh_name]()
     v = pymeshlab_run(m, "meshing_surface_subdivision_doo_sabin")
@@ -533,7 +530,7 @@ def test_simplest_and_dual_positions(mesh_name: str) -> None:
     assert_same_points(m.simplest().vertices, mids, 1e-9)
     assert_same_points(m.dual().vertices, np.array([V[f].mean(0) for f in F]), 1e-9)
     # the dual keeps orientation: positive volume for convex solids
-    if mesh_name in ("tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron"):
+    if mesh_name in PLATONIC:
         assert m.dual().volume > 0
         assert m.dual(iterations=2).face_size_histogram == m.face_size_histogram
 

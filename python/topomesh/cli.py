@@ -22,10 +22,6 @@ from topomesh import Mesh, MeshError
 SCHEMES = ("catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual", "honeycomb", "vertex_truncation")
 
 
-def _available(names: Sequence[str]) -> list[str]:
-    return [s for s in names if hasattr(Mesh, s)]
-
-
 def _iterate(mesh: Mesh, method: str, n: int, **kw: object) -> Mesh:
     """Run a scheme ``n`` times with a progress bar."""
     fn = getattr(mesh, method)
@@ -70,9 +66,8 @@ def cmd_gallery(a: argparse.Namespace) -> int:
 
 
 def cmd_subdivide(a: argparse.Namespace) -> int:
-    schemes = _available(SCHEMES)
-    if a.scheme not in schemes:
-        raise MeshError(f"unknown scheme {a.scheme!r}; available: {', '.join(schemes)}")
+    if a.scheme not in SCHEMES:
+        raise MeshError(f"unknown scheme {a.scheme!r}; available: {', '.join(SCHEMES)}")
     _iterate(topomesh.load(a.input), a.scheme, a.n).save(a.output)
     return 0
 
@@ -109,19 +104,17 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--scheme", required=True, help=f"one of: {', '.join(SCHEMES)}")
     s.add_argument("-n", type=int, default=1, help="iterations (default 1)")
     s.set_defaults(func=cmd_subdivide)
-    if hasattr(Mesh, "sierpinski"):
-        si = sub.add_parser("sierpinski", help="Sierpinski subdivision (high genus)")
-        si.add_argument("input")
-        si.add_argument("output")
-        si.add_argument("-n", type=int, default=1)
-        si.set_defaults(func=cmd_sierpinski)
-    if hasattr(Mesh, "menger"):
-        me = sub.add_parser("menger", help="generalized Menger sponge")
-        me.add_argument("input")
-        me.add_argument("output")
-        me.add_argument("-n", type=int, default=1)
-        me.add_argument("--thickness", type=float, default=None)
-        me.set_defaults(func=cmd_menger)
+    si = sub.add_parser("sierpinski", help="Sierpinski subdivision (high genus)")
+    si.add_argument("input")
+    si.add_argument("output")
+    si.add_argument("-n", type=int, default=1)
+    si.set_defaults(func=cmd_sierpinski)
+    me = sub.add_parser("menger", help="generalized Menger sponge")
+    me.add_argument("input")
+    me.add_argument("output")
+    me.add_argument("-n", type=int, default=1)
+    me.add_argument("--thickness", type=float, default=None)
+    me.set_defaults(func=cmd_menger)
     return p
 
 
