@@ -98,7 +98,10 @@ def main() -> None:
         "The classic sponge's level 5 has 20^5 = 3.2 M kept cells out of 27^5 = 14.3 M; the builder scans",
         "every cell, so its time is linear in 27^n while the output grows as 20^n.",
         "The generalized Menger sponge builds polygons and pairs them with `from_polygons` (bucketed by vertex),",
-        "so it is near-linear rather than a one-pass twin builder.",
+        "so it is near-linear rather than a one-pass twin builder. Its crossing check (module docs of",
+        "src/schemes/menger.rs: every input vertex's triangles tested pairwise, crossing vertices rebuilt",
+        "fully collapsed) is most of its time: 0.058 s for the cube's fourth iteration and 0.57 s for the",
+        "dodecahedron's (1.68 M faces, before full collapses merged faces) without it.",
         "",
     ]
     Path(__file__).with_name("FRACTAL.md").write_text("\n".join(lines))
