@@ -1039,12 +1039,18 @@ const CROSSING_ROUNDS: usize = 3;
 /// itself is rebuilt fully collapsed, for up to [`CROSSING_ROUNDS`] rounds.
 fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<(Built, Mesh)> {
     let mut full = vec![false; m.n_vertices()];
-    let mut cur = build_once(m, o, &full)?;
     // after the first round only vertices next to a change are checked again
     let mut recheck = vec![false; m.n_vertices()];
-    for round in 0..CROSSING_ROUNDS {
+    let mut round = 0;
+    loop {
+        // (the previous round's build is dropped before this one is made)
+        let cur = build_once(m, o, &full)?;
+        if round == CROSSING_ROUNDS {
+            return Ok(cur);
+        }
         let (tris, _) = cur.1.triangles();
         let mut lc = local_crossings(cur.1.positions(), &tris, &cur.0.owner, cur.0.first_inner, (round > 0).then_some(&recheck[..]));
+        drop(tris);
         // a vertex face with no planar split would be coned from a new
         // vertex, a saddle-like point the next iteration cannot offset:
         // such vertices are fully collapsed too (no vertex face)
@@ -1063,11 +1069,10 @@ fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<(Built, Mesh)> {
             }
         }
         if !changed {
-            break;
+            return Ok(cur);
         }
-        cur = build_once(m, o, &full)?;
+        round += 1;
     }
-    Ok(cur)
 }
 
 /// One build with the given fully collapsed vertices: with the `4D` miter
@@ -1179,8 +1184,9 @@ fn orient_rel(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
 /// contacts (within `1e-10`, relative) are not counted.
 fn triangles_cross(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3]) -> bool {
     const EPS: f64 = 1e-10;
-    let seg_hits = |s0: DVec3, s1: DVec3, t: [DVec3; 3]| -> bool {
-        let (d0, d1) = (orient_rel(t[0], t[1], t[2], s0), orient_rel(t[0], t[1], t[2], s1));
+    // the segment s0 s1 (whose ends lie at relative heights d0, d1 over t's
+    // plane, `orient_rel(t[0], t[1], t[2], s)`) through t's interior
+    let seg_hits = |s0: DVec3, s1: DVec3, d0: f64, d1: f64, t: [DVec3; 3]| -> bool {
         if !((d0 > EPS && d1 < -EPS) || (d0 < -EPS && d1 > EPS)) {
             return false;
         }
@@ -1214,12 +1220,21 @@ fn triangles_cross(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3]) -
         }
     }
     for (ta, tb, pa, pb) in [(ti, tj, pi, pj), (tj, ti, pj, pi)] {
+        // orient_rel(pb[0], pb[1], pb[2], x) for the three corners of ta,
+        // with pb's plane computed once
+        let (u, v) = (pb[1] - pb[0], pb[2] - pb[0]);
+        let (n, l) = (u.cross(v), u.length() * v.length());
+        let h = pa.map(|x| {
+            let w = x - pb[0];
+            let scale = l * w.length();
+            if scale == 0.0 { 0.0 } else { n.dot(w) / scale }
+        });
         for e in 0..3 {
-            let (u, w) = (ta[e], ta[(e + 1) % 3]);
-            if shared == 1 && (tb.contains(&u) || tb.contains(&w)) {
+            let (a, b) = (ta[e], ta[(e + 1) % 3]);
+            if shared == 1 && (tb.contains(&a) || tb.contains(&b)) {
                 continue;
             }
-            if seg_hits(pa[e], pa[(e + 1) % 3], pb) {
+            if seg_hits(pa[e], pa[(e + 1) % 3], h[e], h[(e + 1) % 3], pb) {
                 return true;
             }
         }
