@@ -1413,6 +1413,38 @@ mod intersection_tests {
         assert!(local_crossings(mesh.positions(), &mesh.triangles().0, &b.owner, b.first_inner, None).is_empty());
     }
 
+    #[test]
+    fn nearest_point_in_halfspaces() {
+        // the cube corner's offset: D below all three faces
+        let planes = [(DVec3::X, -0.5), (DVec3::Y, -0.5), (DVec3::Z, -0.5)];
+        let x = nearest_in_halfspaces(&planes, DVec3::ZERO, 1.0).unwrap();
+        assert!(x.distance(DVec3::splat(-0.5)) < 1e-12, "{x}");
+        // already inside: the point itself
+        assert_eq!(nearest_in_halfspaces(&planes, DVec3::splat(-2.0), 1.0), Some(DVec3::splat(-2.0)));
+        // a slab thinner than nothing: no point
+        assert!(nearest_in_halfspaces(&[(DVec3::X, -0.5), (-DVec3::X, -0.5)], DVec3::ZERO, 1.0).is_none());
+    }
+
+    #[test]
+    fn triangle_crossing_predicate() {
+        let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        let ids = [0, 1, 2];
+        // a triangle piercing t's interior
+        let s = [DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.3, 0.2, 1.0), DVec3::new(0.2, 0.3, 1.0)];
+        assert!(triangles_cross(ids, t, [3, 4, 5], s));
+        // the same one lifted off t's plane
+        let up = s.map(|p| p + DVec3::Z * 1.5);
+        assert!(!triangles_cross(ids, t, [3, 4, 5], up));
+        // sharing an edge: never a crossing
+        assert!(!triangles_cross(ids, t, [0, 1, 6], [DVec3::ZERO, DVec3::X, DVec3::new(0.5, -0.5, 0.0)]));
+        // sharing a vertex, the opposite edge through t's interior
+        let f = [DVec3::ZERO, DVec3::new(0.5, 0.2, -1.0), DVec3::new(0.2, 0.5, 1.0)];
+        assert!(triangles_cross(ids, t, [0, 7, 8], f));
+        // sharing a vertex and merely touching there
+        let g = [DVec3::ZERO, DVec3::new(-1.0, 0.0, 1.0), DVec3::new(0.0, -1.0, 1.0)];
+        assert!(!triangles_cross(ids, t, [0, 9, 10], g));
+    }
+
     /// `cargo test --release --lib crossing_report -- --ignored --nocapture`:
     /// crossing counts per iteration (the figures of the module docs).
     #[test]
