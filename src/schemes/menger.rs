@@ -175,7 +175,17 @@
 //! dodecahedron's third iteration 3720 → 3000 (before the cone rule), but
 //! the tetrahedron's fourth 11512 → 13392; that point as the only rule:
 //! 11700 and 16830; capping sharp inset corners at 2–3 `D` (no gain); the
-//! other diagonal for non-planar quads (no change).
+//! other diagonal for non-planar quads (no change). With the check and the
+//! cone rule in place (dodecahedron 3 / tetrahedron 4 at 2280 / 10684):
+//! splitting a full vertex's corners into the fewest consecutive runs that
+//! each have a meeting point (12096 / 69945, and the tetrahedron's third
+//! iteration crosses again); keeping corners under 20° or 35° out of the
+//! merge (2280 / 16216, 8880 / 29236); halving `D` around vertices that
+//! still cross (2340); a per-vertex search over six meeting points
+//! (3960 / 13751); windows clamped into the corner nearest the meeting
+//! point's projection (3180 / 11518); a window margin of `D/4` instead of
+//! `D/2` (1260 / 9829 at t = 1/3, but 3060 at 1/4); any single thickness
+//! from 0.15 to 0.45 (dodecahedron 3: 1920–3900, none crossing-free).
 //! Before the crossing check, the remaining crossings all involved the
 //! inner surface (miter quads, vertex faces, strips) at vertices of the
 //! second iteration's inner surface where a concave edge meets others, and
