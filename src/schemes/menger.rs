@@ -467,6 +467,11 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             if hs.len() == 1 {
                 return raw(hs[0]);
             }
+            if full[m.vertex(HalfedgeId(hs[0])).idx()] {
+                if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs) {
+                    return y;
+                }
+            }
             // least squares on the offset planes; the mean of the raw offset
             // corners along any direction the planes leave free
             let avg = hs.iter().map(|&h| raw(h)).sum::<DVec3>() / hs.len() as f64;
@@ -479,11 +484,6 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
                 b += n * (n.dot(pv) - face_d[f]);
             }
             let x = least_squares_from(a, b, avg);
-            if full[m.vertex(HalfedgeId(hs[0])).idx()] {
-                if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs) {
-                    return y;
-                }
-            }
             // a sharp vertex amplifies the offset (D / sin of its half
             // angle); keep the merged corner within √3·D of the vertex, the
             // cube corner's offset, so it stays inside thin corners
@@ -964,7 +964,6 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
     let (mut sz2, mut idx2) = (Vec::with_capacity(sizes.len()), Vec::with_capacity(idx.len()));
     let mut k = 0;
     let mut pieces = Vec::new();
-    let mut cone_vertices = 0usize;
     let mut coned: Vec<u32> = Vec::new();
     for (fi, &n) in sizes.iter().enumerate() {
         let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
@@ -980,7 +979,6 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
             for i in 0..poly.len() {
                 pieces.push(vec![c, poly[i], poly[(i + 1) % poly.len()]]);
             }
-            cone_vertices += 1;
             owner.push(owner[poly[0] as usize]);
             coned.push(owner[poly[0] as usize]);
         }
@@ -990,7 +988,7 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
         }
     }
     let split_extra = sz2.len() - sizes.len();
-    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + cone_vertices, split_extra, owner, first_inner: i0 as u32, coned })
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + coned.len(), split_extra, owner, first_inner: i0 as u32, coned })
 }
 
 /// Largest distance of the polygon's points from its best-fit plane through
@@ -1126,31 +1124,26 @@ fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], first_inner: u
         start[k + 1] += start[k];
     }
     let mut fill = start.clone();
-    let mut by_owner = vec![(0u32, 0u32); start[nown]];
+    let mut by_owner = vec![0u32; start[nown]];
     for (i, t) in tris.iter().enumerate() {
         for o in owners_of(t) {
             if o != u32::MAX {
-                by_owner[fill[o as usize]] = (o, i as u32);
+                by_owner[fill[o as usize]] = i as u32;
                 fill[o as usize] += 1;
             }
         }
     }
-    let starts: Vec<usize> = (0..nown).filter(|&k| start[k + 1] > start[k]).map(|k| start[k]).collect();
-    let mut bad: Vec<u32> = starts
+    let owners: Vec<usize> = (0..nown).filter(|&k| start[k + 1] > start[k] && only.map_or(true, |f| f[k])).collect();
+    let mut bad: Vec<u32> = owners
         .par_iter()
-        .enumerate()
-        .flat_map_iter(|(si, &s)| {
-            let e = starts.get(si + 1).copied().unwrap_or(by_owner.len());
+        .flat_map_iter(|&k| {
             let mut out: Vec<u32> = Vec::new();
-            if only.is_some_and(|f| !f[by_owner[s].0 as usize]) {
-                return out;
-            }
             // sweep along x over the bucket's boxes; two triangles of the
             // outer remeshing (all corners below `first_inner`) lie in the
             // input's faces and cannot cross
-            let mut boxes: Vec<(DVec3, DVec3, u32, bool)> = by_owner[s..e]
+            let mut boxes: Vec<(DVec3, DVec3, u32, bool)> = by_owner[start[k]..start[k + 1]]
                 .iter()
-                .map(|&(_, t)| {
+                .map(|&t| {
                     let tv = tris[t as usize];
                     let q = tv.map(|v| p[v as usize]);
                     (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]), t, tv.iter().all(|&v| v < first_inner))
