@@ -94,7 +94,7 @@ def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
     for level in (1, 2, 3):
         yield Entry(f"menger_sponge_{level}", f"Classic Menger sponge, level {level}", lambda k=level: topomesh.menger_sponge(k))
     # iterations that are free of self-intersections (tests/test_fractal.py)
-    for name, k in (("cube", 3), ("tetrahedron", 2), ("dodecahedron", 2)):
+    for name, k in (("cube", 3), ("tetrahedron", 3), ("dodecahedron", 2)):
         yield Entry(f"{name}_menger", f"Generalized Menger {name} ×{k}", lambda n=name, k=k: solids[n]().menger(iterations=k))
     # handles and rinds (issue 3)
     yield Entry("cup", "The dissertation's cup (Fig. 65): rind body + curved handle", modeling.cup)

@@ -67,10 +67,11 @@ impl PyMesh {
     /// -----
     /// The result is always a valid oriented manifold, but free of
     /// geometric self-intersections only where measured so: the cube's
-    /// iterations 1-4, the tetrahedron's and dodecahedron's 1-2. From the
-    /// third iteration on, their inner surfaces cross (tetrahedron 3: 1304
-    /// crossing triangle pairs out of 9276 faces); see
-    /// ``src/schemes/menger.rs``.
+    /// iterations 1-4, the tetrahedron's 1-3 and the dodecahedron's 1-2.
+    /// Vertices whose local result crosses itself are rebuilt with all their
+    /// pipes meeting in one point; the dodecahedron's third iteration still
+    /// has 2280 crossing triangle pairs (50126 faces), the tetrahedron's
+    /// fourth 10684; see ``src/schemes/menger.rs``.
     #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
     fn menger(&self, py: Python<'_>, iterations: i64, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
