@@ -70,8 +70,8 @@ impl PyMesh {
     /// iterations 1-4, the tetrahedron's 1-3 and the dodecahedron's 1-2.
     /// Vertices whose local result crosses itself are rebuilt with all their
     /// pipes meeting in one point; the dodecahedron's third iteration still
-    /// has 2280 crossing triangle pairs (50126 faces), the tetrahedron's
-    /// fourth 10684; see ``src/schemes/menger.rs``.
+    /// has 1080 crossing triangle pairs (46610 faces), the tetrahedron's
+    /// fourth 5754 (114260 faces); see ``src/schemes/menger.rs``.
     #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
     fn menger(&self, py: Python<'_>, iterations: i64, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };

@@ -65,9 +65,13 @@
 //!    the nearest to the vertex that lies `D` below every face around it and
 //!    projects at least `D/2` inside every convex corner there, so every
 //!    pipe wall at it stays a planar quad perpendicular to its face, as at
-//!    the cube's corners; when no point does (saddle vertices), the least
-//!    squares point of step 3. Up to three rounds; the check is linear in
-//!    the output (a vertex's triangles are bounded by its valence).
+//!    the cube's corners. When no point does (saddle vertices), the point
+//!    `D` below every face along the direction farthest below all their
+//!    planes (the centre of the normals' spherical cap), kept within
+//!    `√3·D` like every merged corner; where the normals do not fit in a
+//!    hemisphere, the least squares point of step 3. Up to three rounds;
+//!    the check is linear in the output (a vertex's triangles are bounded
+//!    by its valence).
 //! 4. **Outer remeshing** (step 4): every edge is trisected at distance
 //!    `d_e = ½(D₁ + D₂)` (capped at 0.4 |e|) from its ends and every face is
 //!    split into one corner quad per corner, one edge quad per side and its
@@ -157,21 +161,38 @@
 //! | input, iteration | t = 1/3 | t = 1/4 |
 //! |---|---|---|
 //! | tetrahedron 3 | 1304 → 0 | 1488 → 0 |
-//! | tetrahedron 4 | 70526 → 10684 | 80476 → 10884 |
-//! | dodecahedron 3 | 18206 → 2280 | 30793 → 3240 |
+//! | tetrahedron 4 | 70526 → 5754 | 80476 → 5787 |
+//! | dodecahedron 3 | 18206 → 1080 | 30793 → 1920 |
 //!
 //! What remains: vertices whose local result still crosses once fully
-//! collapsed. Every such vertex of the dodecahedron's third iteration is a
-//! saddle with no meeting point (the window condition fails, so some pipe
-//! walls slant through a neighbouring face's frame), typically one where
-//! 10–15 long thin faces with corners of 13°–30° meet: the second
-//! iteration's slivers and high valences, partly made by its own full
-//! collapses. A per-vertex check also misses pairs between two vertices'
-//! structures; testing each vertex's triangles against its neighbours'
-//! as well found no further vertex to fix (2280 pairs either way) at six
-//! times the cost.
-//! Measured and left out: a second fallback at such vertices (the nearest
-//! point `D` below every face, without the window condition): the
+//! collapsed. In the dodecahedron's third iteration they are 180 (three
+//! symmetry classes of 60): saddles of valence 5 and 6, and vertices of
+//! valence 13 with about 550° of face angles (down to 9°) whose normals
+//! fit in no hemisphere. The latter are the second iteration's full
+//! collapses at the corners where a pipe's bottom meets the vertex
+//! triangle of the first iteration's inner surface (a vertex face with no
+//! planar split there). The true offset near such a saddle is the boundary
+//! of what the swept faces (each face ⊕ a ball of radius `D`) leave of the
+//! solid, an envelope of convex pieces in which faces
+//! that are not neighbours around the vertex meet along new edges, which
+//! one offset corner per face and vertex cannot express. A per-vertex
+//! check also misses pairs between two vertices' structures; testing each
+//! vertex's triangles against its neighbours' as well found no further
+//! vertex to fix (2280 pairs either way, before the fallback point above)
+//! at six times the cost.
+//! Measured with the fallback point (dodecahedron 3 / tetrahedron 4 at
+//! 1080 / 5754) and left out: its depth `D` along the cap's centre
+//! without the `√3·D` bound (1620 / 8611 at 3·D, 1260 / 6552 at 2·D); a
+//! fixed depth of ¾·D … 1½·D along it (900–1260 / 5874–9979, with shells
+//! up to 45% thinner); bounding merged corners by `√3` times the largest
+//! `D` of their faces instead of the smallest (1260 / 5826, and 60 vertex
+//! pairs of the dodecahedron's fourth iteration within 1e-6 of its
+//! diagonal, none before). The collapse angle option at 120° (every
+//! dodecahedron edge collapses) gives 360 / 5544: not crossing-free
+//! either, and not the VII.4 default.
+//! Measured before (earlier rounds of this work) and left out: a second
+//! fallback at such vertices (the nearest point `D` below every face,
+//! without the window condition or the `√3·D` bound): the
 //! dodecahedron's third iteration 3720 → 3000 (before the cone rule), but
 //! the tetrahedron's fourth 11512 → 13392; that point as the only rule:
 //! 11700 and 16830; capping sharp inset corners at 2–3 `D` (no gain); the
@@ -471,6 +492,11 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
                 if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs) {
                     return y;
                 }
+                let normals: Vec<DVec3> = hs.iter().map(|&h| face_n[m.face(HalfedgeId(h)).idx()]).collect();
+                let dmin = hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
+                if let Some(y) = below_every_face(p(HalfedgeId(hs[0])), &normals, dmin) {
+                    return y;
+                }
             }
             // least squares on the offset planes; the mean of the raw offset
             // corners along any direction the planes leave free
@@ -517,6 +543,23 @@ fn pipe_meeting_point(m: &Mesh, face_n: &[DVec3], face_d: &[f64], hs: &[u32]) ->
         }
     }
     nearest_in_halfspaces(&planes, pv, dmin)
+}
+
+/// The fallback point of a fully collapsed vertex at `pv` with no
+/// [`pipe_meeting_point`] (module docs, "Crossing check"): `dmin` below
+/// every face around it (outward unit `normals`) along the direction `u`
+/// farthest below all their planes (the largest `min u·nᵢ`, the centre of
+/// the normals' spherical cap), kept within `√3·dmin` of the vertex like
+/// every merged corner; at a cube corner it is the corner's exact offset.
+/// `None` when the normals do not lie in an open hemisphere (no direction
+/// points below every face).
+fn below_every_face(pv: DVec3, normals: &[DVec3], dmin: f64) -> Option<DVec3> {
+    // the point nearest the origin with n·x ≥ 1 for every normal: x / |x|
+    // is the direction, 1 / |x| its margin
+    let planes: Vec<(DVec3, f64)> = normals.iter().map(|&n| (-n, -1.0)).collect();
+    let x = nearest_in_halfspaces(&planes, DVec3::ZERO, 1.0)?;
+    let len = x.length();
+    (len.is_finite() && len > 0.0).then(|| pv - x * (dmin * len.min(3f64.sqrt()) / len))
 }
 
 /// The point of the half-spaces `n·x ≤ c` nearest to `pv` (Dykstra's
@@ -1382,7 +1425,7 @@ mod intersection_tests {
 
     /// The tetrahedron's third iteration is crossing-free with the crossing
     /// check (1304 and 1488 crossing pairs without it); the dodecahedron's
-    /// still crosses, at an eighth of the pairs (18206 without it; 2280 now).
+    /// still crosses, at a seventeenth of the pairs (18206 without it; 1080 now).
     #[test]
     fn third_iterations_with_crossing_check() {
         for t in [1.0 / 3.0, 0.25] {
@@ -1393,7 +1436,7 @@ mod intersection_tests {
         }
         let m = menger_iterated(&primitives::dodecahedron(), 3, &MengerOptions::default()).unwrap();
         let n = count_self_intersections(&m);
-        assert!(n < 3000, "{n} crossing pairs");
+        assert!(n < 1500, "{n} crossing pairs");
     }
 
     /// The per-vertex check finds what the global scan finds on a mesh
@@ -1426,6 +1469,26 @@ mod intersection_tests {
         assert_eq!(nearest_in_halfspaces(&planes, DVec3::splat(-2.0), 1.0), Some(DVec3::splat(-2.0)));
         // a slab thinner than nothing: no point
         assert!(nearest_in_halfspaces(&[(DVec3::X, -0.5), (-DVec3::X, -0.5)], DVec3::ZERO, 1.0).is_none());
+    }
+
+    #[test]
+    fn point_below_every_face() {
+        let pv = DVec3::new(1.0, 2.0, 3.0);
+        // cube corner: the exact offset, D below all three faces
+        let x = below_every_face(pv, &[DVec3::X, DVec3::Y, DVec3::Z], 0.25).unwrap();
+        assert!(x.distance(pv - DVec3::splat(0.25)) < 1e-9, "{x}");
+        // flat vertex: straight below
+        let n = DVec3::new(0.0, 0.6, 0.8);
+        let x = below_every_face(pv, &[n, n, n, n], 0.5).unwrap();
+        assert!(x.distance(pv - 0.5 * n) < 1e-9, "{x}");
+        // a saddle whose normals lean 60° from z: D below every face would
+        // need 2D of depth, which the √3·D bound cuts to √3·D straight down
+        let tilt = |a: f64| DVec3::new(0.75f64.sqrt() * a.cos(), 0.75f64.sqrt() * a.sin(), 0.5);
+        let ns: Vec<DVec3> = (0..5).map(|k| tilt(k as f64 * 2.0 * std::f64::consts::PI / 5.0)).collect();
+        let x = below_every_face(pv, &ns, 1.0).unwrap();
+        assert!(x.distance(pv - 3f64.sqrt() * DVec3::Z) < 1e-6, "{x}");
+        // normals not in an open hemisphere: no direction
+        assert!(below_every_face(pv, &[DVec3::X, -DVec3::X, DVec3::Y], 1.0).is_none());
     }
 
     #[test]
