@@ -187,7 +187,10 @@
 //! up to 45% thinner); bounding merged corners by `√3` times the largest
 //! `D` of their faces instead of the smallest (1260 / 5826, and 60 vertex
 //! pairs of the dodecahedron's fourth iteration within 1e-6 of its
-//! diagonal, none before). The collapse angle option at 120° (every
+//! diagonal, none before); where the normals fit in no hemisphere, the
+//! point ½ … √3 `D` along the angle-weighted vertex normal instead of the
+//! least squares point (1020–1080 / 9186–10990); cones from a centroid
+//! vertex instead of full collapses (1920 / 5894). The collapse angle option at 120° (every
 //! dodecahedron edge collapses) gives 360 / 5544: not crossing-free
 //! either, and not the VII.4 default.
 //! Measured before (earlier rounds of this work) and left out: a second
