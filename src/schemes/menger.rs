@@ -190,9 +190,9 @@
 //! diagonal, none before); where the normals fit in no hemisphere, the
 //! point ½ … √3 `D` along the angle-weighted vertex normal instead of the
 //! least squares point (1020–1080 / 9186–10990); cones from a centroid
-//! vertex instead of full collapses (1920 / 5894). The collapse angle option at 120° (every
-//! dodecahedron edge collapses) gives 360 / 5544: not crossing-free
-//! either, and not the VII.4 default.
+//! vertex instead of full collapses (1920 / 5894). The collapse angle
+//! option at 120° (every dodecahedron edge collapses) gives 360 / 5544:
+//! not crossing-free either, and not the VII.4 default.
 //! Measured before (earlier rounds of this work) and left out: a second
 //! fallback at such vertices (the nearest point `D` below every face,
 //! without the window condition or the `√3·D` bound): the
