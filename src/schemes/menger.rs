@@ -173,9 +173,9 @@
 //! triangle of the first iteration's inner surface (a vertex face with no
 //! planar split there). The true offset near such a saddle is the boundary
 //! of what the swept faces (each face ⊕ a ball of radius `D`) leave of the
-//! solid, an envelope of convex pieces in which faces
-//! that are not neighbours around the vertex meet along new edges, which
-//! one offset corner per face and vertex cannot express. A per-vertex
+//! solid, an envelope of convex pieces in which faces that are not
+//! neighbours around the vertex meet along new edges, which one offset
+//! corner per face and vertex cannot express. A per-vertex
 //! check also misses pairs between two vertices' structures; testing each
 //! vertex's triangles against its neighbours' as well found no further
 //! vertex to fix (2280 pairs either way, before the fallback point above)
@@ -491,13 +491,14 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             if hs.len() == 1 {
                 return raw(hs[0]);
             }
+            let pv = p(HalfedgeId(hs[0]));
+            let dmin = hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
             if full[m.vertex(HalfedgeId(hs[0])).idx()] {
                 if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs) {
                     return y;
                 }
                 let normals: Vec<DVec3> = hs.iter().map(|&h| face_n[m.face(HalfedgeId(h)).idx()]).collect();
-                let dmin = hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
-                if let Some(y) = below_every_face(p(HalfedgeId(hs[0])), &normals, dmin) {
+                if let Some(y) = below_every_face(pv, &normals, dmin) {
                     return y;
                 }
             }
@@ -505,7 +506,6 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             // corners along any direction the planes leave free
             let avg = hs.iter().map(|&h| raw(h)).sum::<DVec3>() / hs.len() as f64;
             let (mut a, mut b) = (DMat3::ZERO, DVec3::ZERO);
-            let pv = p(HalfedgeId(hs[0]));
             for &h in hs {
                 let f = m.face(HalfedgeId(h)).idx();
                 let n = face_n[f];
@@ -516,7 +516,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             // a sharp vertex amplifies the offset (D / sin of its half
             // angle); keep the merged corner within √3·D of the vertex, the
             // cube corner's offset, so it stays inside thin corners
-            let dmax = 3f64.sqrt() * hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
+            let dmax = 3f64.sqrt() * dmin;
             let off = x - pv;
             if off.length() > dmax * (1.0 + 1e-9) { pv + off * (dmax / off.length()) } else { x }
         })
