@@ -494,7 +494,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             let pv = p(HalfedgeId(hs[0]));
             let dmin = hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
             if full[m.vertex(HalfedgeId(hs[0])).idx()] {
-                if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs) {
+                if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs, pv, dmin) {
                     return y;
                 }
                 let normals: Vec<DVec3> = hs.iter().map(|&h| face_n[m.face(HalfedgeId(h)).idx()]).collect();
@@ -530,14 +530,12 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
 /// least `D/2` inside both its sides, so each pipe wall there is a planar
 /// quad perpendicular to its face (as at the cube's corners). `None` when
 /// no point does (a saddle whose corners' projections cannot all hold it).
-fn pipe_meeting_point(m: &Mesh, face_n: &[DVec3], face_d: &[f64], hs: &[u32]) -> Option<DVec3> {
-    let pv = m.positions()[m.vertex(HalfedgeId(hs[0])).idx()];
+/// `pv` is the vertex, `dmin` the smallest `D` of its faces.
+fn pipe_meeting_point(m: &Mesh, face_n: &[DVec3], face_d: &[f64], hs: &[u32], pv: DVec3, dmin: f64) -> Option<DVec3> {
     let mut planes: Vec<(DVec3, f64)> = Vec::with_capacity(3 * hs.len());
-    let mut dmin = f64::INFINITY;
     for &h in hs {
         let f = m.face(HalfedgeId(h)).idx();
         let (n, d) = (face_n[f], face_d[f]);
-        dmin = dmin.min(d);
         planes.push((n, n.dot(pv) - d));
         let (w1, w2, convex) = corner_sides(m, n, HalfedgeId(h));
         if convex {
