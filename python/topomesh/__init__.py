@@ -10,6 +10,7 @@ primitive or your own arrays::
 """
 
 from topomesh._core import (
+    GeometryWarning,
     Mesh,
     MeshError,
     Rind,
@@ -26,6 +27,7 @@ from topomesh.io import load  # noqa: E402
 from topomesh import ifs  # noqa: E402
 
 __all__ = [
+    "GeometryWarning",
     "Mesh",
     "MeshError",
     "Rind",

@@ -12,6 +12,7 @@ import numpy.typing as npt
 __all__ = [
     "IFS",
     "Mesh",
+    "GeometryWarning",
     "MeshError",
     "Rind",
     "cube",
@@ -41,6 +42,7 @@ __all__ = [
 ]
 
 class MeshError(ValueError): ...
+class GeometryWarning(UserWarning): ...
 
 @final
 class Mesh:

@@ -21,6 +21,13 @@ pyo3::create_exception!(
     "Invalid mesh input or a broken operator precondition; the message names the face, vertex or edge."
 );
 
+pyo3::create_exception!(
+    topomesh,
+    GeometryWarning,
+    pyo3::exceptions::PyUserWarning,
+    "A result that is a valid manifold but geometrically flawed (for example self-intersecting); the message says where and how much."
+);
+
 /// Maps a core error to the Python `topomesh.MeshError` (a `ValueError`).
 pub(crate) fn err(e: crate::MeshError) -> PyErr {
     MeshError::new_err(e.to_string())
@@ -69,6 +76,7 @@ pub(crate) fn iterate(
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MeshError", m.py().get_type::<MeshError>())?;
+    m.add("GeometryWarning", m.py().get_type::<GeometryWarning>())?;
     mesh::register(m)?;
     ops::register(m)?;
     ifs::register(m)?;
