@@ -198,6 +198,27 @@
 //! crossing (4 to 56 pairs per vertex), and one `D` for the whole mesh
 //! gives 1440 / 6542.
 //!
+//! Also measured and left out (dodecahedron 3 / tetrahedron 4; the
+//! tetrahedron's third iteration stays crossing-free unless noted):
+//! * pipes shallower than their inset next to sharp edges (offset depth
+//!   `min(D, κ·D·tan φ)` for the smallest convex φ < 90° of the face,
+//!   κ = 0.5 … 0.9, the wedge bound above): 780–900 / 5292–6696. The
+//!   wedge bound is not the whole story: the 180 vertices all still cross;
+//! * one `D` per group of coplanar faces joined by flat edges: 1080 / 6054;
+//! * every convex edge collapsed (collapse angle 150° or 180°): 360 / 5544;
+//! * *slab walls*: a window side along a convex edge lies on the
+//!   neighbouring face's offset plane (the wall is parallel to that face, so
+//!   it cannot leave a sharp wedge) instead of `D` from the edge. At a
+//!   vertex whose faces span three planes with one `D` each, every wall and
+//!   every pipe corner then lies on the three offset planes and the result
+//!   is exact; at every corner, with every convex edge collapsed:
+//!   19968 / 74558 (tetrahedron 3: 8652); only at vertices whose edges are
+//!   all convex: 180 / 8068 (720 / 10094 with the VII.4 collapse rule).
+//!   At the mixed vertices of later iterations (convex, flat and concave
+//!   edges around one vertex) the two faces of a collapsed edge then need
+//!   two distinct pipe corners on the line where their offset planes meet,
+//!   which one merged point per group cannot express.
+//!
 //! What remains: vertices whose local result still crosses once fully
 //! collapsed. In the dodecahedron's third iteration they are 180 (three
 //! symmetry classes of 60): saddles of valence 5 and 6, and vertices of
