@@ -371,6 +371,14 @@ fn union_find_root(p: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
+/// Joins the sets of `a` and `b`; the smaller root stays the root.
+fn union_sets(p: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (union_find_root(p, a), union_find_root(p, b));
+    if ra != rb {
+        p[ra.max(rb) as usize] = ra.min(rb);
+    }
+}
+
 /// The least-squares solution of `a x = b` (`a` a sum of `n nᵀ` over plane
 /// normals) nearest to `x0` along directions `a` barely constrains. Iterative
 /// refinement of a slightly regularized solve: exact (to rounding) when the
@@ -505,11 +513,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     for h in m.halfedges() {
         if kind[h.edge().idx()] == EdgeKind::Collapse {
             // corners h and next(twin(h)) lie on either side of edge(h) at its tail
-            let (a, b) = (h.0, m.next(h.twin()).0);
-            let (ra, rb) = (union_find_root(&mut parent, a), union_find_root(&mut parent, b));
-            if ra != rb {
-                parent[ra.max(rb) as usize] = ra.min(rb);
-            }
+            union_sets(&mut parent, h.0, m.next(h.twin()).0);
         }
     }
     for v in m.vertices() {
@@ -518,10 +522,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
         }
         let hs: Vec<HalfedgeId> = m.vertex_halfedges(v).collect();
         for w in hs.windows(2) {
-            let (ra, rb) = (union_find_root(&mut parent, w[0].0), union_find_root(&mut parent, w[1].0));
-            if ra != rb {
-                parent[ra.max(rb) as usize] = ra.min(rb);
-            }
+            union_sets(&mut parent, w[0].0, w[1].0);
         }
     }
     let mut group = vec![u32::MAX; nh];
@@ -756,12 +757,6 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
     // surface collapses), any two when they coincide
     let mut parent: Vec<u32> = (0..ip.len() as u32).collect();
     let mut cyc: Vec<u32> = Vec::new();
-    let weld = |parent: &mut Vec<u32>, x: u32, y: u32| {
-        let (a, b) = (union_find_root(parent, x), union_find_root(parent, y));
-        if a != b {
-            parent[a.max(b) as usize] = a.min(b);
-        }
-    };
     for v in m.vertices() {
         let Some(h0) = m.vertex_halfedge(v) else { continue };
         cyc.clear();
@@ -789,10 +784,7 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
         for i in 0..k {
             for j in i + 1..k {
                 if close(WELD_TOL * dmin, i, j) {
-                    let (a, b) = (union_find_root(&mut local, i as u32), union_find_root(&mut local, j as u32));
-                    if a != b {
-                        local[a.max(b) as usize] = a.min(b);
-                    }
+                    union_sets(&mut local, i as u32, j as u32);
                 }
             }
         }
@@ -806,7 +798,7 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
         for i in 0..k {
             for j in i + 1..k {
                 if close(tol, i, j) {
-                    weld(&mut parent, cyc[i], cyc[j]);
+                    union_sets(&mut parent, cyc[i], cyc[j]);
                 }
             }
         }
