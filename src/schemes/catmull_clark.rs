@@ -25,7 +25,7 @@ use rayon::prelude::*;
 
 /// One level of Catmull-Clark subdivision. See the module docs.
 pub fn catmull_clark(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, step)
+    with_point_spheres("catmull_clark", m, step)
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {

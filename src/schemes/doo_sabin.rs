@@ -29,7 +29,7 @@ use rayon::prelude::*;
 
 /// One level of Doo-Sabin subdivision. See the module docs.
 pub fn doo_sabin(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, step)
+    with_point_spheres("doo_sabin", m, step)
 }
 
 /// Doo & Sabin's weight αᵢ for an n-gon.

@@ -20,7 +20,7 @@ use rayon::prelude::*;
 
 /// The dual mesh. See the module docs.
 pub fn dual(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, step)
+    with_point_spheres("dual", m, step)
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {

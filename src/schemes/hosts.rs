@@ -12,8 +12,9 @@
 //!
 //! Point-spheres (a vertex with one face and no edge) carry through every
 //! scheme unchanged ([`with_point_spheres`]). Hole faces (from
-//! `close_boundaries`) are refined like ordinary faces and the result has no
-//! hole marks.
+//! `close_boundaries`) are refused by the schemes without boundary rules
+//! ([`refuse_holes`]) instead of being refined into real faces; honeycomb
+//! and vertex truncation keep them as holes.
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
@@ -220,9 +221,27 @@ impl FaceThenVertexFaces {
     }
 }
 
+/// Refuses a mesh with hole faces (boundary loops capped by
+/// `close_boundaries`): a scheme without boundary rules would refine the cap
+/// like a real face and silently close the hole.
+pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
+    let holes = m.n_holes();
+    if holes == 0 {
+        return Ok(());
+    }
+    Err(crate::error::MeshError::Precondition(format!(
+        "{scheme}: the mesh has {holes} boundary loop{} (hole faces from close_boundaries); {scheme} has no boundary rules \
+         and would fill {}, so it refuses open meshes (honeycomb and vertex_truncation keep holes open)",
+        if holes == 1 { "" } else { "s" },
+        if holes == 1 { "it" } else { "them" }
+    )))
+}
+
 /// Runs `scheme` on `m` with its point-spheres set aside, then appends them
-/// unchanged (same position, one vertex and one face each).
-pub(crate) fn with_point_spheres(m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh>) -> Result<Mesh> {
+/// unchanged (same position, one vertex and one face each). Meshes with hole
+/// faces are refused ([`refuse_holes`]): these schemes have no boundary rules.
+pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh>) -> Result<Mesh> {
+    refuse_holes(name, m)?;
     let n_points = m.v_out.iter().filter(|&&o| o & POINT != 0).count();
     if n_points == 0 {
         return scheme(m);
@@ -485,6 +504,35 @@ pub(crate) fn neighbor_sum(m: &Mesh, v: usize) -> (DVec3, usize) {
 #[cfg(test)]
 pub(crate) mod test_meshes {
     //! The corpus every scheme's unit tests run over.
+
+    /// Schemes without boundary rules refuse a capped hole instead of
+    /// refining the cap into a real face (the hole would close silently).
+    #[test]
+    fn schemes_without_boundary_rules_refuse_holes() {
+        use crate::error::MeshError;
+        use crate::schemes::*;
+        let open = cube_with_hole();
+        let o = menger::MengerOptions::default();
+        let runs: [(&str, crate::error::Result<Mesh>); 9] = [
+            ("catmull_clark", catmull_clark::catmull_clark(&open)),
+            ("doo_sabin", doo_sabin::doo_sabin(&open)),
+            ("dual", dual::dual(&open)),
+            ("loop", loop_subdivision::loop_subdivision(&open)),
+            ("midpoint", midpoint::midpoint(&open)),
+            ("simplest", simplest::simplest(&open)),
+            ("sqrt3", sqrt3::sqrt3(&open)),
+            ("sierpinski", sierpinski::sierpinski(&open)),
+            ("menger", menger::menger(&open, &o)),
+        ];
+        for (name, r) in runs {
+            match r {
+                Err(MeshError::Precondition(msg)) => assert!(msg.starts_with(name) && msg.contains("1 boundary loop"), "{msg}"),
+                other => panic!("{name} on an open cube: {other:?}"),
+            }
+        }
+        // the closed cube still goes through
+        assert!(catmull_clark::catmull_clark(&primitives::cube()).is_ok());
+    }
 
     #[test]
     fn sierpinski_counts() {

@@ -30,7 +30,7 @@ use rayon::prelude::*;
 /// One level of Loop subdivision; non-triangles are fanned around their
 /// centroid first. See the module docs.
 pub fn loop_subdivision(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, |m| match fan_triangulate(m)? {
+    with_point_spheres("loop", m, |m| match fan_triangulate(m)? {
         Some(t) => step(&t),
         None => step(m),
     })

@@ -1134,6 +1134,7 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
 /// self-intersections when this is not zero. Zero does not prove the output
 /// free of them: the check tests each vertex's own triangles only.
 pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
+    super::hosts::refuse_holes("menger", m)?;
     let ((_, mesh), crossing) = build_valid(m, o)?;
     Ok((mesh, crossing))
 }

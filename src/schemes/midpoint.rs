@@ -24,7 +24,7 @@ use rayon::prelude::*;
 
 /// One level of midpoint subdivision. See the module docs.
 pub fn midpoint(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, step)
+    with_point_spheres("midpoint", m, step)
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {

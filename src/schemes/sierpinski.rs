@@ -133,6 +133,7 @@ impl Walk {
 /// closed manifold mesh, its own output included; a mesh made of self-loops
 /// and point-spheres only is returned unchanged.
 pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
+    super::hosts::refuse_holes("sierpinski", m)?;
     let nv = m.n_vertices();
     let nh = m.n_halfedges();
     let (_, vert, _) = m.halfedge_columns();

@@ -26,7 +26,7 @@ use rayon::prelude::*;
 
 /// One level of mid-edge ("simplest") subdivision. See the module docs.
 pub fn simplest(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, step)
+    with_point_spheres("simplest", m, step)
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {

@@ -26,7 +26,7 @@ use rayon::prelude::*;
 
 /// One level of √3 subdivision. See the module docs.
 pub fn sqrt3(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres(m, step)
+    with_point_spheres("sqrt3", m, step)
 }
 
 /// Kobbelt's αₙ.
