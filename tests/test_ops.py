@@ -226,7 +226,12 @@ def test_create_pipe_contracts():
     ).create_face_manifold([[0, 0, -3], [1, 0, -3], [0, 1, -3]])
     v, e, f, c, g = counts(m)
     assert m.face_sizes[0] == 6
-    p = m.create_pipe(0, 0, front, 0)
+    # the flat two-face sphere's back face lies in the pipe's end: the pipe's
+    # quads cross it (the independent numpy check finds crossings too)
+    with pytest.warns(topomesh.GeometryWarning, match=r"create_pipe: .* (\d+) crossing triangle pairs") as w:
+        p = m.create_pipe(0, 0, front, 0)
+    assert str(len(p.self_intersections())) in str(w[0].message)
+    assert len(self_intersections(p)) > 0
     assert counts(p) == (v + 3, e + 3 + 6, f + 4, c - 1, g)
     # degenerate: two-gons of a two-gon sphere; one-gons of a self-loop sphere
     m, a, b = topomesh.cube().create_face_manifold([[0, 0, 5], [1, 0, 5]])
@@ -234,7 +239,12 @@ def test_create_pipe_contracts():
     m, _ = topomesh.cube().insert_edge(0, 0, 0, 0)
     loop_face = m.n_faces - 1
     assert m.face_sizes[loop_face] == 1
-    assert counts(m.create_pipe(loop_face, 0, 1, 0)) == (11, 13 + 3 + 4, 7 + 2, 1, 1)
+    # the pipe from a point (the loop's vertex, a corner of face 1) lies flat
+    # in face 1's plane: a degenerate, self-overlapping shape, reported
+    with pytest.warns(topomesh.GeometryWarning, match="create_pipe: the new faces pass through the surface"):
+        p = m.create_pipe(loop_face, 0, 1, 0)
+    assert counts(p) == (11, 13 + 3 + 4, 7 + 2, 1, 1)
+    assert len(self_intersections(p)) > 0
     with pytest.raises(MeshError, match="both corners are in face 2"):
         topomesh.cube().create_pipe(2, 0, 2, 1)
     with pytest.raises(MeshError, match="face 2 has 4 corners; position 9"):
@@ -291,6 +301,37 @@ def test_torus_from_one_handle_on_a_cube():
     t = m.add_handle(face_at(m, [0, 0, 1]), face_at(m, [0, 0, -1]), segments=3, weights=(-1.0, -1.0))
     assert t.volume < m.volume
     assert_clean(t, genus=1)
+
+
+def test_handle_through_the_body_warns_with_the_crossing_count():
+    # small positive weights: the handle's first segment folds through itself
+    # and the body (the independent numpy check finds the same defect)
+    m = grid_cube(3)
+    top, bottom = face_at(m, [0, 0, 1]), face_at(m, [0, 0, -1])
+    for w in [(0.5, 0.5), (2.5, 2.5)]:
+        with pytest.warns(topomesh.GeometryWarning, match=r"add_handle: the new faces pass through the surface: \d+ crossing"):
+            h = m.add_handle(top, bottom, segments=6, weights=w)
+        ours = h.self_intersections()
+        assert len(ours) > 0 and len(self_intersections(h)) > 0
+        # every pair the shared check reports is a real contact of two triangles
+        tris = h.triangles()
+        assert np.all(ours[:, 0] < ours[:, 1]) and ours.max() < len(tris)
+    # a clean tunnel: no warning (pytest turns one into an error), no pair
+    t = m.add_handle(top, bottom, segments=3, weights=(-1.0, -1.0))
+    assert len(t.self_intersections()) == 0 and self_intersections(t) == []
+
+
+def test_self_intersections_agrees_with_the_numpy_check():
+    v = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [0.5, 0.5, -1], [0.5, 0.5, 1], [1.5, 1.5, 0.0],
+                  [5, 5, 5], [6, 5, 5], [5, 6, 5]], float)
+    m = Mesh.from_polygons(v, [[0, 1, 2], [3, 4, 5], [6, 7, 8]], close_boundaries=True)
+    assert m.self_intersections().tolist() == [[0, 1]] == [list(p) for p in self_intersections(m)]
+    # coplanar overlap counts too
+    v = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [0.5, 0.2, 0], [3, 0.2, 0], [0.5, 3, 0]], float)
+    m = Mesh.from_polygons(v, [[0, 1, 2], [3, 4, 5]], close_boundaries=True)
+    assert m.self_intersections().tolist() == [[0, 1]]
+    for clean in (grid_cube(3), topomesh.torus(), topomesh.genus_surface(2)):
+        assert len(clean.self_intersections()) == 0
 
 
 def test_genus_three_cube_with_three_handles():

@@ -91,11 +91,19 @@ impl PyMesh {
     /// MeshError
     ///     Same face twice, a corner position not in its face, a
     ///     point-sphere against a larger face.
+    ///
+    /// Warns
+    /// -----
+    /// GeometryWarning
+    ///     When the pipe's faces cross the rest of the surface (the exact
+    ///     crossing check ``menger`` uses), with the number of crossing
+    ///     triangle pairs.
     fn create_pipe(&self, py: Python<'_>, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<PyMesh> {
         let c1 = corner_of(&self.inner, face1, position1)?;
         let c2 = corner_of(&self.inner, face2, position2)?;
         let mut m = self.inner.clone();
         py.detach(|| m.create_pipe(c1, c2)).map_err(err)?;
+        warn_new_crossings(py, "create_pipe", &self.inner, &m)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -169,6 +177,13 @@ impl PyMesh {
     /// MeshError
     ///     Same face, faces sharing an edge, a corner not in its face,
     ///     weights of opposite signs, segments < 1, coincident centroids.
+    ///
+    /// Warns
+    /// -----
+    /// GeometryWarning
+    ///     When the handle passes through the body (the exact crossing check
+    ///     ``menger`` uses, on the handle's faces), with the number of
+    ///     crossing triangle pairs.
     #[pyo3(signature = (face_a, face_b, segments = 4, weights = None, corners = None))]
     fn add_handle(
         &self,
@@ -197,7 +212,23 @@ impl PyMesh {
         let c2 = if corners.1.is_none() { m0.aligned_handle_corner(c1, c2, w1, w2).map_err(err)? } else { c2 };
         let mut m = m0.clone();
         py.detach(|| m.add_handle(c1, c2, segments as usize, w1, w2)).map_err(err)?;
+        warn_new_crossings(py, "add_handle", m0, &m)?;
         Ok(PyMesh::wrap(m))
+    }
+
+    /// Pairs of triangles of :meth:`triangles` that intersect, int64 (K, 2),
+    /// ``i < j``, sorted: an edge of one through the other's interior, or
+    /// lying in the other's plane across it (coplanar overlap). Triangles
+    /// sharing an edge never count; sharing a vertex, only when they meet
+    /// away from it. The exact check ``menger``, ``add_handle`` and
+    /// ``create_pipe`` use (``src/geometry/crossing.rs``); near-linear.
+    fn self_intersections<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {
+        let pairs = py.detach(|| {
+            let (tris, _) = self.inner.triangles();
+            crate::geometry::crossing::crossing_pairs(self.inner.positions(), &tris, None, true)
+        });
+        let rows: Vec<[u32; 2]> = pairs.iter().map(|&(i, j)| [i, j]).collect();
+        super::convert::u32_rows(py, &rows)
     }
 
     /// The offset shell of this mesh for rind modeling (dissertation ch.
@@ -215,6 +246,21 @@ impl PyMesh {
         let r = py.detach(|| self.inner.rind(thickness)).map_err(err)?;
         Ok(PyRind { inner: r })
     }
+}
+
+/// Runs the shared crossing check (`geometry::crossing`) on the faces an
+/// operator made and raises a `GeometryWarning` with the count when they
+/// pass through the rest of the surface.
+fn warn_new_crossings(py: Python<'_>, op: &str, before: &crate::Mesh, after: &crate::Mesh) -> PyResult<()> {
+    let n = py.detach(|| crate::geometry::crossing::crossings_of_new_faces(before, after));
+    if n > 0 {
+        let msg = format!(
+            "{op}: the new faces pass through the surface: {n} crossing triangle pairs (the mesh is a valid manifold but self-intersecting; choose other faces, weights or corners)"
+        );
+        let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
+        PyErr::warn(py, &py.get_type::<super::GeometryWarning>(), &msg, 1)?;
+    }
+    Ok(())
 }
 
 /// A rind: a mesh with its offset shell and the outer↔inner face table

@@ -312,6 +312,7 @@
 //! collapsing such vertices instead (crossing check) leaves no two vertices
 //! of the dodecahedron's fourth iteration within 1e-6 of its diagonal.
 
+use crate::geometry::crossing::local_crossings;
 use crate::error::{MeshError, Result};
 use crate::mesh::{BuildOptions, HalfedgeId, Mesh};
 use glam::{DMat3, DVec3};
@@ -1212,153 +1213,6 @@ fn build_once(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<(Built, Mesh
     }
 }
 
-/// Input vertices whose local structure crosses itself: the output
-/// triangles with a corner placed by an input vertex's rule ([`Built`]'s
-/// `owner`) are tested pairwise per vertex; both triangles' owners of every
-/// crossing pair are returned. Linear in the output (a vertex's triangles
-/// are bounded by its valence), parallel over vertices.
-fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], first_inner: u32, only: Option<&[bool]>) -> Vec<u32> {
-    use rayon::prelude::*;
-    // triangles bucketed by owner (counting sort)
-    let owners_of = |t: &[u32; 3]| {
-        let mut o = t.map(|v| owner[v as usize]);
-        o.sort_unstable();
-        [0, 1, 2].map(|k| if o[k] != u32::MAX && (k == 0 || o[k] != o[k - 1]) { o[k] } else { u32::MAX })
-    };
-    let nown = owner.iter().filter(|&&o| o != u32::MAX).map(|&o| o as usize + 1).max().unwrap_or(0);
-    let mut start = vec![0usize; nown + 1];
-    for t in tris {
-        for o in owners_of(t) {
-            if o != u32::MAX {
-                start[o as usize + 1] += 1;
-            }
-        }
-    }
-    for k in 0..nown {
-        start[k + 1] += start[k];
-    }
-    let mut fill = start.clone();
-    let mut by_owner = vec![0u32; start[nown]];
-    for (i, t) in tris.iter().enumerate() {
-        for o in owners_of(t) {
-            if o != u32::MAX {
-                by_owner[fill[o as usize]] = i as u32;
-                fill[o as usize] += 1;
-            }
-        }
-    }
-    let owners: Vec<usize> = (0..nown).filter(|&k| start[k + 1] > start[k] && only.map_or(true, |f| f[k])).collect();
-    let mut bad: Vec<u32> = owners
-        .par_iter()
-        .flat_map_iter(|&k| {
-            let mut out: Vec<u32> = Vec::new();
-            // sweep along x over the bucket's boxes; two triangles of the
-            // outer remeshing (all corners below `first_inner`) lie in the
-            // input's faces and cannot cross
-            let mut boxes: Vec<(DVec3, DVec3, u32, bool)> = by_owner[start[k]..start[k + 1]]
-                .iter()
-                .map(|&t| {
-                    let tv = tris[t as usize];
-                    let q = tv.map(|v| p[v as usize]);
-                    (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]), t, tv.iter().all(|&v| v < first_inner))
-                })
-                .collect();
-            boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
-            for a in 0..boxes.len() {
-                let (la, ha, ta, oa) = boxes[a];
-                for &(lb, hb, tb, ob) in &boxes[a + 1..] {
-                    if lb.x > ha.x {
-                        break;
-                    }
-                    if (oa && ob) || la.cmpgt(hb).any() || lb.cmpgt(ha).any() {
-                        continue;
-                    }
-                    let (ta, tb) = (tris[ta as usize], tris[tb as usize]);
-                    if triangles_cross(ta, ta.map(|v| p[v as usize]), tb, tb.map(|v| p[v as usize])) {
-                        out.extend(ta.iter().chain(&tb).map(|&v| owner[v as usize]).filter(|&o| o != u32::MAX));
-                    }
-                }
-            }
-            out
-        })
-        .collect();
-    bad.sort_unstable();
-    bad.dedup();
-    bad
-}
-
-/// Orientation of `d` against the plane through `a, b, c`, relative to the
-/// lengths involved, so tiny features are tested as strictly as large ones.
-fn orient_rel(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
-    let (u, v, w) = (b - a, c - a, d - a);
-    let scale = u.length() * v.length() * w.length();
-    if scale == 0.0 { 0.0 } else { u.cross(v).dot(w) / scale }
-}
-
-/// Whether two triangles cross properly: an edge of one passes through the
-/// interior of the other. Triangles sharing an edge are never counted;
-/// triangles sharing a vertex only with their edges that avoid it; touching
-/// contacts (within `1e-10`, relative) are not counted.
-fn triangles_cross(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3]) -> bool {
-    const EPS: f64 = 1e-10;
-    // the segment s0 s1 (whose ends lie at relative heights d0, d1 over t's
-    // plane, `orient_rel(t[0], t[1], t[2], s)`) through t's interior
-    let seg_hits = |s0: DVec3, s1: DVec3, d0: f64, d1: f64, t: [DVec3; 3]| -> bool {
-        if !((d0 > EPS && d1 < -EPS) || (d0 < -EPS && d1 > EPS)) {
-            return false;
-        }
-        let o = [orient_rel(s0, s1, t[0], t[1]), orient_rel(s0, s1, t[1], t[2]), orient_rel(s0, s1, t[2], t[0])];
-        o.iter().all(|&x| x > EPS) || o.iter().all(|&x| x < -EPS)
-    };
-    let shared = ti.iter().filter(|v| tj.contains(v)).count();
-    if shared >= 2 {
-        return false;
-    }
-    // quick rejection: one triangle strictly on one side of the other's
-    // plane (margin far above the relative tolerance of the exact test)
-    // (a shared vertex lies in both planes and is left out: the other
-    // triangle then meets the plane only there, at a corner)
-    for (pa, pb, ta, tb) in [(pi, pj, ti, tj), (pj, pi, tj, ti)] {
-        let n = (pa[1] - pa[0]).cross(pa[2] - pa[0]);
-        let (mut pos, mut neg, mut dmin, mut rmax) = (0, 0, f64::INFINITY, 0.0f64);
-        for k in 0..3 {
-            if ta.contains(&tb[k]) {
-                continue;
-            }
-            let r = pb[k] - pa[0];
-            let d = n.dot(r);
-            if d > 0.0 { pos += 1 } else if d < 0.0 { neg += 1 }
-            dmin = dmin.min(d.abs());
-            rmax = rmax.max(r.length_squared());
-        }
-        // squared: min |d| > 1e-6 |n| max |r|
-        if (pos == 0 || neg == 0) && pos + neg == 3 - shared && dmin * dmin > 1e-12 * n.length_squared() * rmax {
-            return false;
-        }
-    }
-    for (ta, tb, pa, pb) in [(ti, tj, pi, pj), (tj, ti, pj, pi)] {
-        // orient_rel(pb[0], pb[1], pb[2], x) for the three corners of ta,
-        // with pb's plane computed once
-        let (u, v) = (pb[1] - pb[0], pb[2] - pb[0]);
-        let (n, l) = (u.cross(v), u.length() * v.length());
-        let h = pa.map(|x| {
-            let w = x - pb[0];
-            let scale = l * w.length();
-            if scale == 0.0 { 0.0 } else { n.dot(w) / scale }
-        });
-        for e in 0..3 {
-            let (a, b) = (ta[e], ta[(e + 1) % 3]);
-            if shared == 1 && (tb.contains(&a) || tb.contains(&b)) {
-                continue;
-            }
-            if seg_hits(pa[e], pa[(e + 1) % 3], h[e], h[(e + 1) % 3], pb) {
-                return true;
-            }
-        }
-    }
-    false
-}
-
 /// `iterations` Menger steps with the same options.
 pub fn menger_iterated(m: &Mesh, iterations: usize, o: &MengerOptions) -> Result<Mesh> {
     let mut cur = m.clone();
@@ -1430,10 +1284,7 @@ mod tests {
     }
 }
 
-/// Test support: proper crossings between the triangles of a mesh (its
-/// `triangles()`), found on a uniform grid. Triangles sharing a vertex are
-/// tested only with their edges that avoid the shared vertex; touching
-/// contacts are not counted.
+/// Test support: proper crossing pairs of the whole triangulation of `m`.
 #[cfg(test)]
 pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
     crossing_pairs(m).len()
@@ -1442,42 +1293,7 @@ pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
 #[cfg(test)]
 pub(crate) fn crossing_pairs(m: &Mesh) -> std::collections::HashSet<(u32, u32)> {
     let (tris, _) = m.triangles();
-    crossing_pairs_tris(m.positions(), &tris)
-}
-
-#[cfg(test)]
-fn crossing_pairs_tris(p: &[DVec3], tris: &[[u32; 3]]) -> std::collections::HashSet<(u32, u32)> {
-    let (lo, hi) = p.iter().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(l, h), &x| (l.min(x), h.max(x)));
-    let n = ((4.0 * tris.len() as f64).cbrt().ceil() as usize).clamp(1, 256);
-    let cell = (hi - lo) / n as f64 + DVec3::splat(1e-12);
-    let key = |x: DVec3| {
-        let c = ((x - lo) / cell).floor();
-        [c.x.clamp(0.0, (n - 1) as f64) as usize, c.y.clamp(0.0, (n - 1) as f64) as usize, c.z.clamp(0.0, (n - 1) as f64) as usize]
-    };
-    let mut grid: std::collections::HashMap<[usize; 3], Vec<u32>> = std::collections::HashMap::new();
-    for (i, t) in tris.iter().enumerate() {
-        let pts = t.map(|v| p[v as usize]);
-        let (a, b) = (key(pts[0].min(pts[1]).min(pts[2])), key(pts[0].max(pts[1]).max(pts[2])));
-        for x in a[0]..=b[0] {
-            for y in a[1]..=b[1] {
-                for z in a[2]..=b[2] {
-                    grid.entry([x, y, z]).or_default().push(i as u32);
-                }
-            }
-        }
-    }
-    let mut found = std::collections::HashSet::new();
-    for list in grid.values() {
-        for (k, &i) in list.iter().enumerate() {
-            for &j in &list[k + 1..] {
-                let (ti, tj) = (tris[i as usize], tris[j as usize]);
-                if triangles_cross(ti, ti.map(|v| p[v as usize]), tj, tj.map(|v| p[v as usize])) {
-                    found.insert((i.min(j), i.max(j)));
-                }
-            }
-        }
-    }
-    found
+    crate::geometry::crossing::crossing_pairs(m.positions(), &tris, None, false).into_iter().collect()
 }
 
 #[cfg(test)]
@@ -1579,26 +1395,6 @@ mod intersection_tests {
         assert!(x.distance(pv - 3f64.sqrt() * DVec3::Z) < 1e-6, "{x}");
         // normals not in an open hemisphere: no direction
         assert!(below_every_face(pv, &[DVec3::X, -DVec3::X, DVec3::Y], 1.0).is_none());
-    }
-
-    #[test]
-    fn triangle_crossing_predicate() {
-        let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
-        let ids = [0, 1, 2];
-        // a triangle piercing t's interior
-        let s = [DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.3, 0.2, 1.0), DVec3::new(0.2, 0.3, 1.0)];
-        assert!(triangles_cross(ids, t, [3, 4, 5], s));
-        // the same one lifted off t's plane
-        let up = s.map(|p| p + DVec3::Z * 1.5);
-        assert!(!triangles_cross(ids, t, [3, 4, 5], up));
-        // sharing an edge: never a crossing
-        assert!(!triangles_cross(ids, t, [0, 1, 6], [DVec3::ZERO, DVec3::X, DVec3::new(0.5, -0.5, 0.0)]));
-        // sharing a vertex, the opposite edge through t's interior
-        let f = [DVec3::ZERO, DVec3::new(0.5, 0.2, -1.0), DVec3::new(0.2, 0.5, 1.0)];
-        assert!(triangles_cross(ids, t, [0, 7, 8], f));
-        // sharing a vertex and merely touching there
-        let g = [DVec3::ZERO, DVec3::new(-1.0, 0.0, 1.0), DVec3::new(0.0, -1.0, 1.0)];
-        assert!(!triangles_cross(ids, t, [0, 9, 10], g));
     }
 
     /// `cargo test --release --lib crossing_report -- --ignored --nocapture`:
