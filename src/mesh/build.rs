@@ -68,7 +68,7 @@ impl Mesh {
         let mut acc = 0usize;
         for &s in sizes {
             // checked: user sizes near 2^63 would wrap the sum
-            acc = acc.checked_add(s as usize).filter(|&a| a <= indices.len()).ok_or_else(|| {
+            acc = acc.checked_add(s as usize).ok_or_else(|| {
                 MeshError::InvalidArgument(format!("face sizes add up to more than the {} face indices given", indices.len()))
             })?;
             offsets.push(acc);

@@ -101,12 +101,10 @@ impl Mesh {
                     MeshError::InvalidArgument(format!("face {f} has negative size {s}"))
                 });
             }
-            let acc = offsets[f] + s.min(n as i64 + 1) as usize;
-            if acc > n {
-                return Err(MeshError::InvalidArgument(format!(
-                    "face sizes add up to more than the {n} face indices given"
-                )));
-            }
+            // checked: user sizes near 2^63 would wrap the sum
+            let acc = offsets[f].checked_add(s as usize).ok_or_else(|| {
+                MeshError::InvalidArgument(format!("face sizes add up to more than the {n} face indices given"))
+            })?;
             offsets.push(acc);
         }
         if offsets[sizes.len()] != n {
