@@ -75,6 +75,11 @@ def _corpus():
         "open_pair": open_pair,
         "open_cube": open_cube,
         "empty": EMPTY,
+        # faces over 255 corners: PLY counts become uint
+        "pillow300": Mesh.from_polygons(
+            np.c_[np.cos(np.arange(300) / 47.0), np.sin(np.arange(300) / 47.0), np.zeros(300)],
+            [list(range(300)), list(range(299, -1, -1))],
+        ),
     }
 
 
@@ -175,6 +180,24 @@ def test_lossless_formats_round_trip(tmp_path, name, ext):
     p = tmp_path / f"m{ext}"
     m.save(p)
     _same(m, T.load(p))
+
+
+def test_ply_is_read_by_plyfile_and_trimesh(tmp_path):
+    from plyfile import PlyData
+
+    for m in (T.cube(), CORPUS["tet_sierpinski1"], CORPUS["pillow300"]):
+        p = tmp_path / "m.ply"
+        m.save(p)
+        ply = PlyData.read(str(p))
+        assert np.array_equal(np.concatenate(list(ply["face"]["vertex_indices"])), m.face_indices)
+        assert np.array_equal(np.concatenate(list(ply["face"]["corner_twins"])), m.corner_twins)
+        assert np.array_equal(np.c_[ply["vertex"]["x"], ply["vertex"]["y"], ply["vertex"]["z"]], m.vertices)
+        # uniform faces take the vectorized reader, mixed ones plyfile: both exact
+        assert (tio._read_ply_uniform(p) is not None) == (len(set(m.face_sizes.tolist())) == 1)
+    trimesh = pytest.importorskip("trimesh")
+    T.icosahedron().save(tmp_path / "i.ply")
+    tm = trimesh.load(tmp_path / "i.ply", process=False)
+    assert np.array_equal(tm.vertices, T.icosahedron().vertices) and tm.is_watertight
 
 
 @pytest.mark.parametrize("name", NAMES)

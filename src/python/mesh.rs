@@ -432,7 +432,10 @@ impl PyMesh {
     fn to_manifold<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         Self::delegate(slf, "topomesh._interop", "to_manifold", &[])
     }
-    /// Write to ``path``; the format comes from the extension (.obj, .off, .ply).
+    /// Write to ``path``, atomically; the format comes from the extension:
+    /// ``.npz`` and ``.ply`` keep every mesh exactly, ``.obj`` and ``.off``
+    /// only meshes their polygon list gives back (else :class:`MeshError`
+    /// naming the lossless formats). See :func:`topomesh.io.save`.
     fn save<'py>(slf: &Bound<'py, Self>, path: &Bound<'py, PyAny>) -> PyResult<()> {
         Self::delegate(slf, "topomesh.io", "save", &[path.clone()])?;
         Ok(())
