@@ -340,9 +340,10 @@ def test_file_size_limit_leaves_old_file(tmp_path):
 
 
 def test_io_errors_name_the_path(tmp_path):
-    missing_dir = tmp_path / "nope" / "m.npz"
-    with pytest.raises(MeshError, match=rf"{missing_dir}: cannot write"):
-        T.cube().save(missing_dir)
+    for ext in tio.SAVE_FORMATS:
+        missing_dir = tmp_path / "nope" / f"m{ext}"
+        with pytest.raises(MeshError, match=rf"{missing_dir}: cannot write"):
+            T.cube().save(missing_dir)
     with pytest.raises(MeshError, match=r"m\.stp: unsupported extension"):
         T.cube().save(tmp_path / "m.stp")
     for ext, junk in [(".ply", b"ply\nformat nonsense\n"), (".npz", b"not a zip"), (".off", b"OFF\n3 1\n")]:
@@ -487,6 +488,14 @@ def test_exports_are_read_only_views():
     keep = m.vertices
     del m  # the view keeps the mesh alive
     assert keep.shape == (600, 3) and np.isfinite(keep).all()
+
+
+def test_peers_get_copies_of_the_views():
+    pytest.importorskip("pyvista")
+    m = T.cube()
+    pd = m.to_pyvista()
+    pd.points[0] = [9.0, 9.0, 9.0]  # VTK ignores NumPy's read-only flag
+    assert np.array_equal(m.vertices, T.cube().vertices)
 
 
 def test_cached_queries_agree():
