@@ -48,7 +48,7 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
     // indices beyond the vertices read so far (forward references): checked at the end
     let mut forward: Vec<(usize, i64)> = Vec::new();
     let mut joined: Vec<u8> = Vec::new();
-    let mut lines = bytes.split(|&b| b == b'\n').enumerate().peekable();
+    let mut lines = bytes.split(|&b| b == b'\n').enumerate();
     while let Some((i, raw)) = lines.next() {
         let lineno = i + 1;
         let mut line = strip_cr(raw);
@@ -56,7 +56,7 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
         if line.last() == Some(&b'\\') {
             joined.clear();
             joined.extend_from_slice(&line[..line.len() - 1]);
-            while let Some((_, more)) = lines.next() {
+            for (_, more) in lines.by_ref() {
                 let more = strip_cr(more);
                 joined.push(b' ');
                 if more.last() == Some(&b'\\') {
