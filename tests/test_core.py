@@ -106,7 +106,10 @@ def test_mesh_error_is_a_value_error_and_input_is_untouched():
     m = Mesh.from_polygons(v, f)
     assert np.array_equal(v, TET_V) and np.array_equal(f, TET_F)
     out = m.vertices
-    out[:] = 0  # a copy: the mesh keeps its coordinates
+    with pytest.raises(ValueError, match="read-only"):
+        out[:] = 0  # a read-only view: the mesh keeps its coordinates
+    mine = np.array(out)
+    mine[:] = 0  # a copy is the user's own
     assert np.array_equal(m.vertices, TET_V)
 
 

@@ -30,7 +30,8 @@ def to_pyvista(mesh: Mesh) -> Any:
     """``pyvista.PolyData`` with the polygon faces as they are (self-loop
     repeats and all); pyvista triangulates on its own when it renders."""
     pv = _need("pyvista")
-    return pv.PolyData(mesh.vertices, mesh.padded_faces)
+    # a copy: VTK writes through NumPy views and ignores their read-only flag
+    return pv.PolyData(np.array(mesh.vertices), mesh.padded_faces)
 
 
 def to_manifold(mesh: Mesh) -> Any:

@@ -67,7 +67,10 @@ impl Mesh {
         offsets.push(0usize);
         let mut acc = 0usize;
         for &s in sizes {
-            acc += s as usize;
+            // checked: user sizes near 2^63 would wrap the sum
+            acc = acc.checked_add(s as usize).ok_or_else(|| {
+                MeshError::InvalidArgument(format!("face sizes add up to more than the {} face indices given", indices.len()))
+            })?;
             offsets.push(acc);
         }
         if *offsets.last().unwrap() != indices.len() {

@@ -8,6 +8,7 @@ use pyo3::prelude::*;
 mod alloc;
 pub(crate) mod convert;
 pub(crate) mod ifs;
+mod io;
 pub(crate) mod fractal;
 pub(crate) mod mesh;
 mod refine;
@@ -81,5 +82,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     ops::register(m)?;
     ifs::register(m)?;
     fractal::register(m)?;
+    io::register(m)?;
     Ok(())
 }
