@@ -11,6 +11,7 @@ pub(crate) mod ifs;
 pub(crate) mod fractal;
 pub(crate) mod mesh;
 mod refine;
+mod repair;
 mod ops;
 mod smooth;
 

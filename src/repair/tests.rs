@@ -201,3 +201,30 @@ fn canonical_cycles_match_up_to_rotation_and_direction() {
     assert_eq!(a, vec![0, 2, 5, 0, 3]);
     assert_eq!(least_rotation(6, |i| [1u32, 0, 1, 0, 1, 0][i % 6]) % 2, 1);
 }
+
+/// By hand: `cargo test --release big_soup_timing -- --ignored --nocapture`
+/// (a 1.3M-triangle soup of a quad torus).
+#[test]
+#[ignore]
+fn big_soup_timing() {
+    let m = primitives::torus(1024, 640, 2.0, 0.5).unwrap();
+    let (p, s, i) = polys(&m);
+    // triangulate quads into a soup
+    let mut tp = Vec::new();
+    for f in 0..s.len() {
+        let q = &i[4 * f..4 * f + 4];
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            tp.extend(t.iter().map(|&x| p[x as usize]));
+        }
+    }
+    let n = tp.len() / 3;
+    let sizes = vec![3i64; n];
+    let idx: Vec<i64> = (0..tp.len() as i64).collect();
+    let t = std::time::Instant::now();
+    let r = repair(&tp, &sizes, &idx, None).unwrap();
+    eprintln!("{n} triangles: repair {:?}", t.elapsed());
+    let t = std::time::Instant::now();
+    let m = Mesh::from_polygons(r.positions, &r.sizes, &r.indices, BuildOptions::default()).unwrap();
+    eprintln!("from_polygons {:?}", t.elapsed());
+    assert_eq!((m.n_vertices(), m.genus()), (1024 * 640, 1));
+}
