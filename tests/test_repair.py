@@ -161,6 +161,8 @@ def test_repair_rejects_bad_input_naming_it():
         topomesh.repair(v, [[0, 1, 2]], tolerance=-1.0)
     with pytest.raises(MeshError, match="tolerance"):
         topomesh.repair(v, [[0, 1, 2]], tolerance=float("inf"))
+    with pytest.raises(MeshError, match="tolerance = 'x' is not a number"):
+        topomesh.repair(v, [[0, 1, 2]], tolerance="x")
     with pytest.raises(MeshError, match="face 1 is empty"):
         topomesh.repair(v, [[0, 1, 2], []])
     with pytest.raises(MeshError, match="vertex 1 has a NaN"):

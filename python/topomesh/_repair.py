@@ -9,7 +9,7 @@ from typing import Any, Sequence
 
 import numpy.typing as npt
 
-from topomesh._core import Mesh
+from topomesh._core import Mesh, MeshError
 
 # the counts, in the order the steps run, with how __str__ names them
 _STEPS = {
@@ -85,6 +85,16 @@ def _report(counts: dict[str, Any]) -> RepairReport:
     return RepairReport(**counts)
 
 
+def _tolerance(tolerance: Any) -> float | None:
+    """``tolerance`` as a float (range checked by the core), or a MeshError naming it."""
+    if tolerance is None:
+        return None
+    try:
+        return float(tolerance)
+    except (TypeError, ValueError):
+        raise MeshError(f"repair: tolerance = {tolerance!r} is not a number (expected a finite float >= 0 or None)") from None
+
+
 def repair(
     vertices: npt.ArrayLike,
     faces: Sequence[Sequence[int]] | npt.ArrayLike,
@@ -131,7 +141,7 @@ def repair(
         Index out of range, empty face, non-finite coordinate, negative or
         non-finite ``tolerance``, or (without ``close_boundaries``) a boundary left.
     """
-    mesh, counts = Mesh._repair(vertices, faces, tolerance, close_boundaries)
+    mesh, counts = Mesh._repair(vertices, faces, _tolerance(tolerance), close_boundaries)
     return mesh, _report(counts)
 
 
@@ -144,5 +154,5 @@ def repair_flat(
     close_boundaries: bool = False,
 ) -> tuple[Mesh, RepairReport]:
     """:func:`repair` on faces given as ``face_sizes`` (F,) and flat ``face_indices``."""
-    mesh, counts = Mesh._repair_flat(vertices, face_sizes, face_indices, tolerance, close_boundaries)
+    mesh, counts = Mesh._repair_flat(vertices, face_sizes, face_indices, _tolerance(tolerance), close_boundaries)
     return mesh, _report(counts)
