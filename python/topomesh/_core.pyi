@@ -135,6 +135,10 @@ class Mesh:
         close_boundaries: bool = False,
     ) -> tuple[Mesh, dict[str, Any]]: ...
     @staticmethod
+    def _weld(
+        vertices: npt.ArrayLike, tolerance: float = 0.0
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
+    @staticmethod
     def from_trimesh(
         tm: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None
     ) -> Mesh: ...

@@ -14,7 +14,7 @@ import re
 import numpy as np
 import numpy.typing as npt
 
-from topomesh._core import MeshError
+from topomesh._core import Mesh, MeshError
 
 # binary layout: 80-byte header, uint32 count, then per triangle a normal,
 # three vertices (float32 x 3 each) and a 2-byte attribute count
@@ -113,10 +113,7 @@ def _weld(name: str, corners: npt.NDArray[np.float64], bad_line: int | None) -> 
     if not finite.all():
         where = f"line {bad_line}" if bad_line is not None else f"triangle {int(np.flatnonzero(~finite)[0]) // 3}"
         raise MeshError(f"{name}: {where}: non-finite vertex coordinate")
-    corners = corners + 0.0  # -0.0 and 0.0 are the same point
-    uniq, first, inverse = np.unique(corners, axis=0, return_index=True, return_inverse=True)
-    # number the distinct points in order of first appearance
-    order = np.argsort(first, kind="stable")
-    rank = np.empty(len(order), dtype=np.int64)
-    rank[order] = np.arange(len(order))
-    return uniq[order], rank[inverse.ravel()].reshape(-1, 3)
+    # the core's exact weld (a parallel hash sort; -0.0 and 0.0 are the same
+    # point), numbering distinct points in order of first appearance
+    uniq, index = Mesh._weld(corners, 0.0)
+    return uniq, index.reshape(-1, 3)

@@ -3,10 +3,11 @@
 //! `topomesh.repair`), `Mesh.from_trimesh` / `Mesh.from_pyvista` (delegating
 //! to `topomesh._interop`), and the inside-out warning of `from_polygons`.
 
-use super::convert::{faces, indices_1d, positions};
+use super::convert::{faces, i64_array, indices_1d, positions, vec3_array};
+use numpy::{PyArray1, PyArray2};
 use super::mesh::PyMesh;
 use super::{err, GeometryWarning};
-use crate::repair::{inside_out_components, repair_mesh, RepairReport};
+use crate::repair::{inside_out_components, merge_vertices, repair_mesh, RepairReport};
 use crate::Mesh;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -90,6 +91,27 @@ impl PyMesh {
         let sizes = indices_1d(py, face_sizes, "face_sizes")?;
         let idx = indices_1d(py, face_indices, "face_indices")?;
         run(py, vertices, sizes.as_slice(), idx.as_slice(), tolerance, close_boundaries)
+    }
+
+    /// Merge vertices within ``tolerance`` (0: exactly equal only), the weld
+    /// of :func:`topomesh.repair`: returns the distinct positions (V, 3), in
+    /// order of first appearance, and the index of every input vertex (N,).
+    #[staticmethod]
+    #[pyo3(signature = (vertices, tolerance = 0.0))]
+    fn _weld<'py>(
+        py: Python<'py>,
+        vertices: &Bound<'py, PyAny>,
+        tolerance: f64,
+    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>)> {
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err(super::arg_err(format!("weld: tolerance = {tolerance} must be a finite number >= 0")));
+        }
+        let pos = positions(py, vertices)?;
+        if let Some(v) = pos.iter().position(|p| !p.is_finite()) {
+            return Err(err(crate::MeshError::NonFinite { vertex: v }));
+        }
+        let (uniq, cluster) = py.detach(|| merge_vertices(&pos, tolerance));
+        Ok((vec3_array(py, &uniq), i64_array(py, cluster.iter().map(|&c| c as i64))))
     }
 
     /// A mesh from a ``trimesh.Trimesh`` (its vertices and triangles).

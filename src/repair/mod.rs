@@ -130,17 +130,9 @@ pub fn repair(positions: &[DVec3], sizes: &[i64], indices: &[i64], tolerance: Op
     let mut report = RepairReport { tolerance: tol, ..Default::default() };
 
     // 2. merge
-    let (cluster, n_clusters) = weld::weld(positions, tol);
+    let (cluster_pos, cluster) = merge_vertices(positions, tol);
+    let n_clusters = cluster_pos.len();
     report.vertices_merged = positions.len() - n_clusters;
-    let mut cluster_pos = vec![DVec3::ZERO; n_clusters];
-    let mut seen = vec![false; n_clusters];
-    for (v, &c) in cluster.iter().enumerate() {
-        if !seen[c as usize] {
-            seen[c as usize] = true;
-            cluster_pos[c as usize] = positions[v];
-        }
-    }
-    drop(seen);
 
     // 3. degenerate faces
     let mut verts: Vec<u32> = Vec::with_capacity(indices.len());
@@ -192,6 +184,22 @@ pub fn repair(positions: &[DVec3], sizes: &[i64], indices: &[i64], tolerance: Op
     let sizes = faces.off.windows(2).map(|w| (w[1] - w[0]) as i64).collect();
     let indices = out_vert.iter().map(|&v| v as i64).collect();
     Ok(Repaired { positions, sizes, indices, report })
+}
+
+/// Merges vertices within `tol` (≥ 0; 0: exactly equal positions only) as
+/// step 2 of [`repair`] does: the distinct positions (each cluster at its
+/// lowest member, in that member's order) and the cluster of every input vertex.
+pub fn merge_vertices(positions: &[DVec3], tol: f64) -> (Vec<DVec3>, Vec<u32>) {
+    let (cluster, n) = weld::weld(positions, tol);
+    let mut out = vec![DVec3::ZERO; n];
+    let mut seen = vec![false; n];
+    for (v, &c) in cluster.iter().enumerate() {
+        if !seen[c as usize] {
+            seen[c as usize] = true;
+            out[c as usize] = positions[v];
+        }
+    }
+    (out, cluster)
 }
 
 /// [`repair`], then [`Mesh::from_polygons`] (capping the boundaries left
