@@ -11,6 +11,7 @@ pub mod ifs;
 pub mod mesh;
 pub mod ops;
 pub mod primitives;
+pub mod repair;
 pub mod schemes;
 
 #[cfg(feature = "python")]

@@ -105,7 +105,9 @@ def dihedron(n: int) -> Mesh:
     """Two n-gons glued along their whole boundary: every vertex has valence 2."""
     t = np.linspace(0, 2 * np.pi, n, endpoint=False)
     V = np.column_stack([np.cos(t), np.sin(t), 0.1 * np.sin(3 * t)])
-    return Mesh.from_polygons(V, [list(range(n)), list(range(n))[::-1]])
+    # the second face starts at vertex 0 too, so both fan from it and the
+    # (non-planar) pair encloses zero volume instead of looking inside out
+    return Mesh.from_polygons(V, [list(range(n)), [0, *range(n - 1, 0, -1)]])
 
 
 def loop_sphere() -> Mesh:

@@ -24,12 +24,14 @@ from topomesh._core import (
     torus,
 )
 from topomesh.io import load  # noqa: E402
-from topomesh import ifs  # noqa: E402
+from topomesh._repair import RepairReport, repair  # noqa: E402
+from topomesh import _interop, ifs  # noqa: E402
 
 __all__ = [
     "GeometryWarning",
     "Mesh",
     "MeshError",
+    "RepairReport",
     "Rind",
     "cube",
     "dodecahedron",
@@ -39,6 +41,7 @@ __all__ = [
     "load",
     "menger_sponge",
     "octahedron",
+    "repair",
     "tetrahedron",
     "torus",
 ]

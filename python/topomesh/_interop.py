@@ -49,15 +49,87 @@ def to_manifold(mesh: Mesh) -> Any:
     return m
 
 
-def from_trimesh(tm: Any, close_boundaries: bool = False) -> Mesh:
-    """A :class:`Mesh` from a ``trimesh.Trimesh`` (its vertices and triangles as they are)."""
-    return Mesh.from_polygons(np.asarray(tm.vertices), np.asarray(tm.faces), close_boundaries=close_boundaries)
+def _build(
+    points: Any, sizes: Any, indices: Any, close_boundaries: bool, repair: bool, tolerance: float | None
+) -> Mesh:
+    """``Mesh.from_flat`` (or the repair path) on the points the faces use:
+    points no face refers to (pyvista keeps them after clipping, trimesh
+    after ``process=False`` edits) are left out, the rest keep their order."""
+    points = np.asarray(points, dtype=np.float64)
+    indices = np.asarray(indices, dtype=np.int64).ravel()
+    sizes = np.asarray(sizes, dtype=np.int64).ravel()
+    if indices.size and indices.min() >= 0 and indices.max() < len(points):
+        used = np.zeros(len(points), dtype=bool)
+        used[indices] = True
+        if not used.all():
+            new = np.cumsum(used) - 1
+            points, indices = points[used], new[indices]
+    if repair:
+        from topomesh._repair import repair_flat
+
+        return repair_flat(points, sizes, indices, tolerance=tolerance, close_boundaries=close_boundaries)[0]
+    return Mesh.from_flat(points, sizes, indices, close_boundaries=close_boundaries)
 
 
-def from_pyvista(poly: Any, close_boundaries: bool = False) -> Mesh:
-    """A :class:`Mesh` from a ``pyvista.PolyData`` with polygon faces."""
+def from_trimesh(tm: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None) -> Mesh:
+    """A :class:`Mesh` from a ``trimesh.Trimesh``: its vertices and triangles
+    (vertices no triangle uses left out). ``repair=True`` passes them through
+    :func:`topomesh.repair` with ``tolerance`` (call it directly for the report)."""
+    faces = np.asarray(tm.faces, dtype=np.int64).reshape(-1, 3)
+    return _build(tm.vertices, np.full(len(faces), 3), faces, close_boundaries, repair, tolerance)
+
+
+def _cells(cells: Any) -> tuple[Any, Any]:
+    """(sizes, connectivity) of a ``vtkCellArray``."""
     pv = _need("pyvista")
-    cells = poly.GetPolys()
     offsets = np.asarray(pv.convert_array(cells.GetOffsetsArray()), dtype=np.int64)
     conn = np.asarray(pv.convert_array(cells.GetConnectivityArray()), dtype=np.int64)
-    return Mesh.from_flat(np.asarray(poly.points), np.diff(offsets), conn, close_boundaries=close_boundaries)
+    if offsets.size == 0:
+        offsets = np.zeros(1, dtype=np.int64)
+    return np.diff(offsets), conn
+
+
+def _strip_triangles(sizes: Any, conn: Any) -> Any:
+    """Triangles (T, 3) of triangle strips: triangle j of a strip is
+    ``s[j], s[j+1], s[j+2]`` with the first two swapped for odd j (VTK's
+    alternating orientation); triangles repeating a vertex (the stitches of
+    degenerate strips) are left out."""
+    n = np.maximum(sizes - 2, 0)
+    if n.sum() == 0:
+        return np.zeros((0, 3), dtype=np.int64)
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    first = np.repeat(starts, n)
+    j = np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
+    a, b, c = conn[first + j], conn[first + j + 1], conn[first + j + 2]
+    odd = j % 2 == 1
+    a, b = np.where(odd, b, a), np.where(odd, a, b)
+    t = np.stack([a, b, c], axis=1)
+    keep = (a != b) & (b != c) & (a != c)
+    return t[keep]
+
+
+def from_pyvista(
+    data: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None
+) -> Mesh:
+    """A :class:`Mesh` from a pyvista dataset.
+
+    ``PolyData``: its polygon faces, then its triangle strips as triangles
+    (vertex and line cells are not surface cells and are left out). Any
+    other dataset (``UnstructuredGrid``, ``ImageData``, ...) goes through
+    ``extract_surface()`` first. Points no face uses are left out.
+    ``repair=True`` passes the faces through :func:`topomesh.repair`."""
+    pv = _need("pyvista")
+    poly = data
+    if not isinstance(poly, pv.PolyData):
+        if not hasattr(poly, "extract_surface"):
+            raise MeshError(f"from_pyvista: expected a pyvista dataset, got {type(data).__name__}")
+        try:  # pyvista >= 0.45 warns unless the algorithm is named
+            poly = poly.extract_surface(algorithm="dataset_surface")
+        except TypeError:
+            poly = poly.extract_surface()
+    sizes, conn = _cells(poly.GetPolys())
+    tri = _strip_triangles(*_cells(poly.GetStrips()))
+    if len(tri):
+        sizes = np.concatenate([sizes, np.full(len(tri), 3, dtype=np.int64)])
+        conn = np.concatenate([conn, tri.ravel()])
+    return _build(poly.points, sizes, conn, close_boundaries, repair, tolerance)

@@ -95,6 +95,7 @@ fn build_twins(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], twin
 fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
     let m = py.detach(|| Mesh::from_polygons(pos, sizes, idx, opts)).map_err(err)?;
+    super::repair::warn_inside_out(py, &m)?;
     Ok(PyMesh::wrap(m))
 }
 

@@ -12,6 +12,7 @@ mod io;
 pub(crate) mod fractal;
 pub(crate) mod mesh;
 mod refine;
+mod repair;
 mod ops;
 mod smooth;
 
