@@ -5,6 +5,7 @@
 //! bindings are compiled only with the `python` cargo feature.
 
 pub mod error;
+pub mod geometry;
 pub mod io;
 pub mod ifs;
 pub mod mesh;

@@ -1157,10 +1157,10 @@ fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), usize)> {
     loop {
         // (the previous round's build is dropped before this one is made)
         let cur = build_once(m, o, &full)?;
-        let (tris, _) = cur.1.triangles();
+        let (tris, tri_pos) = triangles_with_points(&cur.1);
         let only = (round > 0).then_some(&recheck[..]);
-        let mut lc = local_crossings(cur.1.positions(), &tris, &cur.0.owner, cur.0.first_inner, only);
-        drop(tris);
+        let mut lc = local_crossings(&tri_pos, &tris, &cur.0.owner, cur.0.first_inner, only);
+        drop((tris, tri_pos));
         for (v, c) in crossing.iter_mut().enumerate() {
             if only.map_or(true, |r| r[v]) {
                 *c = false;
@@ -1216,11 +1216,22 @@ fn build_once(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<(Built, Mesh
 /// `owner`) are tested pairwise per vertex; both triangles' owners of every
 /// crossing pair are returned. Linear in the output (a vertex's triangles
 /// are bounded by its valence), parallel over vertices.
+/// The mesh's triangulation and the positions its triangles index: the
+/// vertices, then the points the triangulation adds (owned by no vertex).
+fn triangles_with_points(m: &Mesh) -> (Vec<[u32; 3]>, Vec<DVec3>) {
+    let t = m.triangulate();
+    let mut p = m.positions().to_vec();
+    p.extend_from_slice(&t.points);
+    (t.tris, p)
+}
+
 fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], first_inner: u32, only: Option<&[bool]>) -> Vec<u32> {
     use rayon::prelude::*;
+    // points added by the triangulation have no owner
+    let owner_of = |v: u32| owner.get(v as usize).copied().unwrap_or(u32::MAX);
     // triangles bucketed by owner (counting sort)
     let owners_of = |t: &[u32; 3]| {
-        let mut o = t.map(|v| owner[v as usize]);
+        let mut o = t.map(owner_of);
         o.sort_unstable();
         [0, 1, 2].map(|k| if o[k] != u32::MAX && (k == 0 || o[k] != o[k - 1]) { o[k] } else { u32::MAX })
     };
@@ -1274,7 +1285,7 @@ fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], first_inner: u
                     }
                     let (ta, tb) = (tris[ta as usize], tris[tb as usize]);
                     if triangles_cross(ta, ta.map(|v| p[v as usize]), tb, tb.map(|v| p[v as usize])) {
-                        out.extend(ta.iter().chain(&tb).map(|&v| owner[v as usize]).filter(|&o| o != u32::MAX));
+                        out.extend(ta.iter().chain(&tb).map(|&v| owner_of(v)).filter(|&o| o != u32::MAX));
                     }
                 }
             }
@@ -1440,8 +1451,8 @@ pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
 
 #[cfg(test)]
 pub(crate) fn crossing_pairs(m: &Mesh) -> std::collections::HashSet<(u32, u32)> {
-    let (tris, _) = m.triangles();
-    crossing_pairs_tris(m.positions(), &tris)
+    let (tris, p) = triangles_with_points(m);
+    crossing_pairs_tris(&p, &tris)
 }
 
 #[cfg(test)]
@@ -1535,17 +1546,18 @@ mod intersection_tests {
         let o = MengerOptions::default();
         let t2 = menger_iterated(&primitives::tetrahedron(), 2, &o).unwrap();
         let (b, mesh) = build_once(&t2, &o, &vec![false; t2.n_vertices()]).unwrap();
-        let (tris, _) = mesh.triangles();
+        let (tris, p) = triangles_with_points(&mesh);
         let global = crossing_pairs(&mesh);
         assert!(!global.is_empty());
-        let local = local_crossings(mesh.positions(), &tris, &b.owner, b.first_inner, None);
+        let local = local_crossings(&p, &tris, &b.owner, b.first_inner, None);
         // every globally crossing pair has an owner the local check flags
         for &(i, j) in &global {
-            let owners: Vec<u32> = tris[i as usize].iter().chain(&tris[j as usize]).map(|&v| b.owner[v as usize]).filter(|&x| x != u32::MAX).collect();
+            let owners: Vec<u32> = tris[i as usize].iter().chain(&tris[j as usize]).map(|&v| b.owner.get(v as usize).copied().unwrap_or(u32::MAX)).filter(|&x| x != u32::MAX).collect();
             assert!(owners.iter().any(|x| local.binary_search(x).is_ok()), "pair ({i}, {j}) unseen");
         }
         let (b, mesh) = build_once(&primitives::cube(), &o, &vec![false; 8]).unwrap();
-        assert!(local_crossings(mesh.positions(), &mesh.triangles().0, &b.owner, b.first_inner, None).is_empty());
+        let (tris, p) = triangles_with_points(&mesh);
+        assert!(local_crossings(&p, &tris, &b.owner, b.first_inner, None).is_empty());
     }
 
     #[test]
