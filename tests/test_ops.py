@@ -92,8 +92,9 @@ def _coplanar_overlap(t1, t2, eps=1e-9) -> bool:
 
 
 def self_intersections(m: Mesh) -> list[tuple[int, int]]:
-    """Pairs of triangles of ``m.triangles()`` that intersect improperly."""
-    return triangle_intersections(m.vertices, m.triangles())
+    """Pairs of triangles of ``m.triangulate()`` that intersect improperly."""
+    verts, tris, _ = m.triangulate()
+    return triangle_intersections(verts, tris)
 
 
 def triangle_intersections(v: np.ndarray, t: np.ndarray, chunk: int = 256) -> list[tuple[int, int]]:

@@ -135,12 +135,12 @@ CORPUS = {**CLEAN, **DEGENERATE}
 
 def assert_peers_agree(m: Mesh) -> None:
     """trimesh watertight/winding and manifold3d genus on the triangulation."""
-    tris = m.triangles()
-    tm = trimesh.Trimesh(m.vertices, tris, process=False)
+    verts, tris, _ = m.triangulate()
+    tm = trimesh.Trimesh(verts, tris, process=False)
     assert tm.is_watertight
     assert tm.is_winding_consistent
     mf = manifold3d.Manifold(
-        manifold3d.Mesh(vert_properties=m.vertices.astype(np.float32), tri_verts=tris.astype(np.uint32))
+        manifold3d.Mesh(vert_properties=verts.astype(np.float32), tri_verts=tris.astype(np.uint32))
     )
     assert mf.status() == manifold3d.Error.NoError
     assert m.n_components == 1

@@ -170,11 +170,11 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
         "components": mesh.n_components,
         "self_loops": mesh.n_self_loops,
     }
-    tris = mesh.triangles()
+    verts, tris, _ = mesh.triangulate()
     try:
         import trimesh
 
-        tm = trimesh.Trimesh(mesh.vertices, tris, process=False)
+        tm = trimesh.Trimesh(verts, tris, process=False)
         row["trimesh_watertight"] = bool(tm.is_watertight)
         row["trimesh_genus"] = int(mesh.n_components - tm.euler_number // 2)
     except Exception as e:  # pragma: no cover - reported, not raised
@@ -183,7 +183,7 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
     try:
         import manifold3d as m3d
 
-        man = m3d.Manifold(m3d.Mesh(vert_properties=mesh.vertices.astype(np.float32), tri_verts=tris.astype(np.uint32)))
+        man = m3d.Manifold(m3d.Mesh(vert_properties=verts.astype(np.float32), tri_verts=tris.astype(np.uint32)))
         ok = man.status() == m3d.Error.NoError
         row["manifold_status"] = str(man.status()).split(".")[-1]
         # manifold3d's genus is 1 − χ/2 of the whole mesh; add back the components

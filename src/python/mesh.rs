@@ -334,9 +334,10 @@ impl PyMesh {
 
     /// Triangles for rendering and validation, int64 (T, 3).
     ///
-    /// Self-loops (consecutive repeated vertices) are dropped, faces with
-    /// fewer than three distinct corners give no triangle, convex faces are
-    /// fanned and non-convex ones ear-clipped in their plane. With
+    /// The triangles of :meth:`triangulate`: indices ``>= n_vertices`` refer
+    /// to the points it adds (``triangulate()[0][n_vertices:]``), so pair
+    /// these triangles with ``triangulate()``'s vertices, not with
+    /// :attr:`vertices`, unless ``triangles().max() < n_vertices``. With
     /// ``return_faces=True`` also returns the source face of every triangle.
     #[pyo3(signature = (return_faces = false))]
     fn triangles<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
@@ -347,6 +348,35 @@ impl PyMesh {
         } else {
             Ok(tris)
         }
+    }
+
+    /// A closed triangle mesh of this mesh: ``(vertices, triangles, faces)``.
+    ///
+    /// ``vertices`` float64 (V + S, 3) are :attr:`vertices` followed by S
+    /// added points; ``triangles`` int64 (T, 3) index them,
+    /// counter-clockwise seen from outside; ``faces`` int64 (T,) is the source
+    /// face of each triangle (triangles are grouped by face, in face order).
+    ///
+    /// Each face is triangulated in the plane of its Newell normal (fanned
+    /// if convex, ear-clipped otherwise) so that no diagonal is an edge of
+    /// the mesh or another face's diagonal: on a mesh without self-loops,
+    /// one- or two-gons or vertices repeated in a face, every triangle edge
+    /// has exactly two triangles. Points are added where that needs them:
+    /// the middle of every extra edge between the same two vertices
+    /// (multi-edges), then, in face order, one point inside each face with no
+    /// fitting triangulation by diagonals (the corners' mean, when the face
+    /// is star-shaped from it; otherwise one point beside the middle of each
+    /// colliding diagonal). Self-loop repeats are dropped and faces left with
+    /// fewer than three corners give no triangle (the triangle mesh pinches
+    /// there); holes are left out.
+    fn triangulate<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>, Bound<'py, PyArray1<i64>>) {
+        let t = py.detach(|| self.inner.triangulate());
+        let mut v = self.inner.positions().to_vec();
+        v.extend_from_slice(&t.points);
+        (vec3_array(py, &v), u32_rows(py, &t.tris), i64_array(py, t.tri_face.iter().map(|&x| x as i64)))
     }
 
     /// Check every structural invariant; raise :class:`MeshError` naming the

@@ -216,7 +216,7 @@ impl PyMesh {
         Ok(PyMesh::wrap(m))
     }
 
-    /// Pairs of triangles of :meth:`triangles` that intersect, int64 (K, 2),
+    /// Pairs of triangles of :meth:`triangulate` that intersect, int64 (K, 2),
     /// ``i < j``, sorted: an edge of one through the other's interior, or
     /// lying in the other's plane across it (coplanar overlap). Triangles
     /// sharing an edge never count; sharing a vertex, only when they meet
@@ -224,8 +224,8 @@ impl PyMesh {
     /// ``create_pipe`` use (``src/geometry/crossing.rs``); near-linear.
     fn self_intersections<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {
         let pairs = py.detach(|| {
-            let (tris, _) = self.inner.triangles();
-            crate::geometry::crossing::crossing_pairs(self.inner.positions(), &tris, None, true)
+            let (tris, p) = crate::geometry::triangles_with_points(&self.inner);
+            crate::geometry::crossing::crossing_pairs(&p, &tris, None, true)
         });
         let rows: Vec<[u32; 2]> = pairs.iter().map(|&(i, j)| [i, j]).collect();
         super::convert::u32_rows(py, &rows)
