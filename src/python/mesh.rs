@@ -400,16 +400,29 @@ fn icosahedron() -> PyMesh {
 /// around the tube. V = major·minor, F = V, genus 1.
 #[pyfunction]
 #[pyo3(signature = (major = 24, minor = 12, major_radius = 1.0, minor_radius = 0.4))]
-fn torus(major: usize, minor: usize, major_radius: f64, minor_radius: f64) -> PyResult<PyMesh> {
-    primitives::torus(major, minor, major_radius, minor_radius).map(PyMesh::wrap).map_err(err)
+fn torus(
+    py: Python<'_>,
+    #[pyo3(from_py_with = super::big_int)] major: i128,
+    #[pyo3(from_py_with = super::big_int)] minor: i128,
+    major_radius: f64,
+    minor_radius: f64,
+) -> PyResult<PyMesh> {
+    let major = super::usize_in("torus", "major", major, 3, crate::mesh::MAX_ELEMENTS)?;
+    let minor = super::usize_in("torus", "minor", minor, 3, crate::mesh::MAX_ELEMENTS)?;
+    super::finite_in("torus", "major_radius", major_radius, f64::MIN_POSITIVE, f64::MAX)?;
+    super::finite_in("torus", "minor_radius", minor_radius, f64::MIN_POSITIVE, f64::MAX)?;
+    super::run_interruptible(py, || primitives::torus(major, minor, major_radius, minor_radius)).map(PyMesh::wrap)
 }
 /// A closed genus-``g`` slab, tunnelled with InsertEdge (quads only).
+///
+/// Parameters
+/// ----------
+/// g : int
+///     The genus, 0 to 10000.
 #[pyfunction]
-fn genus_surface(g: usize) -> PyResult<PyMesh> {
-    if g > 10_000 {
-        return Err(arg_err(format!("genus_surface: g = {g} is too large (at most 10000)")));
-    }
-    primitives::genus_surface(g).map(PyMesh::wrap).map_err(err)
+fn genus_surface(py: Python<'_>, #[pyo3(from_py_with = super::big_int)] g: i128) -> PyResult<PyMesh> {
+    let g = super::usize_in("genus_surface", "g", g, 0, 10_000)?;
+    super::run_interruptible(py, || primitives::genus_surface(g)).map(PyMesh::wrap)
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
