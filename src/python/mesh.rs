@@ -52,7 +52,11 @@ impl PyMesh {
 
 fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
-    let m = py.detach(|| Mesh::from_polygons(pos, sizes, idx, opts)).map_err(err)?;
+    let c = crate::budget::Counts::plain(pos.len() as u64, idx.len() as u64 / 2, sizes.len() as u64);
+    let m = super::run_interruptible(py, || {
+        crate::budget::check("from_polygons", &format!("a mesh of {} faces", sizes.len()), crate::budget::build_bytes(&c))?;
+        Mesh::from_polygons(pos, sizes, idx, opts)
+    })?;
     Ok(PyMesh::wrap(m))
 }
 
