@@ -256,7 +256,7 @@ impl PyMesh {
     /// DeleteVertex(v): a new mesh without the point-sphere ``v``. The last
     /// vertex takes index ``v`` and the last face the point-sphere's face
     /// index. Raises :class:`MeshError` if ``v`` has edges.
-    fn delete_vertex(&self, vertex: i64) -> PyResult<PyMesh> {
+    fn delete_vertex(&self, #[pyo3(from_py_with = super::sat_i64)] vertex: i64) -> PyResult<PyMesh> {
         if vertex < 0 || vertex as usize >= self.inner.n_vertices() {
             return Err(arg_err(format!("vertex {vertex} out of range (mesh has {} vertices)", self.inner.n_vertices())));
         }
@@ -272,7 +272,7 @@ impl PyMesh {
     /// Same face: it splits (F+1, genus unchanged). Two faces of one
     /// component: they merge (F−1, genus+1). Two components: they join
     /// (F−1, components−1).
-    fn insert_edge(&self, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<(PyMesh, usize)> {
+    fn insert_edge(&self, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<(PyMesh, usize)> {
         let c1 = self.corner(face1, position1)?;
         let c2 = self.corner(face2, position2)?;
         let mut m = self.inner.clone();
@@ -283,7 +283,7 @@ impl PyMesh {
     /// DeleteEdge(e): a new mesh without edge ``e`` (inverse of
     /// :meth:`insert_edge`). Different faces on its sides merge (F−1); the
     /// same face on both sides separates (F+1, genus−1 or components+1).
-    fn delete_edge(&self, edge: i64) -> PyResult<PyMesh> {
+    fn delete_edge(&self, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<PyMesh> {
         if edge < 0 || edge as usize >= self.inner.n_edges() {
             return Err(arg_err(format!("edge {edge} out of range (mesh has {} edges)", self.inner.n_edges())));
         }

@@ -54,6 +54,13 @@ pub(crate) fn big_int(obj: &Bound<'_, PyAny>) -> PyResult<i128> {
     }
 }
 
+/// An index argument (`#[pyo3(from_py_with = sat_i64)] x: i64`): ints beyond
+/// `i64` saturate, so the callee's range check reports them as out of range
+/// (a `MeshError`) instead of pyo3 raising `OverflowError`.
+pub(crate) fn sat_i64(obj: &Bound<'_, PyAny>) -> PyResult<i64> {
+    Ok(big_int(obj)?.clamp(i64::MIN as i128, i64::MAX as i128) as i64)
+}
+
 /// `v` when it lies in `lo..=hi`, else a `MeshError` naming `call`, the
 /// parameter `name` and the range.
 pub(crate) fn int_in(call: &str, name: &str, v: i128, lo: i64, hi: i64) -> PyResult<i64> {
@@ -220,7 +227,12 @@ pub(crate) fn iterate(
 #[pyfunction]
 #[pyo3(signature = (nbytes))]
 fn set_memory_budget(nbytes: &Bound<'_, PyAny>) -> PyResult<()> {
-    let b = if nbytes.is_none() { None } else { Some(int_in("set_memory_budget", "nbytes", big_int(nbytes)?, 0, i64::MAX)? as u64) };
+    let b = if nbytes.is_none() {
+        None
+    } else {
+        let v = big_int(nbytes).map_err(|_| arg_err(format!("set_memory_budget: nbytes = {nbytes} must be an integer >= 0 or None")))?;
+        Some(int_in("set_memory_budget", "nbytes", v, 0, i64::MAX)? as u64)
+    };
     crate::budget::set(b);
     Ok(())
 }
