@@ -285,6 +285,9 @@ impl Mesh {
         let mut offsets = Vec::with_capacity(nf + 1);
         offsets.push(0u32);
         for (f, &s) in sizes.iter().enumerate() {
+            if f % 65536 == 0 {
+                crate::cancel::check()?;
+            }
             if s == 0 {
                 return Err(MeshError::EmptyFace { face: f });
             }
@@ -434,7 +437,13 @@ impl Mesh {
                 }
             }
         };
-        let total: usize = (0..self.n_vertices()).into_par_iter().with_min_len(4096).map(walk).sum();
+        // cancelled: walks stop at once and the sum is not looked at
+        let total: usize = (0..self.n_vertices())
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|v| if crate::cancel::requested() { 0 } else { walk(v) })
+            .sum();
+        crate::cancel::check()?;
         if total == nh {
             return Ok(());
         }

@@ -425,6 +425,9 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
     };
     let mut sizes = Vec::with_capacity(n_out_faces);
     for f in 0..nf {
+        if f % 65536 == 0 {
+            crate::cancel::check()?;
+        }
         if face_point[f] == NONE {
             sizes.extend_from_slice(&[3, 3, 3, 3]);
         } else {
