@@ -72,8 +72,8 @@ pub(crate) fn int_in(call: &str, name: &str, v: i128, lo: i64, hi: i64) -> PyRes
         i128::MIN => "a huge negative value".to_string(),
         v => v.to_string(),
     };
-    let allowed = if hi == i64::MAX { format!("an integer >= {lo}") } else { format!("an integer in [{lo}, {hi}]") };
-    Err(arg_err(format!("{call}: {name} = {shown} is out of range; it must be {allowed}")))
+    let allowed = if hi == i64::MAX { format!(">= {lo}") } else { format!("in [{lo}, {hi}]") };
+    Err(arg_err(format!("{call}: {name} = {shown} must be {allowed} (an integer)")))
 }
 
 /// [`int_in`] as a `usize`.
