@@ -18,8 +18,10 @@ from topomesh._core import (
     dodecahedron,
     genus_surface,
     icosahedron,
+    memory_budget,
     menger_sponge,
     octahedron,
+    set_memory_budget,
     tetrahedron,
     torus,
 )
@@ -39,9 +41,11 @@ __all__ = [
     "ifs",
     "icosahedron",
     "load",
+    "memory_budget",
     "menger_sponge",
     "octahedron",
     "repair",
+    "set_memory_budget",
     "tetrahedron",
     "torus",
 ]

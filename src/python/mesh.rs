@@ -94,7 +94,11 @@ fn build_twins(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], twin
 
 fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
-    let m = py.detach(|| Mesh::from_polygons(pos, sizes, idx, opts)).map_err(err)?;
+    let c = crate::budget::Counts::plain(pos.len() as u64, idx.len() as u64 / 2, sizes.len() as u64);
+    let m = super::run_interruptible(py, || {
+        crate::budget::check("from_polygons", &format!("a mesh of {} faces", sizes.len()), crate::budget::build_bytes(&c))?;
+        Mesh::from_polygons(pos, sizes, idx, opts)
+    })?;
     super::repair::warn_inside_out(py, &m)?;
     Ok(PyMesh::wrap(m))
 }
@@ -399,7 +403,7 @@ impl PyMesh {
     /// DeleteVertex(v): a new mesh without the point-sphere ``v``. The last
     /// vertex takes index ``v`` and the last face the point-sphere's face
     /// index. Raises :class:`MeshError` if ``v`` has edges.
-    fn delete_vertex(&self, vertex: i64) -> PyResult<PyMesh> {
+    fn delete_vertex(&self, #[pyo3(from_py_with = super::sat_i64)] vertex: i64) -> PyResult<PyMesh> {
         if vertex < 0 || vertex as usize >= self.inner.n_vertices() {
             return Err(arg_err(format!("vertex {vertex} out of range (mesh has {} vertices)", self.inner.n_vertices())));
         }
@@ -415,7 +419,7 @@ impl PyMesh {
     /// Same face: it splits (F+1, genus unchanged). Two faces of one
     /// component: they merge (F−1, genus+1). Two components: they join
     /// (F−1, components−1).
-    fn insert_edge(&self, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<(PyMesh, usize)> {
+    fn insert_edge(&self, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<(PyMesh, usize)> {
         let c1 = self.corner(face1, position1)?;
         let c2 = self.corner(face2, position2)?;
         let mut m = self.inner.clone();
@@ -426,7 +430,7 @@ impl PyMesh {
     /// DeleteEdge(e): a new mesh without edge ``e`` (inverse of
     /// :meth:`insert_edge`). Different faces on its sides merge (F−1); the
     /// same face on both sides separates (F+1, genus−1 or components+1).
-    fn delete_edge(&self, edge: i64) -> PyResult<PyMesh> {
+    fn delete_edge(&self, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<PyMesh> {
         if edge < 0 || edge as usize >= self.inner.n_edges() {
             return Err(arg_err(format!("edge {edge} out of range (mesh has {} edges)", self.inner.n_edges())));
         }
@@ -554,16 +558,29 @@ fn icosahedron() -> PyMesh {
 /// around the tube. V = major·minor, F = V, genus 1.
 #[pyfunction]
 #[pyo3(signature = (major = 24, minor = 12, major_radius = 1.0, minor_radius = 0.4))]
-fn torus(major: usize, minor: usize, major_radius: f64, minor_radius: f64) -> PyResult<PyMesh> {
-    primitives::torus(major, minor, major_radius, minor_radius).map(PyMesh::wrap).map_err(err)
+fn torus(
+    py: Python<'_>,
+    #[pyo3(from_py_with = super::big_int)] major: i128,
+    #[pyo3(from_py_with = super::big_int)] minor: i128,
+    major_radius: f64,
+    minor_radius: f64,
+) -> PyResult<PyMesh> {
+    let major = super::usize_in("torus", "major", major, 3, crate::mesh::MAX_ELEMENTS)?;
+    let minor = super::usize_in("torus", "minor", minor, 3, crate::mesh::MAX_ELEMENTS)?;
+    super::finite_in("torus", "major_radius", major_radius, f64::MIN_POSITIVE, f64::MAX)?;
+    super::finite_in("torus", "minor_radius", minor_radius, f64::MIN_POSITIVE, f64::MAX)?;
+    super::run_interruptible(py, || primitives::torus(major, minor, major_radius, minor_radius)).map(PyMesh::wrap)
 }
 /// A closed genus-``g`` slab, tunnelled with InsertEdge (quads only).
+///
+/// Parameters
+/// ----------
+/// g : int
+///     The genus, 0 to 10000.
 #[pyfunction]
-fn genus_surface(g: usize) -> PyResult<PyMesh> {
-    if g > 10_000 {
-        return Err(arg_err(format!("genus_surface: g = {g} is too large (at most 10000)")));
-    }
-    primitives::genus_surface(g).map(PyMesh::wrap).map_err(err)
+fn genus_surface(py: Python<'_>, #[pyo3(from_py_with = super::big_int)] g: i128) -> PyResult<PyMesh> {
+    let g = super::usize_in("genus_surface", "g", g, 0, 10_000)?;
+    super::run_interruptible(py, || primitives::genus_surface(g)).map(PyMesh::wrap)
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -422,6 +422,12 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             o.thickness
         )));
     }
+    if !(o.collapse_angle.is_finite() && (0.0..=180.0).contains(&o.collapse_angle)) {
+        return Err(MeshError::InvalidArgument(format!(
+            "menger: collapse_angle = {} is out of range; it must be a finite angle in [0, 180] degrees",
+            o.collapse_angle
+        )));
+    }
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     for f in m.faces() {
@@ -473,6 +479,16 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             face_d[f.idx()] = o.thickness * w;
         }
     } else {
+        // the relative rule's bound (t < 1/2 of the smallest width around a
+        // face) in absolute terms: beyond it inset corners cross and the
+        // offset surface turns inside out (cube of side 2 at D = 10: volume −13600)
+        let limit = 0.5 * face_d.iter().copied().fold(f64::INFINITY, f64::min);
+        if o.thickness >= limit {
+            return Err(MeshError::InvalidArgument(format!(
+                "menger: thickness = {} (absolute) is out of range; on this mesh it must be in (0, {limit}) (half the smallest face width)",
+                o.thickness
+            )));
+        }
         face_d.iter_mut().for_each(|d| *d = o.thickness);
     }
     // --- inset corners
@@ -1138,6 +1154,15 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
 pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
     super::hosts::refuse_holes("menger", m)?;
     let ((_, mesh), crossing) = build_valid(m, o)?;
+    // a thickness under the face-width bound can still exceed what the body
+    // allows (a thin slab of wide faces): an outward input must stay outward
+    if !o.relative && m.signed_volume() > 0.0 && !(mesh.signed_volume() > 0.0) {
+        return Err(MeshError::InvalidArgument(format!(
+            "menger: thickness = {} (absolute) is too large for this mesh: the result would be inside out (signed volume {:.6e}); use a smaller thickness",
+            o.thickness,
+            mesh.signed_volume()
+        )));
+    }
     Ok((mesh, crossing))
 }
 
