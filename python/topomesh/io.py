@@ -33,7 +33,6 @@ Every failure, reading or writing, is a :class:`MeshError` naming the path.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import tempfile
 import warnings
@@ -55,9 +54,8 @@ _NPZ_KEYS = ("vertices", "face_sizes", "face_indices", "corner_twins")
 
 
 def read_formats() -> tuple:
-    """Extensions :func:`load` reads (``.stl`` when ``topomesh.stl`` is installed)."""
-    stl = importlib.util.find_spec("topomesh.stl") is not None
-    return SAVE_FORMATS + ((".stl",) if stl else ())
+    """Extensions :func:`load` reads: the saved formats and ``.stl``."""
+    return SAVE_FORMATS + (".stl",)
 
 
 def _suffix(path: PathLike, formats: tuple) -> str:
@@ -84,7 +82,7 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
         (OBJ, OFF, foreign PLY); ``.npz`` and topomesh's PLY are rebuilt
         exactly and need neither.
     repair : bool, default False
-        Run the file's polygons through :func:`topomesh.repair.repair`
+        Run the file's polygons through :func:`topomesh.repair`
         (merge coincident vertices, drop degenerate faces, orient) instead of
         building them as they are.
 
@@ -120,7 +118,7 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
                     stacklevel=2,
                 )
         elif kind == ".stl":
-            from topomesh.stl import read_stl  # another module's job: welding exact duplicates
+            from topomesh.stl import read_stl  # welds exact duplicates, as STL repeats every corner
 
             verts, tris = read_stl(path)
             sizes = np.full(len(tris), 3, dtype=np.int64)
@@ -135,23 +133,15 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
         raise MeshError(f"{name}: cannot read {kind[1:].upper()} file ({type(e).__name__}: {e})") from e
     try:
         if repair:
-            from topomesh.repair import repair as _repair
+            from topomesh._repair import repair_flat
 
-            mesh, _report = _repair(verts, _face_list(sizes, idx), close_boundaries=close_boundaries)
+            mesh, _report = repair_flat(verts, sizes, idx, close_boundaries=close_boundaries)
             return mesh
         if twins is not None:
             return Mesh.from_flat(verts, sizes, idx, twins=twins)
         return Mesh.from_flat(verts, sizes, idx, close_boundaries=close_boundaries, allow_multi_edges=allow_multi_edges)
     except MeshError as e:
         raise MeshError(f"{name}: {e}") from None
-
-
-def _face_list(sizes: np.ndarray, idx: np.ndarray):
-    """Faces as an (F, k) array when all have one size, else a list of arrays."""
-    sizes = np.asarray(sizes, dtype=np.int64)
-    if len(sizes) and (sizes == sizes[0]).all():
-        return np.asarray(idx, dtype=np.int64).reshape(len(sizes), int(sizes[0]))
-    return np.split(np.asarray(idx, dtype=np.int64), np.cumsum(sizes)[:-1]) if len(sizes) else []
 
 
 def save(mesh: Mesh, path: PathLike) -> None:
