@@ -25,6 +25,7 @@ from topomesh._core import (
 )
 from topomesh.io import load  # noqa: E402
 from topomesh import ifs  # noqa: E402
+from topomesh.explore import explore  # noqa: E402
 
 __all__ = [
     "GeometryWarning",
@@ -33,6 +34,7 @@ __all__ = [
     "Rind",
     "cube",
     "dodecahedron",
+    "explore",
     "genus_surface",
     "ifs",
     "icosahedron",
