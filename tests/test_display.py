@@ -88,9 +88,11 @@ def test_repr_html_never_raises(monkeypatch):
     def boom(mesh, *a, **k):
         raise RuntimeError("no GPU")
 
-    monkeypatch.setattr(viz, "render_png", boom)
+    monkeypatch.setattr(viz.Renderer, "render", boom)
+    monkeypatch.setattr(viz, "_CAN_RENDER", None)
     h = topomesh.torus(8, 4)._repr_html_()
     assert "genus" in h and "data:image/png" not in h
+    assert viz._CAN_RENDER is False  # not tried again
     assert topomesh.torus(8, 4)._repr_png_() is None
 
 

@@ -329,7 +329,8 @@ class Explorer:
                     p.mesh = self.input
         t1 = time.perf_counter()
         if self._renderer is None:
-            self._renderer = viz.Renderer(len(self.panels), self.window_size)
+            big = max(m.n_faces for m in self.inputs.values()) > viz.HTML_RENDER_MAX_FACES
+            self._renderer = viz.Renderer(len(self.panels), self.window_size, antialias=not big)
         meshes = [p.mesh for p in self.panels if p.mesh is not None]
         self.png = self._renderer.render(
             meshes, [viz.title_text(p.mesh, self._title(p)) for p in self.panels if p.mesh is not None], color_by=self.color_by, edges=self.edges
