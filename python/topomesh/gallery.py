@@ -199,7 +199,7 @@ def render(mesh: Mesh, path: Path, title: str = "") -> None:
     edges below 20k faces, the camera fitted to the mesh)."""
     from topomesh import viz
 
-    png = viz.render_png(mesh, [title or False], window_size=(640, 480), edges=None)
+    png = viz.render_png(mesh, [viz.title_text(mesh, title)], window_size=(640, 480), edges=None)
     Path(path).write_bytes(png)
 
 

@@ -131,12 +131,14 @@ def _view_axes(view: Sequence[float]) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return d, right, np.cross(d, right)
 
 
-def frame(plotter: Any, points: np.ndarray, view: Sequence[float] = VIEW, top_margin: float = 0.0, fill: float = 0.92) -> None:
+def frame(
+    plotter: Any, points: np.ndarray, view: Sequence[float] = VIEW, top_margin: float = 0.0, fill: float = 0.92, bottom_margin: float = 0.0
+) -> None:
     """Point the active camera of ``plotter`` along ``-view`` at ``points``
     with a parallel projection whose extent is the points' projected
     bounding box: the object fills ``fill`` of the limiting side, centred in
-    the image below a band of ``top_margin`` (a fraction of the height, for a
-    title)."""
+    the image between a band of ``top_margin`` (a fraction of the height,
+    for a title) and one of ``bottom_margin`` (for a colour bar)."""
     pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
     if len(pts) > 200_000:  # the extent of a regular sample is the same within a pixel
         pts = pts[:: len(pts) // 100_000]
@@ -149,10 +151,10 @@ def frame(plotter: Any, points: np.ndarray, view: Sequence[float] = VIEW, top_ma
     w, h = plotter.window_size
     shape = getattr(plotter, "shape", (1, 1))
     aspect = (w / shape[1]) / (h / shape[0])
-    usable = fill * (1.0 - top_margin)
+    usable = fill * (1.0 - top_margin - bottom_margin)
     scale = max(half_h / usable, half_w / (fill * aspect))  # parallel_scale = half the visible height
-    # shift the centre down so that the object sits under the title band
-    cy += scale * top_margin
+    # shift the centre so that the object sits between the bands
+    cy += scale * (top_margin - bottom_margin)
     focal = cx * right + cy * up + (z.min() + z.max()) / 2 * d
     depth = max(z.max() - z.min(), half_w, half_h)
     cam = plotter.camera
@@ -178,8 +180,9 @@ def add(
     triangles: bool = False,
 ) -> None:
     """Add ``mesh`` to the active subplot of ``plotter``: faces, polygon
-    edges (``edges=None``: only below 20k faces), colouring and title.
-    ``name`` makes a second call replace the first one's actors."""
+    edges (``edges=None``: only below 20k faces), colouring and a title
+    (True: the counts, a string: that text, False: none). ``name`` makes a
+    second call replace the first one's actors."""
     s = scalars(mesh, color_by)
     poly = surface(mesh, triangles)
     if s is not None and s[1] == "cell" and triangles:
@@ -194,10 +197,15 @@ def add(
     else:
         values, where, label = s
         (poly.cell_data if where == "cell" else poly.point_data)[label] = values
-        kw.update(scalars=label, cmap="viridis", show_scalar_bar=True, scalar_bar_args={"title": label, "vertical": True})
-        if np.issubdtype(np.asarray(values).dtype, np.integer) and np.ptp(values) <= 12:
-            kw["categories"] = True
-            kw["n_colors"] = max(int(np.ptp(values)) + 1, 2)
+        bar = {"title": label, "vertical": False, "position_x": 0.25, "position_y": 0.02, "width": 0.5, "height": 0.08,
+               "color": "black", "title_font_size": 12, "label_font_size": 10}
+        if np.issubdtype(np.asarray(values).dtype, np.integer):
+            bar["fmt"] = "%.0f"
+            if np.ptp(values) <= 12:
+                kw["categories"] = True
+                kw["n_colors"] = max(int(np.ptp(values)) + 1, 2)
+                bar["n_labels"] = kw["n_colors"]
+        kw.update(scalars=label, cmap="viridis", show_scalar_bar=True, scalar_bar_args=bar)
     plotter.add_mesh(poly, **kw)
     if edges is None:
         edges = mesh.n_faces < HTML_RENDER_MAX_FACES
@@ -206,7 +214,7 @@ def add(
     elif name:
         plotter.remove_actor(f"{name}edges", render=False)
     if title:
-        plotter.add_text(title_text(mesh, title if isinstance(title, str) else ""), font_size=9, name=f"{name}title", color="black", render=False)
+        plotter.add_text(title if isinstance(title, str) else title_text(mesh), font_size=9, name=f"{name}title", color="black", render=False)
     elif name:
         plotter.remove_actor(f"{name}title", render=False)
 
@@ -267,7 +275,7 @@ class Renderer:
         has_title = any(bool(t) for t in titles)
         for k in range(self.panels):
             self.plotter.subplot(0, k)
-            frame(self.plotter, pts, view=view, top_margin=0.12 if has_title else 0.0)
+            frame(self.plotter, pts, view=view, top_margin=0.12 if has_title else 0.0, bottom_margin=0.14 if color_by is not None else 0.0)
         self.plotter.render()
         return _png(self.plotter.screenshot(return_img=True))
 
@@ -382,6 +390,8 @@ def plot(mesh: Mesh, **options: Any) -> Any:
     title = options.get("title", True)
     if not isinstance(title, (bool, str)):
         raise MeshError(f"plot: title = {title!r} must be a bool or a string")
+    if isinstance(title, str):
+        title = title_text(mesh, title)
     size = _window_size(options.get("window_size", (640, 480)))
     view = options.get("view", VIEW)
     try:
@@ -419,7 +429,7 @@ def plot(mesh: Mesh, **options: Any) -> Any:
     pl = pv.Plotter(window_size=list(size))
     pl.set_background(BACKGROUND)
     add(pl, mesh, color_by=color_by, edges=edges, title=title, color=color)
-    frame(pl, mesh.vertices, view=view, top_margin=0.12 if title else 0.0)
+    frame(pl, mesh.vertices, view=view, top_margin=0.12 if title else 0.0, bottom_margin=0.14 if color_by is not None else 0.0)
     pl.show(screenshot=str(screenshot) if screenshot is not None else None)
     return None
 
@@ -448,7 +458,7 @@ def _live_viewer(mesh: Mesh, size: tuple[int, int], title: Any, kw: dict[str, An
         pl = pv.Plotter(window_size=list(size), notebook=True)
         pl.set_background(BACKGROUND)
         add(pl, mesh, color_by=kw["color_by"], edges=kw["edges"], title=title, color=kw["color"])
-        frame(pl, mesh.vertices, view=kw["view"], top_margin=0.12 if title else 0.0)
+        frame(pl, mesh.vertices, view=kw["view"], top_margin=0.12 if title else 0.0, bottom_margin=0.14 if kw["color_by"] is not None else 0.0)
         return pl.show(jupyter_backend=backend, return_viewer=True)
     except Exception:  # no trame, no GPU, no kernel comm: the static image is shown instead
         return None
