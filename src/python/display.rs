@@ -40,11 +40,19 @@ impl PyMesh {
     /// title : bool or str, default True
     ///     True writes the counts; a string is written above them.
     ///
+    /// color : str, optional
+    ///     Surface colour when ``color_by`` is None.
+    /// view : (float, float, float), optional
+    ///     Direction from the mesh to the camera (z up); the parallel camera
+    ///     is fitted to the mesh seen from there.
+    ///
     /// Returns
     /// -------
-    /// IPython.display.Image, a pyvista Jupyter viewer, or None
-    ///     The static PNG (or its bytes when IPython is missing), the live
-    ///     viewer, or None after an interactive window closes.
+    /// IPython.display.Image or None
+    ///     Outside Jupyter, off-screen: the PNG as an Image (its bytes when
+    ///     IPython is missing). In Jupyter the image or live viewer is
+    ///     displayed where the call is and None is returned; None too after
+    ///     an interactive window closes.
     ///
     /// Raises
     /// ------
