@@ -28,6 +28,7 @@ from topomesh._core import (
 from topomesh.io import load  # noqa: E402
 from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
+from topomesh.explore import explore  # noqa: E402
 
 __all__ = [
     "GeometryWarning",
@@ -37,6 +38,7 @@ __all__ = [
     "Rind",
     "cube",
     "dodecahedron",
+    "explore",
     "genus_surface",
     "ifs",
     "icosahedron",

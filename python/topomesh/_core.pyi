@@ -205,6 +205,23 @@ class Mesh:
         collapse_angle: float = 90.0,
         progress: bool = False,
     ) -> Mesh: ...
+    # --- display (topomesh.viz) ---
+    def plot(
+        self,
+        *,
+        color_by: Literal["face_size", "valence", "component"] | npt.ArrayLike | None = None,
+        edges: bool | None = True,
+        notebook: bool | None = None,
+        screenshot: str | PathLike[str] | None = None,
+        off_screen: bool | None = None,
+        window_size: tuple[int, int] = (640, 480),
+        title: bool | str = True,
+        color: str = ...,
+        view: tuple[float, float, float] = ...,
+    ) -> Any: ...
+    def _repr_html_(self) -> str: ...
+    def _repr_png_(self) -> bytes | None: ...
+    def _vertex_components(self) -> npt.NDArray[np.int64]: ...
 
 def tetrahedron() -> Mesh: ...
 def cube() -> Mesh: ...

@@ -195,17 +195,12 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
 
 
 def render(mesh: Mesh, path: Path, title: str = "") -> None:
-    """Render ``mesh`` off-screen to a PNG with pyvista."""
-    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
-    import pyvista as pv
+    """Render ``mesh`` off-screen to a PNG (:mod:`topomesh.viz`: polygon
+    edges below 20k faces, the camera fitted to the mesh)."""
+    from topomesh import viz
 
-    pl = pv.Plotter(off_screen=True, window_size=(640, 480))
-    pl.add_mesh(mesh.to_pyvista(), color="#d9b38c", show_edges=mesh.n_faces < 20000, edge_color="#4d3319", smooth_shading=False)
-    if title:
-        pl.add_text(title, font_size=10)
-    pl.view_isometric()
-    pl.screenshot(str(path))
-    pl.close()
+    png = viz.render_png(mesh, [viz.title_text(mesh, title)], window_size=(640, 480), edges=None)
+    Path(path).write_bytes(png)
 
 
 def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress: bool = True, images: bool = True) -> list[dict[str, object]]:
