@@ -53,13 +53,14 @@ def _pyvista() -> Any:
 def surface(mesh: Mesh, triangles: bool = False) -> Any:
     """``pyvista.PolyData`` of the polygon faces (hole faces are not drawn).
 
-    With ``triangles=True`` the faces are :meth:`Mesh.triangles` instead
-    (non-convex faces ear-clipped, which VTK's own fan would not do); per-face
-    colours still follow the source faces."""
+    With ``triangles=True`` the faces are :meth:`Mesh.triangulate`'s
+    triangles and points (non-convex faces triangulated in their plane, which
+    VTK's own fan would not do); per-face colours still follow the source
+    faces."""
     pv = _pyvista()
     if triangles:
-        t, _ = mesh.triangles(return_faces=True)
-        return pv.PolyData.from_regular_faces(mesh.vertices, t)
+        verts, t, _ = mesh.triangulate()
+        return pv.PolyData.from_regular_faces(verts, t)
     return pv.PolyData(mesh.vertices, mesh.padded_faces)
 
 
@@ -186,7 +187,7 @@ def add(
     s = scalars(mesh, color_by)
     poly = surface(mesh, triangles)
     if s is not None and s[1] == "cell" and triangles:
-        s = (np.asarray(s[0])[mesh.triangles(return_faces=True)[1]], "cell", s[2])
+        s = (np.asarray(s[0])[mesh.triangulate()[2]], "cell", s[2])
     # render=False: one render at the screenshot, not one per actor. Back
     # faces of a closed, outward-oriented mesh are hidden anyway: culling them
     # halves the software rasterizer's work (not with holes: the inside shows)
