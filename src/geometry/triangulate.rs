@@ -11,8 +11,8 @@
 //! faces that no diagonal-only triangulation fits.
 //!
 //! **Per face** (in parallel): the vertex cycle, consecutive repeats dropped,
-//! is projected into the plane of its Newell normal. Faces bent out of that
-//! plane by more than [`BENT`] are fanned around their centroid (an added
+//! is projected into the plane of its Newell normal. Faces of five or more
+//! corners bent out of that plane by more than [`BENT`] are fanned around their centroid (an added
 //! point): diagonals of their projection can fold the surface through itself
 //! (one Doo-Sabin step of a Sierpinski tetrahedron: manifold3d then sees genus
 //! 0 instead of 3). Convex faces are fanned
@@ -273,14 +273,18 @@ fn star_clip(p: &[DVec2], out: &mut Vec<[u32; 3]>) -> bool {
     true
 }
 
-/// A face whose corners leave its Newell plane by more than this fraction of
+/// A face of five or more corners that leave its Newell plane by more than this fraction of
 /// their distance from its mean is fanned around its centroid: diagonals of
 /// its projection can fold the surface through itself.
 pub const BENT: f64 = 0.25;
 
-/// Whether the face is bent (see [`BENT`]); n ≥ 4.
+/// Whether the face is bent (see [`BENT`]). Quads never are: either
+/// diagonal makes a faithful two-triangle surface of a folded quad.
 fn is_bent(cyc: &[u32], pos: &[DVec3]) -> bool {
     let n = cyc.len();
+    if n < 5 {
+        return false;
+    }
     let at = |i: usize| pos[cyc[i] as usize];
     let mut normal = DVec3::ZERO;
     let mut c = DVec3::ZERO;
@@ -683,7 +687,7 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
                 j == (i + 1) % n || i == (j + 1) % n || !forbidden(i, j)
             })
         });
-        if n >= 4 && is_bent(cyc, pos) {
+        if is_bent(cyc, pos) {
             added.clear();
             added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
             out.clear();
