@@ -1,31 +1,42 @@
 //! Triangulation of a polygon mesh that stays a closed 2-manifold.
 //!
-//! **Contract.** On a *simple* mesh (no self-loop, one- or two-gon, vertex
-//! repeated in a face, or multi-edge) every edge of the triangle mesh is
-//! shared by exactly two triangles, with opposite directions: no diagonal is
-//! an edge of the mesh, and no two faces choose the same diagonal. This holds
-//! for non-planar and non-convex faces too. Where a face has no triangulation
-//! by diagonals alone that avoids them, points are added inside it (see
-//! [`Triangulation`]).
+//! **Contract.** On a mesh without self-loops, one- or two-gons and vertices
+//! repeated in a face, every edge of the triangle mesh is shared by exactly
+//! two triangles, with opposite directions: no diagonal is an edge of the
+//! mesh, and no two faces choose the same diagonal. This holds for
+//! non-planar and non-convex faces too. Points are added where needed (see
+//! [`Triangulation`]): first the middle of every multi-edge copy after the
+//! first (lowest edge id) between the same two vertices, which both faces
+//! beside that copy take as a corner; then, in face order, points inside
+//! faces that no diagonal-only triangulation fits.
 //!
 //! **Per face** (in parallel): the vertex cycle, consecutive repeats dropped,
-//! is projected into the plane of its Newell normal; convex faces are fanned
-//! from their first corner, others ear-clipped by `earcut` (z-order hashed,
-//! near-linear). **Global pass**: every diagonal is tested against the mesh
-//! edges (walking the rotation of its endpoint of smaller valence) and against
-//! every other face's diagonals (one parallel sort). **Retry** of each face
-//! with a collision, in face order, with the edges and the diagonals already
-//! accepted forbidden: an exact O(n³) search over the face's triangulations
-//! for faces of up to [`EXACT_LIMIT`] corners (other fans for larger convex
-//! faces); failing that, one point, the corners' mean, with the face fanned
-//! around it when the face is star-shaped from there; failing that (large
-//! non-star-shaped faces), each forbidden diagonal of the first choice is
-//! split at a point beside its middle. Total work is near-linear in corners.
-//! The output depends only on the mesh (deterministic, any thread count).
+//! is projected into the plane of its Newell normal. Faces of five or more
+//! corners bent out of that plane by more than [`BENT`] are fanned around their centroid (an added
+//! point): diagonals of their projection can fold the surface through itself
+//! (one Doo-Sabin step of a Sierpinski tetrahedron: manifold3d then sees genus
+//! 0 instead of 3). Convex faces are fanned
+//! from their first corner; faces star-shaped from their corners' mean are
+//! ear-clipped in linear time ([`star_clip`]); other non-convex faces go to
+//! `earcut` (z-order hashed; near-linear on most polygons, quadratic on
+//! adversarial ones such as stars, hence the star clip). **Global pass**:
+//! every diagonal is tested against the mesh edges (walking the rotation of
+//! its endpoint of smaller valence) and against every other face's diagonals
+//! (one parallel sort). **Retry** of each face with a collision, in face
+//! order, with the edges and the diagonals already accepted forbidden: its
+//! first choice if that no longer collides, else other fans (convex faces),
+//! else an exact O(n³) search over the face's triangulations for faces of up
+//! to [`EXACT_LIMIT`] corners; failing that, one point, the corners' mean,
+//! with the face fanned around it (when the face is small, or star-shaped
+//! from there); failing that (large faces star-shaped from no such point), each forbidden
+//! diagonal of the first choice is split at a point beside its middle. Total
+//! work is near-linear in corners; the output depends only on the mesh
+//! (deterministic at any thread count).
 //!
-//! Non-simple meshes keep the legacy behaviour: self-loop repeats dropped,
-//! faces left with fewer than three corners give no triangle (the triangle
-//! mesh pinches there), holes are left out.
+//! Meshes with self-loops, one- or two-gons or repeated face vertices keep
+//! the legacy behaviour: self-loop repeats dropped, faces left with fewer
+//! than three corners give no triangle (the triangle mesh pinches there).
+//! Holes are left out.
 
 use crate::mesh::{EdgeId, FaceId, Mesh, VertexId};
 use glam::{DVec2, DVec3};
@@ -262,6 +273,36 @@ fn star_clip(p: &[DVec2], out: &mut Vec<[u32; 3]>) -> bool {
     true
 }
 
+/// A face of five or more corners that leave its Newell plane by more than this fraction of
+/// their distance from its mean is fanned around its centroid: diagonals of
+/// its projection can fold the surface through itself.
+pub const BENT: f64 = 0.25;
+
+/// Whether the face is bent (see [`BENT`]). Quads never are: either
+/// diagonal makes a faithful two-triangle surface of a folded quad.
+fn is_bent(cyc: &[u32], pos: &[DVec3]) -> bool {
+    let n = cyc.len();
+    if n < 5 {
+        return false;
+    }
+    let at = |i: usize| pos[cyc[i] as usize];
+    let mut normal = DVec3::ZERO;
+    let mut c = DVec3::ZERO;
+    for i in 0..n {
+        normal += at(i).cross(at((i + 1) % n));
+        c += at(i);
+    }
+    c /= n as f64;
+    let Some(nz) = normal.try_normalize() else { return false };
+    let (mut off, mut r) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        let d = at(i) - c;
+        off = off.max(d.dot(nz).abs());
+        r = r.max(d.length());
+    }
+    off > BENT * r
+}
+
 /// Whether the projected polygon is star-shaped from the corners' mean (the
 /// frame's origin).
 fn star_from_mean(p: &[DVec2]) -> bool {
@@ -399,11 +440,8 @@ fn retry(
 ) {
     let n = cyc.len();
     added.clear();
-    if n <= EXACT_LIMIT && shape != Shape::Degenerate && exact(p, shape, forbidden, out) {
-        return;
-    }
-    if shape == Shape::Convex && n > EXACT_LIMIT {
-        // a few other fans, O(n) each
+    if shape == Shape::Convex {
+        // other fans first, O(n) each
         for from in 1..n.min(8) {
             if (2..n - 1).all(|i| !forbidden(from, (from + i) % n)) {
                 fan(n, from, out);
@@ -411,9 +449,15 @@ fn retry(
             }
         }
     }
-    // one point: the corners' mean, if the face is star-shaped from it
+    if n <= EXACT_LIMIT && shape != Shape::Degenerate && exact(p, shape, forbidden, out) {
+        return;
+    }
+    // one point: the corners' mean, if the face is star-shaped from it, or
+    // if it is small: a small face no diagonals fit is mostly far from planar
+    // (Doo-Sabin faces around opened self-loops), where its projection
+    // misleads and a fan around its centroid is the faithful surface
     let c2 = p.iter().copied().sum::<DVec2>() / n as f64;
-    if shape != Shape::NonConvex || (0..n).all(|i| cross2(p[i], p[(i + 1) % n], c2) > 0.0) {
+    if shape != Shape::NonConvex || n <= EXACT_LIMIT || (0..n).all(|i| cross2(p[i], p[(i + 1) % n], c2) > 0.0) {
         added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
         out.clear();
         out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
@@ -440,13 +484,12 @@ fn retry(
         let (Some(&t1), Some(&t2)) = (by_edge.get(&(i, j)), by_edge.get(&(j, i))) else { continue };
         let apex = |t: [u32; 3], a: u32, b: u32| t.into_iter().find(|&v| v != a && v != b).unwrap();
         let (x, y) = (apex(out[t1], i, j), apex(out[t2], j, i));
-        let mid = (pt(added, i) + pt(added, j)) / 2.0;
+        // the middle keeps the four triangles positive (halves of two
+        // positive ones); it lies on the coincident mesh edge, but nothing
+        // better is known without the face's kernel
+        let _ = (x, y);
         let m = n32 + added.len() as u32;
-        // a tenth of the way towards the two apexes' middle keeps the point
-        // off the (coincident) mesh edge; the four triangles stay positive
-        // for any point of the open diagonal nearby in the plane
-        let towards = (pt(added, x) + pt(added, y)) / 2.0 - mid;
-        added.push(mid + 0.1 * towards);
+        added.push((pt(added, i) + pt(added, j)) / 2.0);
         out[t1] = [i, m, x];
         out[t2] = [j, m, y];
         let (t3, t4) = (out.len(), out.len() + 1);
@@ -464,25 +507,47 @@ fn retry(
 /// pair, in edge order. Each is split at its middle so that the triangle
 /// mesh has one edge per vertex pair. Self-loops are left alone.
 fn multi_edge_copies(m: &Mesh) -> Vec<u32> {
-    let mut copies: Vec<u32> = (0..m.n_vertices() as u32)
-        .into_par_iter()
-        .with_min_len(4096)
-        .map_init(Vec::new, |heads: &mut Vec<(u32, u32)>, a| {
-            heads.clear();
-            // each pair is seen from its lower end
-            heads.extend(m.vertex_halfedges(VertexId(a)).map(|h| (m.head(h).0, h.edge().0)).filter(|&(b, _)| b > a));
-            let mut out = Vec::new();
-            if heads.len() > 1 {
-                heads.sort_unstable();
-                out.extend(heads.windows(2).filter(|w| w[0].0 == w[1].0).map(|w| w[1].1));
-            }
-            out
-        })
-        .flatten_iter()
-        .collect();
+    // bucket the edges by their lower end (counting sort over the tail
+    // column, read in order), then look for repeated upper ends per bucket
+    let (_, vert, _) = m.halfedge_columns();
+    let ends = |e: usize| {
+        let (a, b) = (vert[2 * e], vert[2 * e + 1]);
+        (a.min(b), a.max(b))
+    };
+    let nv = m.n_vertices();
+    let mut start = vec![0u32; nv + 1];
+    for e in 0..m.n_edges() {
+        let (a, b) = ends(e);
+        if a != b {
+            start[a as usize + 1] += 1;
+        }
+    }
+    for k in 0..nv {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut upper = vec![(0u32, 0u32); start[nv] as usize];
+    for e in 0..m.n_edges() {
+        let (a, b) = ends(e);
+        if a != b {
+            upper[fill[a as usize] as usize] = (b, e as u32);
+            fill[a as usize] += 1;
+        }
+    }
+    let mut copies = Vec::new();
+    for v in 0..nv {
+        let list = &mut upper[start[v] as usize..start[v + 1] as usize];
+        if list.len() > 1 {
+            list.sort_unstable();
+            copies.extend(list.windows(2).filter(|w| w[0].0 == w[1].0).map(|w| w[1].1));
+        }
+    }
     copies.sort_unstable();
     copies
 }
+
+/// The diagonal key that marks a bent face (no vertex pair has it).
+const BENT_KEY: u64 = u64::MAX;
 
 /// One block's first choices: triangles (global ids), their faces, and every
 /// diagonal as (pair key, face).
@@ -500,11 +565,24 @@ fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: std::ops::Range<us
         if n < 3 {
             continue;
         }
+        if n == 3 {
+            tris.push([s.cyc[0], s.cyc[1], s.cyc[2]]);
+            tri_face.push(f as u32);
+            continue;
+        }
         let shape = project(&s.cyc, pos, &mut s.p);
         first_choice(&mut s, shape);
+        // bent faces are redone around their centroid (no diagonals)
+        let bent = is_bent(&s.cyc, pos);
+        if bent {
+            diags.push((BENT_KEY, f as u32));
+        }
         for t in &s.local {
             tris.push(t.map(|k| s.cyc[k as usize]));
             tri_face.push(f as u32);
+            if bent {
+                continue;
+            }
             for k in 0..3 {
                 let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
                 if i < j && j != i + 1 && !(i == 0 && j == n - 1) {
@@ -550,8 +628,11 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
     }
 
     // collisions: a diagonal that is a mesh edge, or that two faces chose
-    let mut bad: Vec<u32> =
-        diags.par_iter().filter(|&&(k, _)| is_edge(m, (k >> 32) as u32, k as u32)).map(|&(_, f)| f).collect();
+    let mut bad: Vec<u32> = diags
+        .par_iter()
+        .filter(|&&(k, _)| k == BENT_KEY || is_edge(m, (k >> 32) as u32, k as u32))
+        .map(|&(_, f)| f)
+        .collect();
     diags.par_sort_unstable();
     let mut i = 0;
     while i < diags.len() {
@@ -559,7 +640,7 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
         while j < diags.len() && diags[j].0 == diags[i].0 {
             j += 1;
         }
-        if j - i > 1 {
+        if j - i > 1 && diags[i].0 != BENT_KEY {
             bad.extend(diags[i..j].iter().map(|d| d.1));
         }
         i = j;
@@ -581,7 +662,7 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
     }
     let mut taken: HashSet<u64> = diags
         .iter()
-        .filter(|&&(k, f)| in_bad[(k >> 32) as usize] && in_bad[(k & 0xffff_ffff) as usize] && bad.binary_search(&f).is_err())
+        .filter(|&&(k, f)| k != BENT_KEY && in_bad[(k >> 32) as usize] && in_bad[(k & 0xffff_ffff) as usize] && bad.binary_search(&f).is_err())
         .map(|d| d.0)
         .collect();
     drop(diags);
@@ -606,7 +687,12 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
                 j == (i + 1) % n || i == (j + 1) % n || !forbidden(i, j)
             })
         });
-        if free {
+        if is_bent(cyc, pos) {
+            added.clear();
+            added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
+            out.clear();
+            out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
+        } else if free {
             out.clone_from(&s.local);
             added.clear();
         } else {

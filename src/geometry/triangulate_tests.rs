@@ -50,9 +50,8 @@ fn deleted_edges_of_tetrahedron_and_cube() {
             m.delete_edge(EdgeId(e as u32)).unwrap();
             let t = m.triangulate();
             assert_closed(&m, &t);
-            // a diagonal-only triangulation exists here: no point added
-            assert!(t.points.is_empty());
-            assert_eq!(t.tris.len(), corner_sum(&m) - 2 * m.n_faces());
+            // the merged faces are folded (bent): each is fanned around one point
+            assert_eq!(t.tris.len(), corner_sum(&m) - 2 * m.n_faces() + 2 * t.points.len());
         }
     }
 }
@@ -158,11 +157,17 @@ fn bent_hexagon() {
             DVec3::new(x, y, 0.6 * y.abs())
         })
         .collect();
-    let m = two_sided(pos);
+    let m = two_sided(pos.clone());
     let t = m.triangulate();
     assert_closed(&m, &t);
-    assert!(t.points.is_empty());
-    assert_eq!(t.tris.len(), 8);
+    // bent past BENT: both sides fanned around their centroids
+    assert_eq!((t.points.len(), t.tris.len()), (2, 12));
+    // gently bent: diagonals only
+    let flat: Vec<DVec3> = pos.iter().map(|p| DVec3::new(p.x, p.y, p.z * 0.1)).collect();
+    let m = two_sided(flat);
+    let t = m.triangulate();
+    assert_closed(&m, &t);
+    assert_eq!((t.points.len(), t.tris.len()), (0, 8));
 }
 
 #[test]
@@ -215,9 +220,10 @@ fn quad_with_both_diagonals_taken_gets_a_point() {
 
 #[test]
 fn retry_splits_forbidden_diagonals_of_non_star_faces() {
-    // a comb: no point sees the whole face, every diagonal forbidden
-    let mut p = vec![DVec2::new(0.0, 0.0), DVec2::new(7.0, 0.0)];
-    for k in (0..4).rev() {
+    // a comb of twelve teeth (more than EXACT_LIMIT corners): no point sees
+    // the whole face, every diagonal forbidden
+    let mut p = vec![DVec2::new(0.0, 0.0), DVec2::new(23.0, 0.0)];
+    for k in (0..12).rev() {
         let x = 2.0 * k as f64;
         p.extend([DVec2::new(x + 1.0, 3.0), DVec2::new(x, 3.0)]);
         if k > 0 {
@@ -225,6 +231,7 @@ fn retry_splits_forbidden_diagonals_of_non_star_faces() {
         }
     }
     let n = p.len();
+    assert!(n > EXACT_LIMIT);
     let cyc: Vec<u32> = (0..n as u32).collect();
     let pos: Vec<DVec3> = p.iter().map(|q| q.extend(0.0)).collect();
     let mut first = Vec::new();
@@ -302,4 +309,6 @@ fn multi_edges_are_split() {
         assert_eq!(t.points[k], mid);
     }
 }
+
+
 
