@@ -385,7 +385,7 @@ mod tests {
             for _ in 0..40 {
                 let mut r = src.rind(0.1).unwrap();
                 let mut gone = vec![false; nf];
-                let k = 1 + rnd(nf);
+                let k = 1 + rnd(nf - 1); // peeling all is refused (below)
                 let mut order: Vec<usize> = (0..nf).collect();
                 for i in 0..nf {
                     order.swap(i, i + rnd(nf - i));
@@ -407,10 +407,12 @@ mod tests {
                     assert_eq!(r.mesh().euler_characteristic(), chi - 2);
                 }
             }
-            // everything peeled: nothing is left
+            // peeling everything would leave nothing: refused, the rind unchanged
             let mut r = src.rind(0.1).unwrap();
-            r.peel(&(0..nf).collect::<Vec<_>>()).unwrap();
-            assert_eq!(counts(r.mesh()), (0, 0, 0, 0, 0));
+            let before = counts(r.mesh());
+            let e = r.peel(&(0..nf).collect::<Vec<_>>()).unwrap_err();
+            assert!(e.to_string().contains("would leave nothing"), "{e}");
+            assert_eq!(counts(r.mesh()), before);
         }
     }
 
