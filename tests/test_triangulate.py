@@ -98,8 +98,12 @@ def _ops_cases():
     cube = topomesh.cube()
     yield "connect_edges 0,0,1,0", cube.connect_edges(0, 0, 1, 0)[0]
     yield "connect_edges 0,0,0,2", cube.connect_edges(0, 0, 0, 2)[0]
-    yield "create_pipe 0,0,1,0", cube.create_pipe(0, 0, 1, 0)
-    yield "create_pipe opposite", cube.create_pipe(0, 0, 2, 0) if cube.n_faces > 2 else cube
+    # a pipe between two faces of a cube folds through the body: the crossing
+    # check warns (tests/test_ops.py tests that); the topology is what counts here
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", topomesh.GeometryWarning)
+        yield "create_pipe 0,0,1,0", cube.create_pipe(0, 0, 1, 0)
+        yield "create_pipe opposite", cube.create_pipe(0, 0, 2, 0)
 
 
 @pytest.mark.parametrize("name,m", list(_ops_cases()), ids=lambda x: x if isinstance(x, str) else "")
