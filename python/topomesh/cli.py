@@ -16,7 +16,6 @@ failure with 1.
 from __future__ import annotations
 
 import argparse
-import inspect
 import re
 import sys
 from typing import Any, Sequence
@@ -61,13 +60,7 @@ def _cli_message(msg: str) -> str:
 
 def _load(a: argparse.Namespace, path: str) -> Mesh:
     """``topomesh.load`` with the construction flags of the command line."""
-    kw: dict[str, Any] = {"close_boundaries": a.close_boundaries, "allow_multi_edges": a.allow_multi_edges}
-    if a.repair:
-        # only when asked: a load() without the repair path says so in CLI terms
-        if "repair" not in inspect.signature(topomesh.load).parameters:
-            raise MeshError("--repair is not available in this build of topomesh")
-        kw["repair"] = True
-    return topomesh.load(path, **kw)
+    return topomesh.load(path, close_boundaries=a.close_boundaries, allow_multi_edges=a.allow_multi_edges, repair=a.repair)
 
 
 def cmd_info(a: argparse.Namespace) -> int:
