@@ -180,3 +180,19 @@ def test_ctrl_c_is_one_line_with_status_130(tmp_path, monkeypatch, capsys):
 def _with_func(p, cmd, fn):
     p._subparsers._group_actions[0].choices[cmd].set_defaults(func=fn)
     return p
+
+
+def test_repair_flag_welds_a_soup(tmp_path, capsys):
+    # every triangle of a cube with its own three vertices, as many exporters write them
+    c = topomesh.cube()
+    verts, tris, _ = c.triangulate()
+    soup = tmp_path / "soup.obj"
+    soup.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in verts[tris.reshape(-1)].tolist())
+                    + "".join(f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}\n" for k in range(len(tris))))
+    assert cli.main(["info", str(soup)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--close-boundaries" in err and "close_boundaries" not in err.replace("--close-boundaries", "")
+    out = tmp_path / "welded.npz"
+    assert cli.main(["convert", "--repair", str(soup), str(out)]) == 0
+    back = topomesh.load(out)
+    assert (back.n_vertices, back.n_faces, back.genus, back.n_holes) == (8, 12, 0, 0)

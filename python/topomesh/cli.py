@@ -18,7 +18,7 @@ from __future__ import annotations
 import argparse
 import re
 import sys
-from typing import Any, Sequence
+from typing import Sequence
 
 import topomesh
 from topomesh import Mesh, MeshError
