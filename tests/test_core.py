@@ -271,8 +271,8 @@ def test_files_round_trip_exactly(tmp_path, ext):
 
 
 def test_load_errors_are_mesh_errors(tmp_path):
-    with pytest.raises(MeshError, match="unsupported extension '.stl'"):
-        topomesh.load(tmp_path / "x.stl")
+    with pytest.raises(MeshError, match="unsupported extension '.vtk'"):
+        topomesh.load(tmp_path / "x.vtk")
     with pytest.raises(MeshError, match="no such file"):
         topomesh.load(tmp_path / "missing.obj")
     bad = tmp_path / "bad.off"

@@ -208,8 +208,12 @@ BAD = {"negative": -1, "huge": 2**70, "nan": math.nan, "inf": math.inf}
 
 def _base_calls():
     """Valid calls of every public function and method with numeric parameters."""
+    from tests.test_ops import face_at, grid_cube
+
     cube = topomesh.cube()
     rind = cube.rind(0.1)
+    grid = grid_cube(3)
+    top, bottom = face_at(grid, [0, 0, 1]), face_at(grid, [0, 0, -1])
     chaikin = ifs.chaikin(np.random.default_rng(1).random((4, 2)))
     P = np.random.default_rng(2).random((6, 3))
     P2 = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [3.0, 0.1]])
@@ -232,10 +236,11 @@ def _base_calls():
         "Mesh.menger": (cube.menger, {"iterations": 1, "thickness": 0.3, "collapse_angle": 90.0}),
         "Mesh.rind": (cube.rind, {"thickness": 0.1}),
         "Mesh.subdivide_edge": (cube.subdivide_edge, {"edge": 0, "t": 0.5}),
-        "Mesh.add_handle": (cube.add_handle, {"face_a": 0, "face_b": 1, "segments": 4}),
+        # a tunnel and a straight pipe through a 3 x 3 grid cube: valid calls free of crossings
+        "Mesh.add_handle": (grid.add_handle, {"face_a": top, "face_b": bottom, "segments": 4, "weights": (-1.0, -1.0)}),
         "Mesh.insert_edge": (cube.insert_edge, {"face1": 0, "position1": 0, "face2": 0, "position2": 2}),
         "Mesh.connect_edges": (cube.connect_edges, {"face1": 0, "position1": 0, "face2": 1, "position2": 0}),
-        "Mesh.create_pipe": (cube.create_pipe, {"face1": 0, "position1": 0, "face2": 1, "position2": 0}),
+        "Mesh.create_pipe": (grid.create_pipe, {"face1": top, "position1": 0, "face2": bottom, "position2": 2}),
         "Mesh.delete_edge": (cube.delete_edge, {"edge": 0}),
         "Mesh.delete_edge_with_cleanup": (cube.delete_edge_with_cleanup, {"edge": 0}),
         "Mesh.collapse_edge": (cube.collapse_edge, {"edge": 0}),
