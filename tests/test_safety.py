@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 import topomesh
-from topomesh import MeshError, _core, ifs
+from topomesh import Mesh, MeshError, _core, ifs
 
 GiB = 1 << 30
 
@@ -213,6 +213,11 @@ def _base_calls():
     cube = topomesh.cube()
     rind = cube.rind(0.1)
     grid = grid_cube(3)
+    import pyvista as pv
+    import trimesh
+
+    soup_tm = trimesh.creation.box()
+    soup_pv = pv.Cube().triangulate()
     top, bottom = face_at(grid, [0, 0, 1]), face_at(grid, [0, 0, -1])
     chaikin = ifs.chaikin(np.random.default_rng(1).random((4, 2)))
     P = np.random.default_rng(2).random((6, 3))
@@ -237,6 +242,8 @@ def _base_calls():
         "Mesh.rind": (cube.rind, {"thickness": 0.1}),
         "Mesh.subdivide_edge": (cube.subdivide_edge, {"edge": 0, "t": 0.5}),
         # a tunnel and a straight pipe through a 3 x 3 grid cube: valid calls free of crossings
+        "Mesh.from_trimesh": (Mesh.from_trimesh, {"tm": soup_tm, "repair": True, "tolerance": 1e-9}),
+        "Mesh.from_pyvista": (Mesh.from_pyvista, {"data": soup_pv, "repair": True, "tolerance": 1e-9}),
         "Mesh.add_handle": (grid.add_handle, {"face_a": top, "face_b": bottom, "segments": 4, "weights": (-1.0, -1.0)}),
         "Mesh.insert_edge": (cube.insert_edge, {"face1": 0, "position1": 0, "face2": 0, "position2": 2}),
         "Mesh.connect_edges": (cube.connect_edges, {"face1": 0, "position1": 0, "face2": 1, "position2": 0}),
@@ -260,7 +267,7 @@ NOT_NUMERIC = {
     "self", "control_points", "scheme", "stencils", "knots", "pieces", "name", "mode", "progress", "absolute",
     "start", "vertices", "faces", "face_sizes", "face_indices", "close_boundaries", "allow_multi_edges", "path",
     "points", "point", "weights", "corners", "keep", "other", "probabilities", "return_faces", "blocks",
-    "matrices", "translations", "reference",
+    "matrices", "translations", "reference", "tm", "data", "repair", "twins", "options",
 }
 
 
