@@ -29,6 +29,11 @@ pub enum MeshError {
     Invariant(String),
     /// Reading or writing a file failed.
     Io(String),
+    /// A call would need more memory than the budget (`crate::budget`) allows,
+    /// or a large allocation failed; the message names the call, level and bytes.
+    Memory(String),
+    /// The call was cancelled through `crate::cancel` (Ctrl-C in Python).
+    Interrupted,
 }
 
 impl fmt::Display for MeshError {
@@ -59,7 +64,8 @@ impl fmt::Display for MeshError {
                 "edge ({a}, {b}) of face {face} is a boundary edge (no face on its other side); pass close_boundaries=True to cap holes"
             ),
             NonFinite { vertex } => write!(f, "vertex {vertex} has a NaN or infinite coordinate"),
-            InvalidArgument(m) | Precondition(m) | Invariant(m) | Io(m) => f.write_str(m),
+            InvalidArgument(m) | Precondition(m) | Invariant(m) | Io(m) | Memory(m) => f.write_str(m),
+            Interrupted => f.write_str("interrupted"),
         }
     }
 }

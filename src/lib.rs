@@ -4,6 +4,8 @@
 //! The core (everything but `python`) has no Python dependency; the PyO3
 //! bindings are compiled only with the `python` cargo feature.
 
+pub mod budget;
+pub mod cancel;
 pub mod error;
 pub mod geometry;
 pub mod io;
@@ -11,6 +13,7 @@ pub mod ifs;
 pub mod mesh;
 pub mod ops;
 pub mod primitives;
+pub mod repair;
 pub mod schemes;
 
 #[cfg(feature = "python")]

@@ -133,6 +133,17 @@ pub fn torus(major: usize, minor: usize, major_radius: f64, minor_radius: f64) -
             "torus radii must satisfy major_radius > minor_radius > 0 (got {major_radius}, {minor_radius})"
         )));
     }
+    // V = F = major·minor, E = 2V: refuse before allocating what cannot fit
+    let v = (major as u64).saturating_mul(minor as u64);
+    let c = crate::budget::Counts::plain(v, v.saturating_mul(2), v);
+    if c.e.saturating_mul(2) > crate::mesh::MAX_ELEMENTS as u64 {
+        return Err(MeshError::InvalidArgument(format!(
+            "torus: major·minor = {major}·{minor} gives {} half-edges, more than 31-bit ids allow (major·minor at most {})",
+            4 * v as u128,
+            crate::mesh::MAX_ELEMENTS / 4
+        )));
+    }
+    crate::budget::check("torus", &format!("a {major}x{minor} torus"), crate::budget::build_bytes(&c))?;
     let tau = std::f64::consts::TAU;
     let mut pos = Vec::with_capacity(major * minor);
     for i in 0..major {

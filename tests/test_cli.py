@@ -96,3 +96,103 @@ def test_scheme_commands(tmp_path, capsys, args, check):
     cmd, rest = args[0], args[1:]
     assert cli.main([cmd, str(src), str(dst), *rest]) == 0
     assert check(topomesh.load(dst, allow_multi_edges=True))
+
+
+def _run_cli(*args: str, timeout: float = 120) -> "subprocess.CompletedProcess[str]":
+    import subprocess
+    import sys
+
+    return subprocess.run([sys.executable, "-m", "topomesh.cli", *args], capture_output=True, text=True, timeout=timeout)
+
+
+def test_version():
+    p = _run_cli("--version")
+    assert p.returncode == 0 and p.stdout.strip() == f"topomesh {topomesh.__version__}"
+
+
+def _open_triangle(tmp_path):
+    p = tmp_path / "open.obj"
+    p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    return p
+
+
+@pytest.mark.parametrize(
+    "case",
+    ["missing-file", "bad-scheme", "open-mesh", "negative-n", "garbage-file", "unknown-flag", "directory-output", "past-budget"],
+)
+def test_no_traceback_ever(tmp_path, case):
+    cube = tmp_path / "cube.obj"
+    topomesh.cube().save(cube)
+    garbage = tmp_path / "garbage.obj"
+    garbage.write_bytes(b"\x00\xff not an obj \n f 1 2 9\n")
+    args = {
+        "missing-file": ["info", str(tmp_path / "nope.obj")],
+        "bad-scheme": ["subdivide", str(cube), str(tmp_path / "o.obj"), "--scheme", "bogus"],
+        "open-mesh": ["info", str(_open_triangle(tmp_path))],
+        "negative-n": ["subdivide", str(cube), str(tmp_path / "o.obj"), "--scheme", "loop", "-n", "-3"],
+        "garbage-file": ["convert", str(garbage), str(tmp_path / "o.ply")],
+        "unknown-flag": ["info", "--frobnicate", str(cube)],
+        "directory-output": ["convert", str(cube), str(tmp_path)],
+        "past-budget": ["sierpinski", str(cube), str(tmp_path / "o.obj"), "-n", "20"],
+    }[case]
+    p = _run_cli(*args)
+    assert p.returncode in (1, 2), (p.returncode, p.stderr)
+    assert "Traceback" not in p.stderr and "panicked" not in p.stderr and "RUST_BACKTRACE" not in p.stderr, p.stderr
+    last = p.stderr.strip().splitlines()[-1]
+    assert last.startswith("topomesh: error:") or last.startswith("usage:") or "error:" in last, p.stderr
+    # messages name the CLI's flags, never a Python keyword
+    assert "close_boundaries" not in p.stderr and "iterations =" not in p.stderr, p.stderr
+
+
+def test_messages_name_cli_flags(tmp_path, capsys):
+    src = _open_triangle(tmp_path)
+    assert cli.main(["info", str(src)]) == 2
+    err = capsys.readouterr().err
+    assert "--close-boundaries" in err and "close_boundaries" not in err
+    assert cli.main(["subdivide", str(src), str(tmp_path / "o.obj"), "--scheme", "loop", "-n", "-1", "--close-boundaries"]) == 2
+    assert "loop: -n = -1 must be >= 0" in capsys.readouterr().err
+
+
+def test_construction_flags_reach_load(tmp_path, capsys):
+    src = _open_triangle(tmp_path)
+    assert cli.main(["info", "--close-boundaries", str(src)]) == 0
+    assert "V=3, E=3, F=2" in capsys.readouterr().out  # the cap is a hole face
+    out = tmp_path / "o.ply"
+    assert cli.main(["convert", "--close-boundaries", str(src), str(out)]) == 0
+    assert topomesh.load(out, close_boundaries=True).n_holes == 1
+    for cmd in ("info", "convert", "subdivide", "sierpinski", "menger"):
+        help_text = cli.parser()._subparsers._group_actions[0].choices[cmd].format_help()
+        for flag in ("--close-boundaries", "--allow-multi-edges", "--repair"):
+            assert flag in help_text, (cmd, flag)
+
+
+def test_ctrl_c_is_one_line_with_status_130(tmp_path, monkeypatch, capsys):
+    def interrupted(a):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "cmd_info", interrupted)
+    parser = cli.parser
+    monkeypatch.setattr(cli, "parser", lambda: _with_func(parser(), "info", interrupted))
+    assert cli.main(["info", str(tmp_path / "x.obj")]) == 130
+    assert capsys.readouterr().err.strip() == "topomesh: interrupted"
+
+
+def _with_func(p, cmd, fn):
+    p._subparsers._group_actions[0].choices[cmd].set_defaults(func=fn)
+    return p
+
+
+def test_repair_flag_welds_a_soup(tmp_path, capsys):
+    # every triangle of a cube with its own three vertices, as many exporters write them
+    c = topomesh.cube()
+    verts, tris, _ = c.triangulate()
+    soup = tmp_path / "soup.obj"
+    soup.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in verts[tris.reshape(-1)].tolist())
+                    + "".join(f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}\n" for k in range(len(tris))))
+    assert cli.main(["info", str(soup)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--close-boundaries" in err and "close_boundaries" not in err.replace("--close-boundaries", "")
+    out = tmp_path / "welded.npz"
+    assert cli.main(["convert", "--repair", str(soup), str(out)]) == 0
+    back = topomesh.load(out)
+    assert (back.n_vertices, back.n_faces, back.genus, back.n_holes) == (8, 12, 0, 0)

@@ -106,7 +106,10 @@ def test_mesh_error_is_a_value_error_and_input_is_untouched():
     m = Mesh.from_polygons(v, f)
     assert np.array_equal(v, TET_V) and np.array_equal(f, TET_F)
     out = m.vertices
-    out[:] = 0  # a copy: the mesh keeps its coordinates
+    with pytest.raises(ValueError, match="read-only"):
+        out[:] = 0  # a read-only view: the mesh keeps its coordinates
+    mine = np.array(out)
+    mine[:] = 0  # a copy is the user's own
     assert np.array_equal(m.vertices, TET_V)
 
 
@@ -268,8 +271,8 @@ def test_files_round_trip_exactly(tmp_path, ext):
 
 
 def test_load_errors_are_mesh_errors(tmp_path):
-    with pytest.raises(MeshError, match="unsupported extension '.stl'"):
-        topomesh.load(tmp_path / "x.stl")
+    with pytest.raises(MeshError, match="unsupported extension '.vtk'"):
+        topomesh.load(tmp_path / "x.vtk")
     with pytest.raises(MeshError, match="no such file"):
         topomesh.load(tmp_path / "missing.obj")
     bad = tmp_path / "bad.off"

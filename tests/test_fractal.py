@@ -191,7 +191,8 @@ def test_menger_sponge_vertices_on_grid_and_inside_cube():
 def test_menger_sponge_rejects_bad_levels():
     with pytest.raises(topomesh.MeshError):
         topomesh.menger_sponge(6)
-    with pytest.raises(OverflowError):
+    # issue 14: a MeshError naming the parameter, no bare OverflowError
+    with pytest.raises(topomesh.MeshError, match=r"menger_sponge: level = -1 must be in \[0, 5\]"):
         topomesh.menger_sponge(-1)
 
 

@@ -255,9 +255,9 @@ def test_peers_on_loop_and_two_gon():
         # coincident points of the zero-length loop: manifold3d merges them
         assert_agrees_with_peers(m.vertex_truncation(3, **kw), exact_vertices=False, planar=False)
     h = m.honeycomb(2)
-    tris = h.triangles()
-    assert trimesh.Trimesh(h.vertices, tris, process=False).is_winding_consistent
-    man = m3d.Manifold(m3d.Mesh(vert_properties=h.vertices.astype(np.float32), tri_verts=tris.astype(np.uint32)))
+    verts, tris, _ = h.triangulate()
+    assert trimesh.Trimesh(verts, tris, process=False).is_winding_consistent
+    man = m3d.Manifold(m3d.Mesh(vert_properties=verts.astype(np.float32), tri_verts=tris.astype(np.uint32)))
     assert man.status() == m3d.Error.NoError and man.genus() == h.genus == 0
 
 

@@ -105,7 +105,9 @@ def dihedron(n: int) -> Mesh:
     """Two n-gons glued along their whole boundary: every vertex has valence 2."""
     t = np.linspace(0, 2 * np.pi, n, endpoint=False)
     V = np.column_stack([np.cos(t), np.sin(t), 0.1 * np.sin(3 * t)])
-    return Mesh.from_polygons(V, [list(range(n)), list(range(n))[::-1]])
+    # the second face starts at vertex 0 too, so both fan from it and the
+    # (non-planar) pair encloses zero volume instead of looking inside out
+    return Mesh.from_polygons(V, [list(range(n)), [0, *range(n - 1, 0, -1)]])
 
 
 def loop_sphere() -> Mesh:
@@ -133,12 +135,12 @@ CORPUS = {**CLEAN, **DEGENERATE}
 
 def assert_peers_agree(m: Mesh) -> None:
     """trimesh watertight/winding and manifold3d genus on the triangulation."""
-    tris = m.triangles()
-    tm = trimesh.Trimesh(m.vertices, tris, process=False)
+    verts, tris, _ = m.triangulate()
+    tm = trimesh.Trimesh(verts, tris, process=False)
     assert tm.is_watertight
     assert tm.is_winding_consistent
     mf = manifold3d.Manifold(
-        manifold3d.Mesh(vert_properties=m.vertices.astype(np.float32), tri_verts=tris.astype(np.uint32))
+        manifold3d.Mesh(vert_properties=verts.astype(np.float32), tri_verts=tris.astype(np.uint32))
     )
     assert mf.status() == manifold3d.Error.NoError
     assert m.n_components == 1

@@ -18,27 +18,36 @@ from topomesh._core import (
     dodecahedron,
     genus_surface,
     icosahedron,
+    memory_budget,
     menger_sponge,
     octahedron,
+    set_memory_budget,
     tetrahedron,
     torus,
 )
 from topomesh.io import load  # noqa: E402
-from topomesh import ifs  # noqa: E402
+from topomesh._repair import RepairReport, repair  # noqa: E402
+from topomesh import _interop, ifs  # noqa: E402
+from topomesh.explore import explore  # noqa: E402
 
 __all__ = [
     "GeometryWarning",
     "Mesh",
     "MeshError",
+    "RepairReport",
     "Rind",
     "cube",
     "dodecahedron",
+    "explore",
     "genus_surface",
     "ifs",
     "icosahedron",
     "load",
+    "memory_budget",
     "menger_sponge",
     "octahedron",
+    "repair",
+    "set_memory_budget",
     "tetrahedron",
     "torus",
 ]

@@ -7,12 +7,16 @@
     topomesh sierpinski IN OUT -n K
     topomesh menger IN OUT -n K [--thickness D]
 
-Errors in the input are reported as one line on stderr with exit status 2.
+Every command that reads a file takes ``--close-boundaries``, ``--allow-multi-edges`` and
+``--repair`` (passed to :func:`topomesh.load`). Errors are one line on stderr, never a
+traceback: bad input (``MeshError``) exits with status 2, Ctrl-C with 130, a file or other
+failure with 1.
 """
 
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from typing import Sequence
 
@@ -36,10 +40,33 @@ def _iterate(mesh: Mesh, method: str, n: int, **kw: object) -> Mesh:
         return mesh
 
 
+# core messages suggest Python keywords; the CLI names its own flags
+_HINTS = {
+    "close_boundaries": "--close-boundaries",
+    "allow_multi_edges": "--allow-multi-edges",
+    "repair": "--repair",
+    "iterations": "-n",
+    "thickness": "--thickness",
+}
+
+
+def _cli_message(msg: str) -> str:
+    """``pass close_boundaries=True`` → ``pass --close-boundaries``, and so on."""
+    for kw, flag in _HINTS.items():
+        msg = re.sub(rf"(?<![-\w]){kw}\s*=\s*True\b", flag, msg)
+        msg = re.sub(rf"(?<![-\w]){kw}\b", flag, msg)
+    return msg
+
+
+def _load(a: argparse.Namespace, path: str) -> Mesh:
+    """``topomesh.load`` with the construction flags of the command line."""
+    return topomesh.load(path, close_boundaries=a.close_boundaries, allow_multi_edges=a.allow_multi_edges, repair=a.repair)
+
+
 def cmd_info(a: argparse.Namespace) -> int:
     from topomesh.gallery import peer_summary
 
-    m = topomesh.load(a.file)
+    m = _load(a, a.file)
     row = peer_summary(m)
     print(f"{a.file}: {m!r}")
     print(f"  Euler characteristic  {m.euler_characteristic}")
@@ -53,7 +80,7 @@ def cmd_info(a: argparse.Namespace) -> int:
 
 
 def cmd_convert(a: argparse.Namespace) -> int:
-    topomesh.load(a.input).save(a.output)
+    _load(a, a.input).save(a.output)
     return 0
 
 
@@ -68,48 +95,53 @@ def cmd_gallery(a: argparse.Namespace) -> int:
 def cmd_subdivide(a: argparse.Namespace) -> int:
     if a.scheme not in SCHEMES:
         raise MeshError(f"unknown scheme {a.scheme!r}; available: {', '.join(SCHEMES)}")
-    _iterate(topomesh.load(a.input), a.scheme, a.n).save(a.output)
+    _iterate(_load(a, a.input), a.scheme, a.n).save(a.output)
     return 0
 
 
 def cmd_sierpinski(a: argparse.Namespace) -> int:
-    _iterate(topomesh.load(a.input), "sierpinski", a.n).save(a.output)
+    _iterate(_load(a, a.input), "sierpinski", a.n).save(a.output)
     return 0
 
 
 def cmd_menger(a: argparse.Namespace) -> int:
     kw = {} if a.thickness is None else {"thickness": a.thickness}
-    _iterate(topomesh.load(a.input), "menger", a.n, **kw).save(a.output)
+    _iterate(_load(a, a.input), "menger", a.n, **kw).save(a.output)
     return 0
 
 
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="topomesh", description="Manifold polygon meshes of any genus.")
+    p.add_argument("--version", action="version", version=f"topomesh {topomesh.__version__}")
     sub = p.add_subparsers(dest="command", required=True)
+    reads = argparse.ArgumentParser(add_help=False)
+    reads.add_argument("--close-boundaries", action="store_true", help="cap boundary loops with hole faces instead of refusing open meshes")
+    reads.add_argument("--allow-multi-edges", action="store_true", help="accept several edges between the same two vertices")
+    reads.add_argument("--repair", action="store_true", help="repair sloppy input while loading (merge, orient, split pinches)")
     g = sub.add_parser("gallery", help="write every built-in mesh with a render and a summary table")
     g.add_argument("outdir")
     g.add_argument("--only", nargs="*", help="entry names to build (default: all)")
     g.add_argument("--no-images", action="store_true", help="skip the PNG renders")
     g.set_defaults(func=cmd_gallery)
-    i = sub.add_parser("info", help="counts, genus and peer checks of a mesh file")
+    i = sub.add_parser("info", parents=[reads], help="counts, genus and peer checks of a mesh file")
     i.add_argument("file")
     i.set_defaults(func=cmd_info)
-    c = sub.add_parser("convert", help="convert between OBJ, OFF and PLY")
+    c = sub.add_parser("convert", parents=[reads], help="convert between OBJ, OFF and PLY")
     c.add_argument("input")
     c.add_argument("output")
     c.set_defaults(func=cmd_convert)
-    s = sub.add_parser("subdivide", help="apply a subdivision scheme")
+    s = sub.add_parser("subdivide", parents=[reads], help="apply a subdivision scheme")
     s.add_argument("input")
     s.add_argument("output")
     s.add_argument("--scheme", required=True, help=f"one of: {', '.join(SCHEMES)}")
     s.add_argument("-n", type=int, default=1, help="iterations (default 1)")
     s.set_defaults(func=cmd_subdivide)
-    si = sub.add_parser("sierpinski", help="Sierpinski subdivision (high genus)")
+    si = sub.add_parser("sierpinski", parents=[reads], help="Sierpinski subdivision (high genus)")
     si.add_argument("input")
     si.add_argument("output")
     si.add_argument("-n", type=int, default=1)
     si.set_defaults(func=cmd_sierpinski)
-    me = sub.add_parser("menger", help="generalized Menger sponge")
+    me = sub.add_parser("menger", parents=[reads], help="generalized Menger sponge")
     me.add_argument("input")
     me.add_argument("output")
     me.add_argument("-n", type=int, default=1)
@@ -119,12 +151,23 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status (argparse exits 2 itself on bad usage)."""
     args = parser().parse_args(argv)
     try:
         return int(args.func(args))
     except MeshError as e:
-        print(f"topomesh: error: {e}", file=sys.stderr)
+        print(f"topomesh: error: {_cli_message(str(e))}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("topomesh: interrupted", file=sys.stderr)
+        return 130
+    except OSError as e:
+        where = f": {e.filename}" if getattr(e, "filename", None) else ""
+        print(f"topomesh: error: {e.strerror or e}{where}", file=sys.stderr)
+        return 1
+    except Exception as e:  # noqa: BLE001 - the CLI never shows a traceback
+        print(f"topomesh: error: {type(e).__name__}: {_cli_message(str(e))}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -170,11 +170,11 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
         "components": mesh.n_components,
         "self_loops": mesh.n_self_loops,
     }
-    tris = mesh.triangles()
+    verts, tris, _ = mesh.triangulate()
     try:
         import trimesh
 
-        tm = trimesh.Trimesh(mesh.vertices, tris, process=False)
+        tm = trimesh.Trimesh(verts, tris, process=False)
         row["trimesh_watertight"] = bool(tm.is_watertight)
         row["trimesh_genus"] = int(mesh.n_components - tm.euler_number // 2)
     except Exception as e:  # pragma: no cover - reported, not raised
@@ -183,7 +183,7 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
     try:
         import manifold3d as m3d
 
-        man = m3d.Manifold(m3d.Mesh(vert_properties=mesh.vertices.astype(np.float32), tri_verts=tris.astype(np.uint32)))
+        man = m3d.Manifold(m3d.Mesh(vert_properties=verts.astype(np.float32), tri_verts=tris.astype(np.uint32)))
         ok = man.status() == m3d.Error.NoError
         row["manifold_status"] = str(man.status()).split(".")[-1]
         # manifold3d's genus is 1 − χ/2 of the whole mesh; add back the components
@@ -195,17 +195,12 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
 
 
 def render(mesh: Mesh, path: Path, title: str = "") -> None:
-    """Render ``mesh`` off-screen to a PNG with pyvista."""
-    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
-    import pyvista as pv
+    """Render ``mesh`` off-screen to a PNG (:mod:`topomesh.viz`: polygon
+    edges below 20k faces, the camera fitted to the mesh)."""
+    from topomesh import viz
 
-    pl = pv.Plotter(off_screen=True, window_size=(640, 480))
-    pl.add_mesh(mesh.to_pyvista(), color="#d9b38c", show_edges=mesh.n_faces < 20000, edge_color="#4d3319", smooth_shading=False)
-    if title:
-        pl.add_text(title, font_size=10)
-    pl.view_isometric()
-    pl.screenshot(str(path))
-    pl.close()
+    png = viz.render_png(mesh, [viz.title_text(mesh, title)], window_size=(640, 480), edges=None)
+    Path(path).write_bytes(png)
 
 
 def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress: bool = True, images: bool = True) -> list[dict[str, object]]:

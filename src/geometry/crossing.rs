@@ -18,9 +18,11 @@ use glam::DVec3;
 /// are bounded by its valence), parallel over vertices.
 pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], first_inner: u32, only: Option<&[bool]>) -> Vec<u32> {
     use rayon::prelude::*;
+    // points added by the triangulation have no owner
+    let owner_of = |v: u32| owner.get(v as usize).copied().unwrap_or(u32::MAX);
     // triangles bucketed by owner (counting sort)
     let owners_of = |t: &[u32; 3]| {
-        let mut o = t.map(|v| owner[v as usize]);
+        let mut o = t.map(owner_of);
         o.sort_unstable();
         [0, 1, 2].map(|k| if o[k] != u32::MAX && (k == 0 || o[k] != o[k - 1]) { o[k] } else { u32::MAX })
     };
@@ -74,7 +76,7 @@ pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], fir
                     }
                     let (ta, tb) = (tris[ta as usize], tris[tb as usize]);
                     if triangles_cross(ta, ta.map(|v| p[v as usize]), tb, tb.map(|v| p[v as usize])) {
-                        out.extend(ta.iter().chain(&tb).map(|&v| owner[v as usize]).filter(|&o| o != u32::MAX));
+                        out.extend(ta.iter().chain(&tb).map(|&v| owner_of(v)).filter(|&o| o != u32::MAX));
                     }
                 }
             }
@@ -339,9 +341,11 @@ pub fn crossings_of_new_faces(before: &crate::mesh::Mesh, after: &crate::mesh::M
     };
     let old: HashSet<Vec<u32>> = before.faces().filter(|&f| !before.is_hole(f)).map(|f| cycle(before, f)).collect();
     let new_face: Vec<bool> = after.faces().map(|f| !after.is_hole(f) && !old.contains(&cycle(after, f))).collect();
-    let (tris, tri_face) = after.triangles();
-    let focus: Vec<bool> = tri_face.iter().map(|&f| new_face[f as usize]).collect();
-    crossing_pairs(after.positions(), &tris, Some(&focus), true).len()
+    let t = after.triangulate();
+    let focus: Vec<bool> = t.tri_face.iter().map(|&f| new_face[f as usize]).collect();
+    let mut p = after.positions().to_vec();
+    p.extend_from_slice(&t.points);
+    crossing_pairs(&p, &t.tris, Some(&focus), true).len()
 }
 
 #[cfg(test)]

@@ -200,9 +200,12 @@ impl Ifs {
         if total > MAX_OUTPUT as f64 {
             return Err(invalid(format!("{levels} levels of {k} maps would give {total:.3e} points (limit {MAX_OUTPUT})")));
         }
+        // the last level and the one before it, plus the drawn copy
+        crate::budget::check("iterate", &format!("{levels} levels"), (total * (d.max(1) * 8 * 3) as f64) as u64)?;
         let mut cur = start.to_vec();
         let mut z = vec![0.0; d];
         for _ in 0..levels {
+            crate::cancel::check()?;
             let mut next = Vec::with_capacity(cur.len() * k);
             for i in 0..k {
                 for y in cur.chunks_exact(d) {
@@ -312,12 +315,15 @@ impl Ifs {
             return Err(invalid(format!("mesh: {levels} levels would give up to {est:.3e} triangles")));
         }
         let d = self.reduced_dim();
+        // per triangle: its indices, hash-set entry and up to three vertices' data
+        crate::budget::check("mesh", &format!("{levels} levels"), (est * (64 + 24 * d) as f64) as u64)?;
         let mut us: Vec<[f64; 2]> = vertices.clone();
         let mut ys: Vec<f64> = lifted.iter().flat_map(|x| self.reduce(x)).collect();
         let mut tris: Vec<[u32; 3]> = triangles.iter().map(|t| [t[0] as u32, t[1] as u32, t[2] as u32]).collect();
         let mut factor = 6.0;
         let mut z = vec![0.0; d];
         for _ in 0..levels {
+            crate::cancel::check()?;
             factor *= scale;
             let mut keys: HashMap<(i64, i64), u32> = HashMap::new();
             let (mut nu, mut ny, mut nt) = (Vec::new(), Vec::new(), Vec::new());

@@ -142,9 +142,20 @@ impl CurveRules {
     /// fine point whose stencil lies inside the polygon, in order.
     pub fn subdivide(&self, points: &[Vec<f64>], levels: usize) -> Result<Vec<Vec<f64>>> {
         self.check()?;
-        let mut cur = points.to_vec();
         let m = self.arity as i64;
+        // at most (n + 8)·m points per level (the stencil range below), each a
+        // Vec of `dim` floats: ~ 8·dim + 48 bytes with the allocator's header
+        let dim = points.first().map_or(0, |p| p.len()) as u64;
+        let (mut n, mut prev) = (points.len() as u64, points.len() as u64);
+        for k in 1..=levels as u64 {
+            n = n.saturating_add(8).saturating_mul(m as u64);
+            let need = n.saturating_add(prev).saturating_mul(8 * dim + 48);
+            crate::budget::check("subdivide_curve", &format!("level {k} of {levels}"), need)?;
+            prev = n;
+        }
+        let mut cur = points.to_vec();
         for _ in 0..levels {
+            crate::cancel::check()?;
             let n = cur.len() as i64;
             let dim = cur.first().map_or(0, |p| p.len());
             let mut next = Vec::new();
@@ -505,9 +516,23 @@ pub fn lattice_subdivide(
         return Err(invalid("lattice subdivision: one point per lattice site"));
     }
     let m = rules.arity();
+    // the bounding box of the sites grows w -> w·m + 2m + 1 per level; every
+    // fine site is a lattice point in it: its coordinates, position (a Vec of
+    // `dim` floats) and index-map entry, ~ 8·dim + 120 bytes
+    let dim = points.first().map_or(0, |p| p.len()) as u64;
+    let span = |i: usize| control.iter().map(|c| c[i]).max().unwrap_or(0) - control.iter().map(|c| c[i]).min().unwrap_or(0) + 1;
+    let (mut w0, mut w1) = (span(0).max(1) as u64, span(1).max(1) as u64);
+    let mu = m as u64;
+    for k in 1..=levels as u64 {
+        w0 = w0.saturating_mul(mu).saturating_add(2 * mu + 1);
+        w1 = w1.saturating_mul(mu).saturating_add(2 * mu + 1);
+        let need = w0.saturating_mul(w1).saturating_mul(2).saturating_mul(8 * dim + 120);
+        crate::budget::check("subdivide_surface", &format!("level {k} of {levels}"), need)?;
+    }
     let mut sites = control.to_vec();
     let mut pos = points.to_vec();
     for _ in 0..levels {
+        crate::cancel::check()?;
         let index: HashMap<[i64; 2], usize> = sites.iter().enumerate().map(|(i, &c)| (c, i)).collect();
         let (lo0, hi0) = sites.iter().fold((i64::MAX, i64::MIN), |a, s| (a.0.min(s[0]), a.1.max(s[0])));
         let (lo1, hi1) = sites.iter().fold((i64::MAX, i64::MIN), |a, s| (a.0.min(s[1]), a.1.max(s[1])));

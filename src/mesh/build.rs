@@ -67,7 +67,10 @@ impl Mesh {
         offsets.push(0usize);
         let mut acc = 0usize;
         for &s in sizes {
-            acc += s as usize;
+            // checked: user sizes near 2^63 would wrap the sum
+            acc = acc.checked_add(s as usize).ok_or_else(|| {
+                MeshError::InvalidArgument(format!("face sizes add up to more than the {} face indices given", indices.len()))
+            })?;
             offsets.push(acc);
         }
         if *offsets.last().unwrap() != indices.len() {
@@ -285,6 +288,9 @@ impl Mesh {
         let mut offsets = Vec::with_capacity(nf + 1);
         offsets.push(0u32);
         for (f, &s) in sizes.iter().enumerate() {
+            if f % 65536 == 0 {
+                crate::cancel::check()?;
+            }
             if s == 0 {
                 return Err(MeshError::EmptyFace { face: f });
             }
@@ -296,11 +302,15 @@ impl Mesh {
                 offsets[nf]
             )));
         }
+        crate::cancel::check()?;
         // every corner: a vertex in range and a symmetric twin that starts
         // where the corner's side ends (checked from both sides, this also
         // makes the twin end where the corner starts)
         // (debug builds check even when the caller vouches for the twins)
         let bad_face = |f: usize| {
+            if crate::cancel::requested() {
+                return false; // the check after the search reports it
+            }
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
             (s..e).any(|c| {
                 let t = twin[c];
@@ -314,6 +324,7 @@ impl Mesh {
             })
         };
         let bad = if twins_valid && !cfg!(debug_assertions) { None } else { first_in_range(nf, bad_face) };
+        crate::cancel::check()?;
         if let Some(f) = bad {
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
             let c = (s..e)
@@ -330,8 +341,10 @@ impl Mesh {
                 format!("face {f}: corner {c} and its twin {} are not symmetric partners running between the same vertices in opposite directions", twin[c])
             }));
         }
+        crate::cancel::check()?;
         // half-edge ids: edges numbered by their first corner (2e), the twin gets 2e + 1
         let (he_of, ne) = number_halfedges(twin);
+        crate::cancel::check()?;
         let nh = 2 * ne;
         let mut m = Mesh {
             pos: positions,
@@ -358,7 +371,8 @@ impl Mesh {
             let f_start = SyncPtr(m.f_start.as_mut_ptr());
             (0..nf).into_par_iter().with_min_len(1024).for_each(|f| {
                 let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
-                if twin[s] == NONE {
+                // cancelled: the check after the loop returns before any read
+                if twin[s] == NONE || crate::cancel::requested() {
                     return; // point-sphere face: set below
                 }
                 // SAFETY: see the block comment; f_start[f] is written by face f only.
@@ -375,8 +389,12 @@ impl Mesh {
                 }
             });
         }
+        crate::cancel::check()?;
         // the first corner of each vertex, as documented for exports
         for (c, &v) in verts.iter().enumerate().rev() {
+            if c % 65536 == 0 {
+                crate::cancel::check()?;
+            }
             if twin[c] != NONE {
                 m.v_out[v as usize] = he_of[c];
             }
@@ -395,6 +413,7 @@ impl Mesh {
         if let Some(v) = first_index(&m.v_out, |&o| o == NONE) {
             return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
         }
+        crate::cancel::check()?;
         m.check_vertex_umbrellas()?;
         Ok(m)
     }
@@ -421,7 +440,13 @@ impl Mesh {
                 }
             }
         };
-        let total: usize = (0..self.n_vertices()).into_par_iter().with_min_len(4096).map(walk).sum();
+        // cancelled: walks stop at once and the sum is not looked at
+        let total: usize = (0..self.n_vertices())
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|v| if crate::cancel::requested() { 0 } else { walk(v) })
+            .sum();
+        crate::cancel::check()?;
         if total == nh {
             return Ok(());
         }
@@ -443,7 +468,8 @@ fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
     // parallel exclusive scan of edge starts over fixed chunks
     let counts: Vec<u32> = (0..n.div_ceil(PAR_CHUNK))
         .into_par_iter()
-        .map(|k| (k * PAR_CHUNK..((k + 1) * PAR_CHUNK).min(n)).filter(|&c| is_first(c)).count() as u32)
+        // cancelled: the numbering is garbage, and the caller's next check returns
+        .map(|k| if crate::cancel::requested() { 0 } else { (k * PAR_CHUNK..((k + 1) * PAR_CHUNK).min(n)).filter(|&c| is_first(c)).count() as u32 })
         .collect();
     let mut base = Vec::with_capacity(counts.len());
     let mut acc = 0u32;
@@ -453,6 +479,9 @@ fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
     }
     let mut first_ids = vec![NONE; n];
     first_ids.par_chunks_mut(PAR_CHUNK).enumerate().for_each(|(k, chunk)| {
+        if crate::cancel::requested() {
+            return;
+        }
         let mut e = base[k];
         for (i, slot) in chunk.iter_mut().enumerate() {
             if is_first(k * PAR_CHUNK + i) {
@@ -471,7 +500,7 @@ fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
             } else if t as usize > c {
                 first_ids[c]
             } else {
-                first_ids[t as usize] + 1
+                first_ids[t as usize].wrapping_add(1) // wraps only when cancelled
             }
         })
         .collect();

@@ -18,6 +18,7 @@
 pub mod build;
 mod euler;
 mod export;
+mod twins;
 mod query;
 mod validate;
 

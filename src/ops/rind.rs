@@ -148,6 +148,19 @@ impl Rind {
         (f < self.outer.len() && !self.punched[f]).then(|| (self.mesh.face(self.outer[f]), self.mesh.face(self.inner[f])))
     }
 
+    /// Refuses peeling every remaining outer face: every wall goes and nothing
+    /// is left (peeling all six faces of a cube rind gave an empty mesh).
+    /// Punching them all is fine: the walls stay, a frame of genus F − 1.
+    fn check_leaves_something(&self, faces: &[usize], what: &str) -> Result<()> {
+        let left = self.punched.iter().filter(|&&p| !p).count();
+        if !faces.is_empty() && faces.len() >= left {
+            return Err(MeshError::InvalidArgument(format!(
+                "{what}: selecting all {left} remaining outer faces would leave nothing of the rind; keep at least one face"
+            )));
+        }
+        Ok(())
+    }
+
     fn check(&self, faces: &[usize], what: &str) -> Result<()> {
         let nf = self.outer.len();
         for (i, &f) in faces.iter().enumerate() {
@@ -198,6 +211,7 @@ impl Rind {
     /// On error nothing changes.
     pub fn peel(&mut self, faces: &[usize]) -> Result<()> {
         self.check(faces, "peel")?;
+        self.check_leaves_something(faces, "peel")?;
         for &f in faces {
             let sides = self.pipe(f)?;
             // tracked half-edges: the table's corners, then this pipe's sides
@@ -371,7 +385,7 @@ mod tests {
             for _ in 0..40 {
                 let mut r = src.rind(0.1).unwrap();
                 let mut gone = vec![false; nf];
-                let k = 1 + rnd(nf);
+                let k = 1 + rnd(nf - 1); // peeling all is refused (below)
                 let mut order: Vec<usize> = (0..nf).collect();
                 for i in 0..nf {
                     order.swap(i, i + rnd(nf - i));
@@ -393,10 +407,12 @@ mod tests {
                     assert_eq!(r.mesh().euler_characteristic(), chi - 2);
                 }
             }
-            // everything peeled: nothing is left
+            // peeling everything would leave nothing: refused, the rind unchanged
             let mut r = src.rind(0.1).unwrap();
-            r.peel(&(0..nf).collect::<Vec<_>>()).unwrap();
-            assert_eq!(counts(r.mesh()), (0, 0, 0, 0, 0));
+            let before = counts(r.mesh());
+            let e = r.peel(&(0..nf).collect::<Vec<_>>()).unwrap_err();
+            assert!(e.to_string().contains("would leave nothing"), "{e}");
+            assert_eq!(counts(r.mesh()), before);
         }
     }
 

@@ -1,6 +1,7 @@
 //! Fractal schemes: `Mesh.sierpinski` and `topomesh.menger_sponge`.
 
-use super::{err, iterate, GeometryWarning};
+use super::{big_int, iterate, GeometryWarning};
+use crate::budget::predict;
 use super::mesh::PyMesh;
 use crate::schemes::{menger as mg, menger_sponge as sponge, sierpinski as sp};
 use pyo3::prelude::*;
@@ -33,8 +34,8 @@ impl PyMesh {
     ///     ``V + N`` vertices, ``E + 4N`` edges, ``2N + K`` faces and
     ///     ``N`` more self-loops; the tetrahedron's genus is 3, 15, 63, ...
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn sierpinski(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "sierpinski", sp::sierpinski)
+    fn sierpinski(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "sierpinski", predict::sierpinski, sp::sierpinski)
     }
 
     /// Generalized Menger sponge (dissertation ch. VII): every face is
@@ -82,12 +83,12 @@ impl PyMesh {
     ///     each vertex's own faces, so no warning is not a proof that the
     ///     result is free of self-intersections.
     #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
-    fn menger(&self, py: Python<'_>, iterations: i64, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
+    fn menger(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
         // (iteration, vertices still crossing) for every iteration left with crossings
         let left = std::sync::Mutex::new(Vec::<(usize, usize)>::new());
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let out = iterate(py, &self.inner, iterations, progress, "menger", |m| {
+        let out = iterate(py, &self.inner, iterations, progress, "menger", predict::menger, |m| {
             let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             let (mesh, crossing) = mg::menger_checked(m, &o)?;
             if crossing > 0 {
@@ -125,8 +126,9 @@ impl PyMesh {
 ///     ``(21*20**n + 38*8**n - 59) / 133`` (0, 5, 81, 1409, 26433, 514625),
 ///     volume ``8 * (20/27)**n``.
 #[pyfunction]
-fn menger_sponge(py: Python<'_>, level: u32) -> PyResult<PyMesh> {
-    py.detach(|| sponge::menger_sponge(level)).map(PyMesh::wrap).map_err(err)
+fn menger_sponge(py: Python<'_>, #[pyo3(from_py_with = super::big_int)] level: i128) -> PyResult<PyMesh> {
+    let level = super::int_in("menger_sponge", "level", level, 0, sponge::MAX_LEVEL as i64)? as u32;
+    super::run_interruptible(py, || sponge::menger_sponge(level)).map(PyMesh::wrap)
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

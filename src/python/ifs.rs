@@ -2,11 +2,16 @@
 //! `topomesh._core.IFS`; constructors are `ifs_*` functions, re-exported
 //! without the prefix by `topomesh.ifs`.
 
-use super::{arg_err, err};
+use super::{arg_err, err, run_interruptible};
 use crate::ifs::{fractals, rules, Ifs, Mat};
 use numpy::ndarray::{Array1, Array2, ArrayD, IxDyn};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
+
+/// A `levels` argument: 0 to the IFS limit ([`crate::ifs::render::MAX_LEVELS`]).
+fn levels_in(call: &str, levels: i128) -> PyResult<usize> {
+    super::usize_in(call, "levels", levels, 0, crate::ifs::render::MAX_LEVELS)
+}
 
 /// A real array of any shape → (shape, flat data), with a named error.
 fn real_array(py: Python<'_>, obj: &Bound<'_, PyAny>, what: &str) -> PyResult<(Vec<usize>, Vec<f64>)> {
@@ -168,10 +173,8 @@ impl PyIfs {
     }
 
     /// The fixed point of map ``i`` (a point of the attractor), drawn coordinates.
-    fn fixed_point<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        if i >= self.inner.n_maps() {
-            return Err(arg_err(format!("map {i} out of range (IFS has {} maps)", self.inner.n_maps())));
-        }
+    fn fixed_point<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = super::big_int)] i: i128) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let i = super::usize_in("fixed_point", "i", i, 0, self.inner.n_maps().saturating_sub(1))?;
         let x = self.inner.fixed_point(i);
         let y = self.inner.start_points(&[x]).map_err(err)?;
         Ok(points_array(py, &self.inner, self.inner.draw(&y), &[]))
@@ -193,10 +196,11 @@ impl PyIfs {
     /// numpy.ndarray, shape (n_maps**levels, m, D)
     ///     Image ``w`` of the start set; words in lexicographic order with
     ///     the outermost map first, so curves come out in order.
-    fn iterate<'py>(&self, py: Python<'py>, start: &Bound<'py, PyAny>, levels: usize) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    fn iterate<'py>(&self, py: Python<'py>, start: &Bound<'py, PyAny>, #[pyo3(from_py_with = super::big_int)] levels: i128) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let levels = levels_in("iterate", levels)?;
         let s = rows(py, start, "start")?;
         let m = s.len();
-        let out = py.detach(|| self.inner.iterate(&s, levels)).map_err(err)?;
+        let out = run_interruptible(py, || self.inner.iterate(&s, levels))?;
         let words = out.len() / (m * self.inner.components().len() * self.inner.ambient_dim());
         Ok(points_array(py, &self.inner, out, &[words, m]))
     }
@@ -207,8 +211,9 @@ impl PyIfs {
     /// -------
     /// numpy.ndarray, shape (n_maps**levels, n, D)
     ///     The refined control polygons (nets), one per word, in order.
-    fn subdivide<'py>(&self, py: Python<'py>, levels: usize) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let out = py.detach(|| self.inner.subdivide(levels)).map_err(err)?;
+    fn subdivide<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = super::big_int)] levels: i128) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let levels = levels_in("subdivide", levels)?;
+        let out = run_interruptible(py, || self.inner.subdivide(levels))?;
         let n = self.inner.dim();
         let words = out.len() / (n * self.inner.components().len() * self.inner.ambient_dim());
         Ok(points_array(py, &self.inner, out, &[words, n]))
@@ -228,8 +233,19 @@ impl PyIfs {
     /// -------
     /// numpy.ndarray, shape (n_points, D)
     #[pyo3(signature = (n_points, seed = 0, probabilities = None))]
-    fn chaos_game<'py>(&self, py: Python<'py>, n_points: usize, seed: u64, probabilities: Option<Vec<f64>>) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let out = py.detach(|| self.inner.chaos_game(n_points, seed, probabilities.as_deref())).map_err(err)?;
+    fn chaos_game<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = super::big_int)] n_points: i128,
+        #[pyo3(from_py_with = super::big_int)] seed: i128,
+        probabilities: Option<Vec<f64>>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let n_points = super::usize_in("chaos_game", "n_points", n_points, 0, crate::ifs::render::MAX_OUTPUT)?;
+        if !(0..=u64::MAX as i128).contains(&seed) {
+            return Err(arg_err(format!("chaos_game: seed = {seed} is out of range; it must be an integer in [0, 2**64 - 1]")));
+        }
+        let seed = seed as u64;
+        let out = run_interruptible(py, || self.inner.chaos_game(n_points, seed, probabilities.as_deref()))?;
         Ok(points_array(py, &self.inner, out, &[n_points]))
     }
 
@@ -239,8 +255,9 @@ impl PyIfs {
     /// Returns
     /// -------
     /// numpy.ndarray, shape (n_maps**levels + 1, D)
-    fn polyline<'py>(&self, py: Python<'py>, levels: usize) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let out = py.detach(|| self.inner.polyline(levels)).map_err(err)?;
+    fn polyline<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = super::big_int)] levels: i128) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let levels = levels_in("polyline", levels)?;
+        let out = run_interruptible(py, || self.inner.polyline(levels))?;
         let count = out.len() / (self.inner.components().len() * self.inner.ambient_dim());
         Ok(points_array(py, &self.inner, out, &[count]))
     }
@@ -253,8 +270,9 @@ impl PyIfs {
     /// -------
     /// vertices : numpy.ndarray, shape (V, D), float64
     /// triangles : numpy.ndarray, shape (T, 3), int64
-    fn mesh<'py>(&self, py: Python<'py>, levels: usize) -> PyResult<(Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArray2<i64>>)> {
-        let (v, t) = py.detach(|| self.inner.mesh(levels)).map_err(err)?;
+    fn mesh<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = super::big_int)] levels: i128) -> PyResult<(Bound<'py, PyArrayDyn<f64>>, Bound<'py, PyArray2<i64>>)> {
+        let levels = levels_in("mesh", levels)?;
+        let (v, t) = run_interruptible(py, || self.inner.mesh(levels))?;
         let count = v.len() / self.inner.ambient_dim();
         Ok((points_array(py, &self.inner, v, &[count]), super::convert::u32_rows(py, &t)))
     }
@@ -328,7 +346,14 @@ fn curve_rules(arity: usize, stencils: Vec<Vec<(i64, f64)>>) -> rules::CurveRule
 /// ``(offset, weight)`` with ``p[m*i + r] = sum w * p[i + offset]``.
 #[pyfunction]
 #[pyo3(signature = (control_points, stencils, arity = 2, name = "curve"))]
-fn ifs_curve(py: Python<'_>, control_points: &Bound<'_, PyAny>, stencils: Vec<Vec<(i64, f64)>>, arity: usize, name: &str) -> PyResult<PyIfs> {
+fn ifs_curve(
+    py: Python<'_>,
+    control_points: &Bound<'_, PyAny>,
+    stencils: Vec<Vec<(i64, f64)>>,
+    #[pyo3(from_py_with = super::big_int)] arity: i128,
+    name: &str,
+) -> PyResult<PyIfs> {
+    let arity = super::usize_in("curve", "arity", arity, 2, 64)?;
     let p = rows(py, control_points, "control_points")?;
     wrap(rules::curve_ifs(&curve_rules(arity, stencils), &p, name))
 }
@@ -336,10 +361,19 @@ fn ifs_curve(py: Python<'_>, control_points: &Bound<'_, PyAny>, stencils: Vec<Ve
 /// Plain subdivision of an open control polygon with the same rules.
 #[pyfunction]
 #[pyo3(signature = (control_points, stencils, levels, arity = 2))]
-fn ifs_curve_subdivide<'py>(py: Python<'py>, control_points: &Bound<'py, PyAny>, stencils: Vec<Vec<(i64, f64)>>, levels: usize, arity: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+fn ifs_curve_subdivide<'py>(
+    py: Python<'py>,
+    control_points: &Bound<'py, PyAny>,
+    stencils: Vec<Vec<(i64, f64)>>,
+    #[pyo3(from_py_with = super::big_int)] levels: i128,
+    #[pyo3(from_py_with = super::big_int)] arity: i128,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let levels = levels_in("subdivide_curve", levels)?;
+    let arity = super::usize_in("subdivide_curve", "arity", arity, 2, 64)?;
     let p = rows(py, control_points, "control_points")?;
     let d = p[0].len();
-    let out = curve_rules(arity, stencils).subdivide(&p, levels).map_err(err)?;
+    let rules = curve_rules(arity, stencils);
+    let out = run_interruptible(py, || rules.subdivide(&p, levels))?;
     Ok(Array2::from_shape_vec((out.len(), d), out.concat()).expect("shape").into_pyarray(py))
 }
 
@@ -360,7 +394,8 @@ fn ifs_curve_stencils(scheme: &str) -> PyResult<Vec<Vec<(i64, f64)>>> {
 /// ``[(a, b), ...]`` the domain is split into.
 #[pyfunction]
 #[pyo3(signature = (control_points, degree, knots, pieces, name = "bspline"))]
-fn ifs_bspline(py: Python<'_>, control_points: &Bound<'_, PyAny>, degree: usize, knots: Vec<f64>, pieces: Vec<(f64, f64)>, name: &str) -> PyResult<PyIfs> {
+fn ifs_bspline(py: Python<'_>, control_points: &Bound<'_, PyAny>, #[pyo3(from_py_with = super::big_int)] degree: i128, knots: Vec<f64>, pieces: Vec<(f64, f64)>, name: &str) -> PyResult<PyIfs> {
+    let degree = super::usize_in("bspline", "degree", degree, 0, 64)?;
     let p = rows(py, control_points, "control_points")?;
     wrap(rules::bspline_ifs(degree, &knots, &pieces, &p, name))
 }
@@ -390,10 +425,11 @@ fn ifs_surface(py: Python<'_>, control_points: &Bound<'_, PyAny>, scheme: &str) 
 /// Plain subdivision of a surface control net with the same rules: returns
 /// the refined points ``(N, D)`` and their lattice triangles ``(T, 3)``.
 #[pyfunction]
-fn ifs_surface_subdivide<'py>(py: Python<'py>, control_points: &Bound<'py, PyAny>, scheme: &str, levels: usize) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+fn ifs_surface_subdivide<'py>(py: Python<'py>, control_points: &Bound<'py, PyAny>, scheme: &str, #[pyo3(from_py_with = super::big_int)] levels: i128) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+    let levels = levels_in("subdivide_surface", levels)?;
     let p = rows(py, control_points, "control_points")?;
     let (r, sites) = rules::surface_control_sites(scheme, p.len()).map_err(err)?;
-    let (s, pos) = py.detach(|| rules::lattice_subdivide(&r, &sites, &p, levels)).map_err(err)?;
+    let (s, pos) = run_interruptible(py, || rules::lattice_subdivide(&r, &sites, &p, levels))?;
     let d = p[0].len();
     let tris = rules::lattice_triangles(&s);
     Ok((Array2::from_shape_vec((pos.len(), d), pos.concat()).expect("shape").into_pyarray(py), super::convert::u32_rows(py, &tris)))
@@ -402,10 +438,8 @@ fn ifs_surface_subdivide<'py>(py: Python<'py>, control_points: &Bound<'py, PyAny
 /// Cartesian positions ``(1 + 3r(r+1), 2)`` of the triangular-lattice points of
 /// hex radius ``r``, in the order the hexagonal patches expect.
 #[pyfunction]
-fn ifs_hex_lattice<'py>(py: Python<'py>, radius: i64) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    if !(0..=64).contains(&radius) {
-        return Err(arg_err("radius must be in 0..=64"));
-    }
+fn ifs_hex_lattice<'py>(py: Python<'py>, #[pyo3(from_py_with = super::big_int)] radius: i128) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let radius = super::int_in("hex_lattice", "radius", radius, 0, 64)?;
     let pts = rules::hex_lattice(radius);
     let flat: Vec<f64> = pts.iter().flat_map(|p| rules::hex_to_xy([p[0] as f64, p[1] as f64])).collect();
     Ok(Array2::from_shape_vec((pts.len(), 2), flat).expect("shape").into_pyarray(py))

@@ -7,8 +7,10 @@ use super::{arg_err, err};
 use crate::mesh::{BuildOptions, Corner, EdgeId, FaceId, Mesh, VertexId};
 use crate::primitives;
 use glam::DVec3;
+use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
+use std::sync::OnceLock;
 
 /// A closed, orientable 2-manifold polygon mesh (immutable).
 ///
@@ -18,11 +20,46 @@ use pyo3::prelude::*;
 #[pyclass(name = "Mesh", module = "topomesh", frozen)]
 pub struct PyMesh {
     pub inner: Mesh,
+    cache: Cache,
+}
+
+/// Exports and queries computed on first use: the mesh never changes, so the
+/// arrays handed out are read-only views of these buffers (or of the
+/// positions), with the `Mesh` object as their base.
+#[derive(Default)]
+struct Cache {
+    polygons: OnceLock<(Vec<i64>, Vec<i64>)>,
+    twins: OnceLock<Vec<i64>>,
+    genus: OnceLock<i64>,
+    n_components: OnceLock<usize>,
+}
+
+/// A read-only NumPy view of `data`, kept alive by `owner`.
+fn view_1d<'py>(owner: &Bound<'py, PyMesh>, data: &[i64]) -> PyResult<Bound<'py, PyArray1<i64>>> {
+    // SAFETY: `data` is a buffer of the frozen `owner` (never mutated nor
+    // moved while it lives), and `owner` becomes the array's base.
+    let a = unsafe { PyArray1::borrow_from_array(&ArrayView1::from(data), owner.clone().into_any()) };
+    a.getattr("flags")?.setattr("writeable", false)?;
+    Ok(a)
 }
 
 impl PyMesh {
     pub fn wrap(inner: Mesh) -> Self {
-        PyMesh { inner }
+        PyMesh { inner, cache: Cache::default() }
+    }
+
+    /// `(face_sizes, face_indices)` as int64, computed once.
+    fn polygons(&self, py: Python<'_>) -> &(Vec<i64>, Vec<i64>) {
+        self.cache.polygons.get_or_init(|| {
+            py.detach(|| {
+                let p = self.inner.to_polygons();
+                (p.sizes.iter().map(|&s| s as i64).collect(), p.indices.iter().map(|&s| s as i64).collect())
+            })
+        })
+    }
+
+    fn twins(&self, py: Python<'_>) -> &Vec<i64> {
+        self.cache.twins.get_or_init(|| py.detach(|| self.inner.corner_twins()))
     }
 
     fn face_id(&self, f: i64) -> PyResult<FaceId> {
@@ -50,9 +87,19 @@ impl PyMesh {
     }
 }
 
+fn build_twins(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], twins: &[i64]) -> PyResult<PyMesh> {
+    let m = py.detach(|| Mesh::from_corner_twins_i64(pos, sizes, idx, twins)).map_err(err)?;
+    Ok(PyMesh::wrap(m))
+}
+
 fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
-    let m = py.detach(|| Mesh::from_polygons(pos, sizes, idx, opts)).map_err(err)?;
+    let c = crate::budget::Counts::plain(pos.len() as u64, idx.len() as u64 / 2, sizes.len() as u64);
+    let m = super::run_interruptible(py, || {
+        crate::budget::check("from_polygons", &format!("a mesh of {} faces", sizes.len()), crate::budget::build_bytes(&c))?;
+        Mesh::from_polygons(pos, sizes, idx, opts)
+    })?;
+    super::repair::warn_inside_out(py, &m)?;
     Ok(PyMesh::wrap(m))
 }
 
@@ -92,35 +139,108 @@ impl PyMesh {
 
     /// Build a mesh from vertices, ``face_sizes`` (F,) and flat ``face_indices``,
     /// the layout of the :attr:`face_sizes` / :attr:`face_indices` exports.
-    /// Same checks and options as :meth:`from_polygons`.
+    ///
+    /// Without ``twins``: same checks and options as :meth:`from_polygons`
+    /// (face sides are paired by vertex pair, which is ambiguous where several
+    /// sides join the same two vertices). With ``twins`` (the
+    /// :attr:`corner_twins` export, int (N,)), the mesh is rebuilt exactly:
+    /// the same corners are joined by edges and hole faces are re-created from
+    /// the ``-1`` sides, so ``Mesh.from_flat(m.vertices, m.face_sizes,
+    /// m.face_indices, twins=m.corner_twins) == m`` for every mesh;
+    /// ``close_boundaries`` and ``allow_multi_edges`` are then not needed and
+    /// ignored.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     As :meth:`from_polygons`; with ``twins`` also naming the corner and
+    ///     face of a twin out of range, asymmetric, or not running between the
+    ///     same two vertices in the opposite direction.
     #[staticmethod]
-    #[pyo3(signature = (vertices, face_sizes, face_indices, close_boundaries = false, allow_multi_edges = false))]
-    fn from_flat(py: Python<'_>, vertices: &Bound<'_, PyAny>, face_sizes: &Bound<'_, PyAny>, face_indices: &Bound<'_, PyAny>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+    #[pyo3(signature = (vertices, face_sizes, face_indices, close_boundaries = false, allow_multi_edges = false, twins = None))]
+    fn from_flat(
+        py: Python<'_>,
+        vertices: &Bound<'_, PyAny>,
+        face_sizes: &Bound<'_, PyAny>,
+        face_indices: &Bound<'_, PyAny>,
+        close_boundaries: bool,
+        allow_multi_edges: bool,
+        twins: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<PyMesh> {
         let pos = positions(py, vertices)?;
         let sizes = indices_1d(py, face_sizes, "face_sizes")?;
         let idx = indices_1d(py, face_indices, "face_indices")?;
-        build(py, pos, sizes.as_slice(), idx.as_slice(), close_boundaries, allow_multi_edges)
+        match twins {
+            Some(t) if !t.is_none() => {
+                let t = indices_1d(py, t, "twins")?;
+                build_twins(py, pos, sizes.as_slice(), idx.as_slice(), t.as_slice())
+            }
+            _ => build(py, pos, sizes.as_slice(), idx.as_slice(), close_boundaries, allow_multi_edges),
+        }
     }
 
-    /// Vertex coordinates, float64 array of shape (V, 3) (a copy).
+    /// Vertex coordinates, float64 array of shape (V, 3): a read-only view of
+    /// the mesh's own buffer (no copy; ``np.array(m.vertices)`` for a
+    /// writable copy).
     #[getter]
-    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        vec3_array(py, self.inner.positions())
+    fn vertices<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let p = slf.get().inner.positions();
+        // SAFETY: DVec3 is repr(C) of three f64 (24 bytes, no padding), so
+        // the positions are a contiguous (V, 3) f64 buffer; it belongs to the
+        // frozen mesh, which becomes the array's base.
+        let a = unsafe {
+            let view = ArrayView2::from_shape_ptr((p.len(), 3), p.as_ptr() as *const f64);
+            PyArray2::borrow_from_array(&view, slf.clone().into_any())
+        };
+        a.getattr("flags")?.setattr("writeable", false)?;
+        Ok(a)
     }
 
-    /// Number of corners of each exported face, int64 (F,). Hole faces are left out.
+    /// Number of corners of each exported face, int64 (F,), read-only (computed
+    /// once, then a view). Hole faces are left out.
     #[getter]
-    fn face_sizes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        let p = py.detach(|| self.inner.to_polygons());
-        i64_array(py, p.sizes.iter().map(|&s| s as i64))
+    fn face_sizes<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        view_1d(slf, &slf.get().polygons(slf.py()).0)
     }
 
-    /// Vertex indices of all exported faces, concatenated, int64. Self-loops
-    /// show as a vertex repeated in a row; lossless with :attr:`face_sizes`.
+    /// Vertex indices of all exported faces, concatenated, int64, read-only.
+    /// Self-loops show as a vertex repeated in a row. With :attr:`face_sizes`
+    /// and :attr:`corner_twins` this describes the mesh exactly.
     #[getter]
-    fn face_indices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        let p = py.detach(|| self.inner.to_polygons());
-        i64_array(py, p.indices.iter().map(|&s| s as i64))
+    fn face_indices<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        view_1d(slf, &slf.get().polygons(slf.py()).1)
+    }
+
+    /// The twin of every exported corner, int64 aligned with
+    /// :attr:`face_indices`, read-only: the corner on the other side of the
+    /// edge that starts at this corner, or -1 when that side belongs to a hole
+    /// face (a boundary side) or for a point-sphere's lone corner. Pass it as
+    /// ``twins`` to :meth:`from_flat` to rebuild the mesh exactly; hole faces
+    /// are re-created one per boundary loop, after the given faces, in order of
+    /// the loop's lowest boundary corner, starting at that corner's twin.
+    #[getter]
+    fn corner_twins<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyArray1<i64>>> {
+        view_1d(slf, slf.get().twins(slf.py()))
+    }
+
+    /// Whether OBJ/OFF (a polygon list without twins) reproduce this mesh:
+    /// :meth:`from_polygons` of the exports (with ``allow_multi_edges=True``,
+    /// and ``close_boundaries=True`` if it has holes) gives it back.
+    fn _polygons_are_lossless(&self, py: Python<'_>) -> bool {
+        py.detach(|| self.inner.polygons_are_lossless())
+    }
+
+    /// ``pickle`` support: rebuilt exactly from the lossless flat arrays.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let py = slf.py();
+        let f = py.import("topomesh.io")?.getattr("_from_state")?;
+        let args = (
+            Self::vertices(slf)?.call_method0("copy")?,
+            Self::face_sizes(slf)?.call_method0("copy")?,
+            Self::face_indices(slf)?.call_method0("copy")?,
+            Self::corner_twins(slf)?.call_method0("copy")?,
+        );
+        Ok((f, args.into_pyobject(py)?.into_any()))
     }
 
     /// Faces in pyvista/VTK layout ``[n, i0, ..., n, ...]``, int64.
@@ -161,19 +281,20 @@ impl PyMesh {
     fn euler_characteristic(&self) -> i64 {
         self.inner.euler_characteristic()
     }
-    /// Total genus: the sum of the genera of the components.
+    /// Total genus: the sum of the genera of the components (computed once).
     #[getter]
-    fn genus(&self) -> i64 {
-        self.inner.genus()
+    fn genus(&self, py: Python<'_>) -> i64 {
+        *self.cache.genus.get_or_init(|| py.detach(|| self.inner.genus()))
     }
     /// Genus of each connected component, as a list.
     #[getter]
     fn component_genera(&self) -> Vec<i64> {
         self.inner.component_genera()
     }
+    /// Number of connected components (computed once).
     #[getter]
-    fn n_components(&self) -> usize {
-        self.inner.n_components()
+    fn n_components(&self, py: Python<'_>) -> usize {
+        *self.cache.n_components.get_or_init(|| py.detach(|| self.inner.n_components()))
     }
     /// Edges whose two ends are the same vertex.
     #[getter]
@@ -217,9 +338,10 @@ impl PyMesh {
 
     /// Triangles for rendering and validation, int64 (T, 3).
     ///
-    /// Self-loops (consecutive repeated vertices) are dropped, faces with
-    /// fewer than three distinct corners give no triangle, convex faces are
-    /// fanned and non-convex ones ear-clipped in their plane. With
+    /// The triangles of :meth:`triangulate`: indices ``>= n_vertices`` refer
+    /// to the points it adds (``triangulate()[0][n_vertices:]``), so pair
+    /// these triangles with ``triangulate()``'s vertices, not with
+    /// :attr:`vertices`, unless ``triangles().max() < n_vertices``. With
     /// ``return_faces=True`` also returns the source face of every triangle.
     #[pyo3(signature = (return_faces = false))]
     fn triangles<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
@@ -230,6 +352,35 @@ impl PyMesh {
         } else {
             Ok(tris)
         }
+    }
+
+    /// A closed triangle mesh of this mesh: ``(vertices, triangles, faces)``.
+    ///
+    /// ``vertices`` float64 (V + S, 3) are :attr:`vertices` followed by S
+    /// added points; ``triangles`` int64 (T, 3) index them,
+    /// counter-clockwise seen from outside; ``faces`` int64 (T,) is the source
+    /// face of each triangle (triangles are grouped by face, in face order).
+    ///
+    /// Each face is triangulated in the plane of its Newell normal (fanned
+    /// if convex, ear-clipped otherwise) so that no diagonal is an edge of
+    /// the mesh or another face's diagonal: on a mesh without self-loops,
+    /// one- or two-gons or vertices repeated in a face, every triangle edge
+    /// has exactly two triangles. Points are added where that needs them:
+    /// the middle of every extra edge between the same two vertices
+    /// (multi-edges), then, in face order, one point inside each face with no
+    /// fitting triangulation by diagonals (the corners' mean, when the face
+    /// is star-shaped from it; otherwise one point beside the middle of each
+    /// colliding diagonal). Self-loop repeats are dropped and faces left with
+    /// fewer than three corners give no triangle (the triangle mesh pinches
+    /// there); holes are left out.
+    fn triangulate<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>, Bound<'py, PyArray1<i64>>) {
+        let t = py.detach(|| self.inner.triangulate());
+        let mut v = self.inner.positions().to_vec();
+        v.extend_from_slice(&t.points);
+        (vec3_array(py, &v), u32_rows(py, &t.tris), i64_array(py, t.tri_face.iter().map(|&x| x as i64)))
     }
 
     /// Check every structural invariant; raise :class:`MeshError` naming the
@@ -252,7 +403,7 @@ impl PyMesh {
     /// DeleteVertex(v): a new mesh without the point-sphere ``v``. The last
     /// vertex takes index ``v`` and the last face the point-sphere's face
     /// index. Raises :class:`MeshError` if ``v`` has edges.
-    fn delete_vertex(&self, vertex: i64) -> PyResult<PyMesh> {
+    fn delete_vertex(&self, #[pyo3(from_py_with = super::sat_i64)] vertex: i64) -> PyResult<PyMesh> {
         if vertex < 0 || vertex as usize >= self.inner.n_vertices() {
             return Err(arg_err(format!("vertex {vertex} out of range (mesh has {} vertices)", self.inner.n_vertices())));
         }
@@ -268,7 +419,7 @@ impl PyMesh {
     /// Same face: it splits (F+1, genus unchanged). Two faces of one
     /// component: they merge (F−1, genus+1). Two components: they join
     /// (F−1, components−1).
-    fn insert_edge(&self, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<(PyMesh, usize)> {
+    fn insert_edge(&self, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<(PyMesh, usize)> {
         let c1 = self.corner(face1, position1)?;
         let c2 = self.corner(face2, position2)?;
         let mut m = self.inner.clone();
@@ -279,7 +430,7 @@ impl PyMesh {
     /// DeleteEdge(e): a new mesh without edge ``e`` (inverse of
     /// :meth:`insert_edge`). Different faces on its sides merge (F−1); the
     /// same face on both sides separates (F+1, genus−1 or components+1).
-    fn delete_edge(&self, edge: i64) -> PyResult<PyMesh> {
+    fn delete_edge(&self, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<PyMesh> {
         if edge < 0 || edge as usize >= self.inner.n_edges() {
             return Err(arg_err(format!("edge {edge} out of range (mesh has {} edges)", self.inner.n_edges())));
         }
@@ -316,7 +467,10 @@ impl PyMesh {
     fn to_manifold<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         Self::delegate(slf, "topomesh._interop", "to_manifold", &[])
     }
-    /// Write to ``path``; the format comes from the extension (.obj, .off, .ply).
+    /// Write to ``path``, atomically; the format comes from the extension:
+    /// ``.npz`` and ``.ply`` keep every mesh exactly, ``.obj`` and ``.off``
+    /// only meshes their polygon list gives back (else :class:`MeshError`
+    /// naming the lossless formats). See :func:`topomesh.io.save`.
     fn save<'py>(slf: &Bound<'py, Self>, path: &Bound<'py, PyAny>) -> PyResult<()> {
         Self::delegate(slf, "topomesh.io", "save", &[path.clone()])?;
         Ok(())
@@ -350,15 +504,19 @@ impl PyMesh {
         )
     }
 
-    /// Equal when the exports are: same vertices (exactly), same faces with
-    /// the same corner order, and as many edges and hole faces.
-    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+    /// Equal when the lossless exports are: same vertices (exactly), same
+    /// faces with the same corner order, the same corners joined by edges
+    /// (:attr:`corner_twins`), and as many edges and hole faces (the twins'
+    /// -1 sides determine the hole faces). Edge ids are not compared.
+    fn __eq__(&self, py: Python<'_>, other: &Bound<'_, PyAny>) -> bool {
         let Ok(o) = other.cast::<PyMesh>() else { return false };
-        let (a, b) = (&self.inner, &o.get().inner);
+        let o = o.get();
+        let (a, b) = (&self.inner, &o.inner);
         a.positions() == b.positions()
             && a.n_edges() == b.n_edges()
             && a.n_holes() == b.n_holes()
-            && a.to_polygons() == b.to_polygons()
+            && self.polygons(py) == o.polygons(py)
+            && self.twins(py) == o.twins(py)
     }
 
     fn __copy__(slf: Py<Self>) -> Py<Self> {
@@ -400,16 +558,29 @@ fn icosahedron() -> PyMesh {
 /// around the tube. V = major·minor, F = V, genus 1.
 #[pyfunction]
 #[pyo3(signature = (major = 24, minor = 12, major_radius = 1.0, minor_radius = 0.4))]
-fn torus(major: usize, minor: usize, major_radius: f64, minor_radius: f64) -> PyResult<PyMesh> {
-    primitives::torus(major, minor, major_radius, minor_radius).map(PyMesh::wrap).map_err(err)
+fn torus(
+    py: Python<'_>,
+    #[pyo3(from_py_with = super::big_int)] major: i128,
+    #[pyo3(from_py_with = super::big_int)] minor: i128,
+    major_radius: f64,
+    minor_radius: f64,
+) -> PyResult<PyMesh> {
+    let major = super::usize_in("torus", "major", major, 3, crate::mesh::MAX_ELEMENTS)?;
+    let minor = super::usize_in("torus", "minor", minor, 3, crate::mesh::MAX_ELEMENTS)?;
+    super::finite_in("torus", "major_radius", major_radius, f64::MIN_POSITIVE, f64::MAX)?;
+    super::finite_in("torus", "minor_radius", minor_radius, f64::MIN_POSITIVE, f64::MAX)?;
+    super::run_interruptible(py, || primitives::torus(major, minor, major_radius, minor_radius)).map(PyMesh::wrap)
 }
 /// A closed genus-``g`` slab, tunnelled with InsertEdge (quads only).
+///
+/// Parameters
+/// ----------
+/// g : int
+///     The genus, 0 to 10000.
 #[pyfunction]
-fn genus_surface(g: usize) -> PyResult<PyMesh> {
-    if g > 10_000 {
-        return Err(arg_err(format!("genus_surface: g = {g} is too large (at most 10000)")));
-    }
-    primitives::genus_surface(g).map(PyMesh::wrap).map_err(err)
+fn genus_surface(py: Python<'_>, #[pyo3(from_py_with = super::big_int)] g: i128) -> PyResult<PyMesh> {
+    let g = super::usize_in("genus_surface", "g", g, 0, 10_000)?;
+    super::run_interruptible(py, || primitives::genus_surface(g)).map(PyMesh::wrap)
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

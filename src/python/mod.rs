@@ -6,11 +6,14 @@
 use pyo3::prelude::*;
 
 mod alloc;
+mod display;
 pub(crate) mod convert;
 pub(crate) mod ifs;
+mod io;
 pub(crate) mod fractal;
 pub(crate) mod mesh;
 mod refine;
+mod repair;
 mod ops;
 mod smooth;
 
@@ -28,49 +31,225 @@ pyo3::create_exception!(
     "A result that is a valid manifold but geometrically flawed (for example self-intersecting); the message says where and how much."
 );
 
-/// Maps a core error to the Python `topomesh.MeshError` (a `ValueError`).
+/// Maps a core error to Python: `Interrupted` to `KeyboardInterrupt`, the
+/// rest to `topomesh.MeshError` (a `ValueError`).
 pub(crate) fn err(e: crate::MeshError) -> PyErr {
-    MeshError::new_err(e.to_string())
+    match e {
+        crate::MeshError::Interrupted => pyo3::exceptions::PyKeyboardInterrupt::new_err("interrupted"),
+        e => MeshError::new_err(e.to_string()),
+    }
 }
 
 pub(crate) fn arg_err(msg: impl Into<String>) -> PyErr {
     MeshError::new_err(msg.into())
 }
 
-/// Runs one level of a scheme `iterations` times with the GIL released, one
-/// tqdm update per level when `progress` is true. `iterations < 0` is a
-/// `MeshError` naming the scheme; 0 returns an equal mesh.
+/// An integer argument of any size (`#[pyo3(from_py_with = big_int)] x:
+/// i128`): Python ints beyond `i128` saturate, so range checks ([`int_in`])
+/// name the parameter instead of pyo3 raising a bare `OverflowError`.
+pub(crate) fn big_int(obj: &Bound<'_, PyAny>) -> PyResult<i128> {
+    match obj.extract::<i128>() {
+        Ok(v) => Ok(v),
+        Err(e) if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(obj.py()) => {
+            Ok(if obj.lt(0)? { i128::MIN } else { i128::MAX })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// An index argument (`#[pyo3(from_py_with = sat_i64)] x: i64`): ints beyond
+/// `i64` saturate, so the callee's range check reports them as out of range
+/// (a `MeshError`) instead of pyo3 raising `OverflowError`.
+pub(crate) fn sat_i64(obj: &Bound<'_, PyAny>) -> PyResult<i64> {
+    Ok(big_int(obj)?.clamp(i64::MIN as i128, i64::MAX as i128) as i64)
+}
+
+/// `v` when it lies in `lo..=hi`, else a `MeshError` naming `call`, the
+/// parameter `name` and the range.
+pub(crate) fn int_in(call: &str, name: &str, v: i128, lo: i64, hi: i64) -> PyResult<i64> {
+    if (lo as i128..=hi as i128).contains(&v) {
+        return Ok(v as i64);
+    }
+    let shown = match v {
+        i128::MAX => "a huge value (>= 2**127)".to_string(),
+        i128::MIN => "a huge negative value".to_string(),
+        v => v.to_string(),
+    };
+    let allowed = if hi == i64::MAX { format!(">= {lo}") } else { format!("in [{lo}, {hi}]") };
+    Err(arg_err(format!("{call}: {name} = {shown} must be {allowed} (an integer)")))
+}
+
+/// [`int_in`] as a `usize`.
+pub(crate) fn usize_in(call: &str, name: &str, v: i128, lo: usize, hi: usize) -> PyResult<usize> {
+    Ok(int_in(call, name, v, lo as i64, hi.min(i64::MAX as usize) as i64)? as usize)
+}
+
+/// A finite float argument in `[lo, hi]`, else a `MeshError` naming it.
+pub(crate) fn finite_in(call: &str, name: &str, x: f64, lo: f64, hi: f64) -> PyResult<f64> {
+    if x.is_finite() && x >= lo && x <= hi {
+        Ok(x)
+    } else {
+        Err(arg_err(format!("{call}: {name} = {x} is out of range; it must be a finite number in [{lo}, {hi}]")))
+    }
+}
+
+/// How often the calling thread takes the GIL back to look for Ctrl-C.
+const POLL: std::time::Duration = std::time::Duration::from_millis(50);
+
+/// Runs `work` on a worker thread while the calling thread, with the GIL
+/// released except for a moment every 50 ms, checks for signals and calls
+/// `on_poll` (progress bars). On `KeyboardInterrupt` (or any error a signal
+/// handler raises) it sets the core's cancellation flag, waits for the worker
+/// to stop at its next poll, clears the flag and returns that error; the
+/// worker's partial results are dropped.
+pub(crate) fn run_interruptible_with<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce() -> crate::Result<T> + Send,
+    mut on_poll: impl FnMut(Python<'_>) -> PyResult<()>,
+) -> PyResult<T> {
+    let caller = std::thread::current();
+    std::thread::scope(|s| {
+        let worker = s.spawn(move || {
+            let r = work();
+            caller.unpark();
+            r
+        });
+        loop {
+            // park_timeout may wake early (the unpark token, spuriously): only
+            // is_finished decides
+            py.detach(|| {
+                if !worker.is_finished() {
+                    std::thread::park_timeout(POLL);
+                }
+            });
+            if worker.is_finished() {
+                break;
+            }
+            let polled = py.check_signals().and_then(|()| on_poll(py));
+            if let Err(e) = polled {
+                crate::cancel::request();
+                let _ = py.detach(|| worker.join());
+                crate::cancel::reset();
+                return Err(e);
+            }
+        }
+        match worker.join() {
+            Ok(r) => r.map_err(err),
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+    })
+}
+
+/// [`run_interruptible_with`] with nothing to do between polls.
+pub(crate) fn run_interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> crate::Result<T> + Send) -> PyResult<T> {
+    run_interruptible_with(py, work, |_| Ok(()))
+}
+
+/// Runs one level of a scheme `iterations` times, interruptibly with the GIL
+/// released, one tqdm update per level when `progress` is true.
+///
+/// Memory: every level is checked up front against the budget with the
+/// lower bounds of `predict` (the scheme's count formulas), then each level
+/// again from the real counts of its input with the upper bound, and a
+/// refusal is a `MeshError` naming the call, level, bytes and budget.
+/// `iterations` outside `0..` is a `MeshError` naming the scheme; 0 returns
+/// an equal mesh.
 pub(crate) fn iterate(
     py: Python<'_>,
     mesh: &crate::Mesh,
-    iterations: i64,
+    iterations: i128,
     progress: bool,
     name: &str,
+    predict: crate::budget::Predictor,
     step: impl Fn(&crate::Mesh) -> crate::Result<crate::Mesh> + Sync,
 ) -> PyResult<mesh::PyMesh> {
-    if iterations < 0 {
-        return Err(arg_err(format!("{name}: iterations = {iterations} must be >= 0")));
-    }
+    use crate::budget::{self, Counts};
+    use std::sync::atomic::{AtomicU64, Ordering};
+    let n = int_in(name, "iterations", iterations, 0, i64::MAX)? as u64;
+    let start = Counts::of(mesh);
+    py.detach(|| budget::check_levels(name, &start, n, predict)).map_err(err)?;
     let bar = if progress {
         let kw = pyo3::types::PyDict::new(py);
-        kw.set_item("total", iterations)?;
+        kw.set_item("total", n)?;
         kw.set_item("desc", name)?;
         Some(py.import("tqdm")?.getattr("tqdm")?.call((), Some(&kw))?)
     } else {
         None
     };
-    let mut cur: Option<crate::Mesh> = None;
-    for _ in 0..iterations {
-        let src = cur.as_ref().unwrap_or(mesh);
-        cur = Some(py.detach(|| step(src)).map_err(err)?);
+    let done = AtomicU64::new(0);
+    let mut shown = 0u64;
+    let mut update = |py: Python<'_>| -> PyResult<()> {
         if let Some(b) = &bar {
-            b.call_method1("update", (1,))?;
+            let d = done.load(Ordering::Relaxed);
+            if d > shown {
+                b.call_method1("update", (d - shown,))?;
+                shown = d;
+            }
         }
+        let _ = py;
+        Ok(())
+    };
+    let out = run_interruptible_with(
+        py,
+        || {
+            let mut cur: Option<crate::Mesh> = None;
+            for k in 1..=n {
+                crate::cancel::check()?;
+                let src = cur.as_ref().unwrap_or(mesh);
+                budget::check_level(name, k, n, &Counts::of(src), predict)?;
+                cur = Some(step(src)?);
+                done.store(k, Ordering::Relaxed);
+            }
+            Ok(cur)
+        },
+        &mut update,
+    );
+    if out.is_ok() {
+        update(py)?;
     }
     if let Some(b) = &bar {
         b.call_method0("close")?;
     }
-    Ok(mesh::PyMesh::wrap(cur.unwrap_or_else(|| mesh.clone())))
+    Ok(mesh::PyMesh::wrap(out?.unwrap_or_else(|| mesh.clone())))
+}
+
+/// Sets the memory budget of every topomesh call, in bytes.
+///
+/// Parameters
+/// ----------
+/// nbytes : int or None
+///     The budget (>= 0); ``None`` returns to the default: the environment
+///     variable ``TOPOMESH_MEMORY_BUDGET`` (bytes, or with a K/M/G/T suffix)
+///     if set, else the machine's available memory (``MemAvailable``, lowered
+///     to the room under an address-space limit), recomputed at each call.
+///
+/// Raises
+/// ------
+/// MeshError
+///     ``nbytes`` negative.
+#[pyfunction]
+#[pyo3(signature = (nbytes))]
+fn set_memory_budget(nbytes: &Bound<'_, PyAny>) -> PyResult<()> {
+    let b = if nbytes.is_none() {
+        None
+    } else {
+        let v = big_int(nbytes).map_err(|_| arg_err(format!("set_memory_budget: nbytes = {nbytes} must be an integer >= 0 or None")))?;
+        Some(int_in("set_memory_budget", "nbytes", v, 0, i64::MAX)? as u64)
+    };
+    crate::budget::set(b);
+    Ok(())
+}
+
+/// The memory budget in force, in bytes (see :func:`set_memory_budget`).
+///
+/// Returns
+/// -------
+/// int
+///     Calls whose predicted peak exceeds it raise ``MeshError`` before
+///     allocating.
+#[pyfunction]
+fn memory_budget() -> PyResult<u64> {
+    crate::budget::get().map_err(err)
 }
 
 #[pymodule]
@@ -81,5 +260,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     ops::register(m)?;
     ifs::register(m)?;
     fractal::register(m)?;
+    io::register(m)?;
+    m.add_function(wrap_pyfunction!(set_memory_budget, m)?)?;
+    m.add_function(wrap_pyfunction!(memory_budget, m)?)?;
     Ok(())
 }

@@ -55,7 +55,7 @@ impl PyMesh {
     /// E−1 and the effect of :meth:`delete_edge`; then V−k, F−k and
     /// components −k for the k ∈ {0, 1, 2} point-spheres removed. The last
     /// edge takes index ``edge``; a removed vertex's index goes to the last vertex.
-    fn delete_edge_with_cleanup(&self, py: Python<'_>, edge: i64) -> PyResult<PyMesh> {
+    fn delete_edge_with_cleanup(&self, py: Python<'_>, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<PyMesh> {
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
         py.detach(|| m.delete_edge_with_cleanup(e)).map_err(err)?;
@@ -70,7 +70,7 @@ impl PyMesh {
     /// corner. Self-loops split too (a one-gon becomes a two-gon). ``edge``
     /// now runs from the new vertex to b; the new last edge runs from a to it.
     #[pyo3(signature = (edge, t = 0.5))]
-    fn subdivide_edge(&self, edge: i64, t: f64) -> PyResult<(PyMesh, usize)> {
+    fn subdivide_edge(&self, #[pyo3(from_py_with = super::sat_i64)] edge: i64, t: f64) -> PyResult<(PyMesh, usize)> {
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
         let s = m.subdivide_edge(e, t).map_err(err)?;
@@ -98,7 +98,7 @@ impl PyMesh {
     ///     When the pipe's faces cross the rest of the surface (the exact
     ///     crossing check ``menger`` uses), with the number of crossing
     ///     triangle pairs.
-    fn create_pipe(&self, py: Python<'_>, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<PyMesh> {
+    fn create_pipe(&self, py: Python<'_>, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<PyMesh> {
         let c1 = corner_of(&self.inner, face1, position1)?;
         let c2 = corner_of(&self.inner, face2, position2)?;
         let mut m = self.inner.clone();
@@ -127,7 +127,7 @@ impl PyMesh {
     ///
     /// E+2. One face: it splits in three (F+2). Two faces: F unchanged and
     /// genus +1 (one component) or components −1.
-    fn connect_edges(&self, face1: i64, position1: i64, face2: i64, position2: i64) -> PyResult<(PyMesh, usize)> {
+    fn connect_edges(&self, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<(PyMesh, usize)> {
         let h1 = halfedge_of(&self.inner, face1, position1, "connect_edges")?;
         let h2 = halfedge_of(&self.inner, face2, position2, "connect_edges")?;
         let mut m = self.inner.clone();
@@ -141,7 +141,7 @@ impl PyMesh {
     /// V−1, E−s, F−(s−1), genus unchanged, where s is 1 plus the number of
     /// two-gons on the edge (each vanishes; a triangle beside it becomes a
     /// two-gon). Raises :class:`MeshError` for a self-loop.
-    fn collapse_edge(&self, py: Python<'_>, edge: i64) -> PyResult<(PyMesh, usize)> {
+    fn collapse_edge(&self, py: Python<'_>, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<(PyMesh, usize)> {
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
         let c = py.detach(|| m.collapse_edge(e)).map_err(err)?;
@@ -188,9 +188,9 @@ impl PyMesh {
     fn add_handle(
         &self,
         py: Python<'_>,
-        face_a: i64,
-        face_b: i64,
-        segments: i64,
+        #[pyo3(from_py_with = super::sat_i64)] face_a: i64,
+        #[pyo3(from_py_with = super::sat_i64)] face_b: i64,
+        #[pyo3(from_py_with = super::sat_i64)] segments: i64,
         weights: Option<(f64, f64)>,
         corners: Option<(i64, Option<i64>)>,
     ) -> PyResult<PyMesh> {
@@ -201,6 +201,15 @@ impl PyMesh {
         if segments < 1 {
             return Err(arg_err(format!("add_handle: segments = {segments} must be at least 1")));
         }
+        // every segment adds a ring of n quads (n = the larger face's size)
+        let n = m0.face_degree(m0.face(c1)).max(m0.face_degree(m0.face(c2))) as u64;
+        let ring = (segments as u64).saturating_mul(n);
+        let c = crate::budget::Counts::plain(
+            (m0.n_vertices() as u64).saturating_add(ring),
+            (m0.n_edges() as u64).saturating_add(ring.saturating_mul(2)),
+            (m0.n_faces() as u64).saturating_add(ring),
+        );
+        crate::budget::check("add_handle", &format!("segments = {segments}"), crate::budget::build_bytes(&c)).map_err(err)?;
         let (w1, w2) = match weights {
             Some(w) => w,
             None => {
@@ -216,7 +225,7 @@ impl PyMesh {
         Ok(PyMesh::wrap(m))
     }
 
-    /// Pairs of triangles of :meth:`triangles` that intersect, int64 (K, 2),
+    /// Pairs of triangles of :meth:`triangulate` that intersect, int64 (K, 2),
     /// ``i < j``, sorted: an edge of one through the other's interior, or
     /// lying in the other's plane across it (coplanar overlap). Triangles
     /// sharing an edge never count; sharing a vertex, only when they meet
@@ -224,8 +233,8 @@ impl PyMesh {
     /// ``create_pipe`` use (``src/geometry/crossing.rs``); near-linear.
     fn self_intersections<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {
         let pairs = py.detach(|| {
-            let (tris, _) = self.inner.triangles();
-            crate::geometry::crossing::crossing_pairs(self.inner.positions(), &tris, None, true)
+            let (tris, p) = crate::geometry::triangles_with_points(&self.inner);
+            crate::geometry::crossing::crossing_pairs(&p, &tris, None, true)
         });
         let rows: Vec<[u32; 2]> = pairs.iter().map(|&(i, j)| [i, j]).collect();
         super::convert::u32_rows(py, &rows)
@@ -291,11 +300,18 @@ impl PyRind {
     }
     /// Current indices in :attr:`mesh` of outer face ``face`` and its inner
     /// twin, or ``None`` once punched.
-    fn face_pair(&self, face: i64) -> Option<(usize, usize)> {
-        if face < 0 {
-            return None;
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     ``face`` outside ``0 .. n_outer_faces - 1``.
+    fn face_pair(&self, #[pyo3(from_py_with = super::big_int)] face: i128) -> PyResult<Option<(usize, usize)>> {
+        let n = self.inner.initial_face_count() / 2;
+        if n == 0 {
+            return Err(super::arg_err("face_pair: the rind has no outer faces"));
         }
-        self.inner.face_pair(face as usize).map(|(a, b)| (a.idx(), b.idx()))
+        let f = super::usize_in("face_pair", "face", face, 0, n - 1)?;
+        Ok(self.inner.face_pair(f).map(|(a, b)| (a.idx(), b.idx())))
     }
     /// Punch a hole through each outer face of ``faces`` (an int or a
     /// sequence): CreatePipe between the face and its inner twin.

@@ -2,7 +2,8 @@
 //! papers: `Mesh.honeycomb` and `Mesh.vertex_truncation`.
 
 use super::mesh::PyMesh;
-use super::{arg_err, err, iterate};
+use super::{arg_err, err, iterate, big_int};
+use crate::budget::predict;
 use crate::schemes::honeycomb::{self, honeycomb};
 use crate::schemes::vertex_truncation::{vertex_truncation, Truncation};
 use pyo3::prelude::*;
@@ -39,9 +40,9 @@ impl PyMesh {
     /// MeshError
     ///     ``iterations`` negative, ``t`` or ``tension`` outside [0, 1].
     #[pyo3(signature = (iterations = 1, t = 0.5, tension = None, progress = false))]
-    fn honeycomb(&self, py: Python<'_>, iterations: i64, t: f64, tension: Option<f64>, progress: bool) -> PyResult<PyMesh> {
+    fn honeycomb(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, t: f64, tension: Option<f64>, progress: bool) -> PyResult<PyMesh> {
         honeycomb::check_args(t, tension).map_err(err)?;
-        iterate(py, &self.inner, iterations, progress, "honeycomb", |m| honeycomb(m, t, tension))
+        iterate(py, &self.inner, iterations, progress, "honeycomb", predict::truncation, |m| honeycomb(m, t, tension))
     }
 
     /// Vertex truncation (Akleman, Edmundson & Ozener, "A Generalized Vertex
@@ -81,7 +82,7 @@ impl PyMesh {
     ///     ``iterations`` negative, unknown ``mode``, ``ratio`` outside
     ///     (0, 0.5] or not 0.25 with ``mode="chaikin"``.
     #[pyo3(signature = (iterations = 1, mode = "chaikin", ratio = 0.25, progress = false))]
-    fn vertex_truncation(&self, py: Python<'_>, iterations: i64, mode: &str, ratio: f64, progress: bool) -> PyResult<PyMesh> {
+    fn vertex_truncation(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, mode: &str, ratio: f64, progress: bool) -> PyResult<PyMesh> {
         let how = match mode {
             "chaikin" if ratio == 0.25 => Truncation::Chaikin,
             "chaikin" => {
@@ -95,6 +96,6 @@ impl PyMesh {
             }
         };
         how.check().map_err(err)?;
-        iterate(py, &self.inner, iterations, progress, "vertex_truncation", |m| vertex_truncation(m, how))
+        iterate(py, &self.inner, iterations, progress, "vertex_truncation", predict::truncation, |m| vertex_truncation(m, how))
     }
 }

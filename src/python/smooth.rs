@@ -1,7 +1,8 @@
 //! Smoothing and refinement schemes as `Mesh` methods (`crate::schemes`).
 
 use super::mesh::PyMesh;
-use super::iterate;
+use super::{iterate, big_int};
+use crate::budget::predict;
 use crate::schemes;
 use pyo3::prelude::*;
 
@@ -29,8 +30,8 @@ impl PyMesh {
     /// MeshError
     ///     If ``iterations`` is negative or the output would exceed 31-bit ids.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn catmull_clark(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "catmull_clark", schemes::catmull_clark::catmull_clark)
+    fn catmull_clark(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "catmull_clark", predict::catmull_clark, schemes::catmull_clark::catmull_clark)
     }
 
     /// Doo-Sabin subdivision (Doo & Sabin 1978) with Doo & Sabin's weights
@@ -40,8 +41,8 @@ impl PyMesh {
     /// Per level: V' = 2E, E' = 4E, F' = F + E + V. Zero-length self-loops
     /// open into tubes. Parameters, return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn doo_sabin(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "doo_sabin", schemes::doo_sabin::doo_sabin)
+    fn doo_sabin(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "doo_sabin", predict::doo_sabin, schemes::doo_sabin::doo_sabin)
     }
 
     /// Loop subdivision (Loop 1987) with Loop's original
@@ -52,8 +53,8 @@ impl PyMesh {
     /// E' = 2E + 3F, F' = 4F. Parameters, return and errors as
     /// :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn r#loop(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "loop", schemes::loop_subdivision::loop_subdivision)
+    fn r#loop(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "loop", predict::loop_subdivision, schemes::loop_subdivision::loop_subdivision)
     }
 
     /// sqrt3 subdivision (Kobbelt 2000): a centroid per face, old edges
@@ -63,8 +64,8 @@ impl PyMesh {
     /// level: V' = V + F, E' = 3E, F' = 2E triangles. Parameters, return and
     /// errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn sqrt3(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "sqrt3", schemes::sqrt3::sqrt3)
+    fn sqrt3(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "sqrt3", predict::sqrt3, schemes::sqrt3::sqrt3)
     }
 
     /// The simplest subdivision scheme (Peters & Reif 1997): mid-edge
@@ -74,8 +75,8 @@ impl PyMesh {
     /// Per level: V' = E, E' = 2E, F' = F + V; every new vertex is
     /// 4-valent. Parameters, return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn simplest(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "simplest", schemes::simplest::simplest)
+    fn simplest(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "simplest", predict::simplest, schemes::simplest::simplest)
     }
 
     /// Midpoint (linear) subdivision: triangles split 1 -> 4 at edge
@@ -85,15 +86,15 @@ impl PyMesh {
     /// Per level: V' = V + E + F_(n!=3), F' = 4 F_3 + sum_(n!=3) n.
     /// Parameters, return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn midpoint(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "midpoint", schemes::midpoint::midpoint)
+    fn midpoint(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "midpoint", predict::midpoint, schemes::midpoint::midpoint)
     }
 
     /// The dual mesh: a vertex at every face centroid, a face around every
     /// vertex (V' = F, E' = E, F' = V). Orientation is kept. Parameters,
     /// return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false))]
-    fn dual(&self, py: Python<'_>, iterations: i64, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "dual", schemes::dual::dual)
+    fn dual(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        iterate(py, &self.inner, iterations, progress, "dual", predict::dual, schemes::dual::dual)
     }
 }

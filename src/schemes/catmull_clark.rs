@@ -30,24 +30,31 @@ pub fn catmull_clark(m: &Mesh) -> Result<Mesh> {
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("catmull_clark", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, face) = m.halfedge_columns();
     let mut pos = vec![DVec3::ZERO; nv + ne + nf];
     let (vp, rest) = pos.split_at_mut(nv);
     let (ep, fp) = rest.split_at_mut(ne);
     face_centroids(m, &fl, fp);
+    crate::cancel::check()?;
     let fp = &*fp;
     let p = &m.pos;
     rayon::join(
         || {
             ep.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, out)| {
+                if crate::cancel::requested() {
+                    return;
+                }
                 let (a, b) = (2 * e, 2 * e + 1);
                 *out = (p[vert[a] as usize] + p[vert[b] as usize] + fp[face[a] as usize] + fp[face[b] as usize]) * 0.25;
             })
         },
         || {
             vp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, out)| {
+                if crate::cancel::requested() {
+                    return;
+                }
                 let s = m.v_out[v];
                 let mut h = s;
                 let mut sum = DVec3::ZERO;
@@ -65,6 +72,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             })
         },
     );
+    crate::cancel::check()?;
     let face_point: Vec<u32> = (0..nf as u32).collect();
     primal_host(m, &fl, &face_point, pos)
 }

@@ -45,7 +45,7 @@ pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("doo_sabin", 4 * m.n_halfedges(), m.n_halfedges())?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m);
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     let (next, vert, _) = m.halfedge_columns();
@@ -184,7 +184,7 @@ mod tests {
     fn matches_direct_weights() {
         let m = crate::primitives::dodecahedron();
         let r = doo_sabin(&m).unwrap();
-        let fl = FaceLayout::new(&m);
+        let fl = FaceLayout::new(&m).unwrap();
         for f in 0..m.n_faces() {
             let hs = fl.corners(f);
             let n = hs.len();

@@ -25,13 +25,14 @@ pub fn dual(m: &Mesh) -> Result<Mesh> {
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("dual", m.n_halfedges(), m.n_faces())?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m);
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (next, _, face) = m.halfedge_columns();
     let prev = &m.he_prev;
     let mut pos = vec![DVec3::ZERO; nf];
     face_centroids(m, &fl, &mut pos);
+    crate::cancel::check()?;
     let mut cv = vec![0u32; nh];
     let mut tw = vec![0u32; nh];
     let (pc, pt) = (super::hosts::SyncPtr(cv.as_mut_ptr()), super::hosts::SyncPtr(tw.as_mut_ptr()));

@@ -62,7 +62,7 @@ pub fn default_tension(n: usize) -> f64 {
 /// Errors: `t` outside `[0, 1]` or `tension` outside `[0, 1]` (including NaN).
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
     let nf = m.n_faces();

@@ -62,7 +62,8 @@ pub(crate) struct FaceLayout {
 }
 
 impl FaceLayout {
-    pub fn new(m: &Mesh) -> Self {
+    /// Fails only when cancelled ([`crate::cancel`]), polled every 64 Ki faces.
+    pub fn new(m: &Mesh) -> Result<Self> {
         let (next, _, _) = m.halfedge_columns();
         let nf = m.n_faces();
         let nh = m.n_halfedges();
@@ -71,6 +72,9 @@ impl FaceLayout {
         let mut cidx = vec![0u32; nh];
         off.push(0u32);
         for f in 0..nf {
+            if f % 65536 == 0 {
+                crate::cancel::check()?;
+            }
             let s = m.f_start[f];
             if s & POINT != 0 {
                 off.push(fh.len() as u32);
@@ -87,7 +91,7 @@ impl FaceLayout {
             }
             off.push(fh.len() as u32);
         }
-        FaceLayout { fh, off, cidx }
+        Ok(FaceLayout { fh, off, cidx })
     }
 
     /// The half-edges of face `f`'s corners, in cycle order.
@@ -242,6 +246,7 @@ pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
 /// faces are refused ([`refuse_holes`]): these schemes have no boundary rules.
 pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh>) -> Result<Mesh> {
     refuse_holes(name, m)?;
+    crate::cancel::check()?;
     let n_points = m.v_out.iter().filter(|&&o| o & POINT != 0).count();
     if n_points == 0 {
         return scheme(m);
@@ -287,6 +292,10 @@ pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) ->
 pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
     let (_, vert, _) = m.halfedge_columns();
     out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
+        // cancelled: leave the rest, callers poll right after
+        if crate::cancel::requested() {
+            return;
+        }
         let hs = fl.corners(f);
         let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
         *c = s / hs.len() as f64;
@@ -315,7 +324,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
         return Ok(None);
     }
     check_output_size("loop", 3 * m.n_halfedges(), m.n_vertices() + nf)?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let (next, vert, face) = m.halfedge_columns();
     let nv = m.n_vertices();
     // output corner base per face and centroid vertex per n-gon
@@ -325,6 +334,9 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
     let mut n_faces = 0usize;
     let mut b = 0u32;
     for f in 0..nf {
+        if f % 65536 == 0 {
+            crate::cancel::check()?;
+        }
         base.push(b);
         let n = fl.degree(f);
         if n == 3 {
@@ -402,6 +414,9 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
     let mut b = 0u32;
     let mut n_out_faces = 0usize;
     for f in 0..nf {
+        if f % 65536 == 0 {
+            crate::cancel::check()?;
+        }
         base.push(b);
         let n = fl.degree(f) as u32;
         if face_point[f] == NONE {
@@ -413,6 +428,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
             n_out_faces += n as usize;
         }
     }
+    crate::cancel::check()?;
     let nc = b as usize;
     // the output corners of the two outer sides at corner h: v -> e(h) and e(prev h) -> v
     let outer = |h: u32| -> (u32, u32) {
@@ -428,16 +444,24 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
     };
     let mut sizes = Vec::with_capacity(n_out_faces);
     for f in 0..nf {
+        if f % 65536 == 0 {
+            crate::cancel::check()?;
+        }
         if face_point[f] == NONE {
             sizes.extend_from_slice(&[3, 3, 3, 3]);
         } else {
             sizes.extend(std::iter::repeat(4).take(fl.degree(f)));
         }
     }
+    crate::cancel::check()?;
     let mut cv = vec![0u32; nc];
     let mut tw = vec![0u32; nc];
     let (pc, pt) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()));
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
+        // cancelled: skip the rest, the check after the loop reports it
+        if crate::cancel::requested() {
+            return;
+        }
         let hs = fl.corners(f);
         let n = hs.len();
         let b = base[f] as usize;
@@ -479,6 +503,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
             }
         }
     });
+    crate::cancel::check()?;
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 

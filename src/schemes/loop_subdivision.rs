@@ -47,7 +47,7 @@ pub fn loop_beta(n: usize) -> f64 {
 /// One Loop step on a mesh of triangles.
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("loop", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges())?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;

@@ -313,6 +313,7 @@
 //! of the dodecahedron's fourth iteration within 1e-6 of its diagonal.
 
 use crate::geometry::crossing::local_crossings;
+use crate::geometry::triangles_with_points;
 use crate::error::{MeshError, Result};
 use crate::mesh::{BuildOptions, HalfedgeId, Mesh};
 use glam::{DMat3, DVec3};
@@ -421,6 +422,12 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             o.thickness
         )));
     }
+    if !(o.collapse_angle.is_finite() && (0.0..=180.0).contains(&o.collapse_angle)) {
+        return Err(MeshError::InvalidArgument(format!(
+            "menger: collapse_angle = {} is out of range; it must be a finite angle in [0, 180] degrees",
+            o.collapse_angle
+        )));
+    }
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     for f in m.faces() {
@@ -472,6 +479,16 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             face_d[f.idx()] = o.thickness * w;
         }
     } else {
+        // the relative rule's bound (t < 1/2 of the smallest width around a
+        // face) in absolute terms: beyond it inset corners cross and the
+        // offset surface turns inside out (cube of side 2 at D = 10: volume −13600)
+        let limit = 0.5 * face_d.iter().copied().fold(f64::INFINITY, f64::min);
+        if o.thickness >= limit {
+            return Err(MeshError::InvalidArgument(format!(
+                "menger: thickness = {} (absolute) is out of range; on this mesh it must be in (0, {limit}) (half the smallest face width)",
+                o.thickness
+            )));
+        }
         face_d.iter_mut().for_each(|d| *d = o.thickness);
     }
     // --- inset corners
@@ -1137,6 +1154,15 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
 pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
     super::hosts::refuse_holes("menger", m)?;
     let ((_, mesh), crossing) = build_valid(m, o)?;
+    // a thickness under the face-width bound can still exceed what the body
+    // allows (a thin slab of wide faces): an outward input must stay outward
+    if !o.relative && m.signed_volume() > 0.0 && !(mesh.signed_volume() > 0.0) {
+        return Err(MeshError::InvalidArgument(format!(
+            "menger: thickness = {} (absolute) is too large for this mesh: the result would be inside out (signed volume {:.6e}); use a smaller thickness",
+            o.thickness,
+            mesh.signed_volume()
+        )));
+    }
     Ok((mesh, crossing))
 }
 
@@ -1159,10 +1185,10 @@ fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), usize)> {
     loop {
         // (the previous round's build is dropped before this one is made)
         let cur = build_once(m, o, &full)?;
-        let (tris, _) = cur.1.triangles();
+        let (tris, tri_pos) = triangles_with_points(&cur.1);
         let only = (round > 0).then_some(&recheck[..]);
-        let mut lc = local_crossings(cur.1.positions(), &tris, &cur.0.owner, cur.0.first_inner, only);
-        drop(tris);
+        let mut lc = local_crossings(&tri_pos, &tris, &cur.0.owner, cur.0.first_inner, only);
+        drop((tris, tri_pos));
         for (v, c) in crossing.iter_mut().enumerate() {
             if only.map_or(true, |r| r[v]) {
                 *c = false;
@@ -1292,8 +1318,8 @@ pub(crate) fn count_self_intersections(m: &Mesh) -> usize {
 
 #[cfg(test)]
 pub(crate) fn crossing_pairs(m: &Mesh) -> std::collections::HashSet<(u32, u32)> {
-    let (tris, _) = m.triangles();
-    crate::geometry::crossing::crossing_pairs(m.positions(), &tris, None, false).into_iter().collect()
+    let (tris, p) = triangles_with_points(m);
+    crate::geometry::crossing::crossing_pairs(&p, &tris, None, false).into_iter().collect()
 }
 
 #[cfg(test)]
@@ -1352,17 +1378,18 @@ mod intersection_tests {
         let o = MengerOptions::default();
         let t2 = menger_iterated(&primitives::tetrahedron(), 2, &o).unwrap();
         let (b, mesh) = build_once(&t2, &o, &vec![false; t2.n_vertices()]).unwrap();
-        let (tris, _) = mesh.triangles();
+        let (tris, p) = triangles_with_points(&mesh);
         let global = crossing_pairs(&mesh);
         assert!(!global.is_empty());
-        let local = local_crossings(mesh.positions(), &tris, &b.owner, b.first_inner, None);
+        let local = local_crossings(&p, &tris, &b.owner, b.first_inner, None);
         // every globally crossing pair has an owner the local check flags
         for &(i, j) in &global {
-            let owners: Vec<u32> = tris[i as usize].iter().chain(&tris[j as usize]).map(|&v| b.owner[v as usize]).filter(|&x| x != u32::MAX).collect();
+            let owners: Vec<u32> = tris[i as usize].iter().chain(&tris[j as usize]).map(|&v| b.owner.get(v as usize).copied().unwrap_or(u32::MAX)).filter(|&x| x != u32::MAX).collect();
             assert!(owners.iter().any(|x| local.binary_search(x).is_ok()), "pair ({i}, {j}) unseen");
         }
         let (b, mesh) = build_once(&primitives::cube(), &o, &vec![false; 8]).unwrap();
-        assert!(local_crossings(mesh.positions(), &mesh.triangles().0, &b.owner, b.first_inner, None).is_empty());
+        let (tris, p) = triangles_with_points(&mesh);
+        assert!(local_crossings(&p, &tris, &b.owner, b.first_inner, None).is_empty());
     }
 
     #[test]

@@ -131,6 +131,10 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
             "menger_sponge: level {level} is too large (at most {MAX_LEVEL}; level 6 has 128 M faces)"
         )));
     }
+    let nf = menger_sponge_faces(level);
+    let grid = 9 * (3u64.pow(level) + 1).pow(3);
+    let c = crate::budget::Counts::plain(nf, 2 * nf, nf);
+    crate::budget::check("menger_sponge", &format!("level {level}"), crate::budget::build_bytes(&c) + grid)?;
     let n = 3usize.pow(level);
     let ones: Vec<u32> = (0..n)
         .map(|t| {
@@ -168,6 +172,7 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
             }
         }
     });
+    crate::cancel::check()?;
     let slab_faces: Vec<u32> = mask.par_chunks(slab).map(|r| r.iter().map(|m| m.count_ones()).sum()).collect();
     let mut slab_start = Vec::with_capacity(n + 1);
     slab_start.push(0usize);
@@ -210,6 +215,7 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
             }
         }
     });
+    crate::cancel::check()?;
     let mut nv = 0u32;
     for v in vid.iter_mut() {
         if *v == 0 {
@@ -234,6 +240,7 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
             }
         });
     }
+    crate::cancel::check()?;
     let vid_of = |p: [i64; 3]| vid[(p[0] as usize * gp + p[1] as usize) * gp + p[2] as usize];
 
     // --- corners and twins, slab by slab
@@ -251,6 +258,7 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
             rt = d;
         }
     }
+    crate::cancel::check()?;
     let bad = std::sync::atomic::AtomicBool::new(false);
     chunks.into_par_iter().for_each(|(x, cvs, tws)| {
         let mut k = 0usize;
@@ -298,6 +306,7 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     if bad.into_inner() {
         return Err(MeshError::Invariant("menger_sponge: two cells meet along an edge only (non-manifold)".into()));
     }
+    crate::cancel::check()?;
     Mesh::from_corner_twins(pos, &vec![4u32; nf], &cv, &tw)
 }
 

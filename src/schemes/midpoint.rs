@@ -29,7 +29,7 @@ pub fn midpoint(m: &Mesh) -> Result<Mesh> {
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("midpoint", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, _) = m.halfedge_columns();
     let mut face_point = vec![NONE; nf];

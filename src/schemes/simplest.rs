@@ -31,7 +31,7 @@ pub fn simplest(m: &Mesh) -> Result<Mesh> {
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m);
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     let (next, vert, _) = m.halfedge_columns();

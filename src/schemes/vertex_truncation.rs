@@ -89,7 +89,7 @@ impl Truncation {
 pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     mode.check()?;
     let r = mode.ratio();
-    let fl = FaceLayout::new(m);
+    let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m);
     let nh = m.n_halfedges();
     let (next, vert, face) = m.halfedge_columns();

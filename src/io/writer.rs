@@ -1,6 +1,5 @@
 //! Writers for OBJ and OFF (text, polygon faces, float64 written as the
-//! shortest decimal that reads back to the same bits). Reading goes through
-//! maintained parsers on the Python side (`topomesh.io`).
+//! shortest decimal that reads back to the same bits).
 
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;

@@ -1,0 +1,742 @@
+//! Triangulation of a polygon mesh that stays a closed 2-manifold.
+//!
+//! **Contract.** On a mesh without self-loops, one- or two-gons and vertices
+//! repeated in a face, every edge of the triangle mesh is shared by exactly
+//! two triangles, with opposite directions: no diagonal is an edge of the
+//! mesh, and no two faces choose the same diagonal. This holds for
+//! non-planar and non-convex faces too. Points are added where needed (see
+//! [`Triangulation`]): first the middle of every multi-edge copy after the
+//! first (lowest edge id) between the same two vertices, which both faces
+//! beside that copy take as a corner; then, in face order, points inside
+//! faces that no diagonal-only triangulation fits.
+//!
+//! **Per face** (in parallel): the vertex cycle, consecutive repeats dropped,
+//! is projected into the plane of its Newell normal. Faces of five or more
+//! corners bent out of that plane by more than [`BENT`] are fanned around their centroid (an added
+//! point): diagonals of their projection can fold the surface through itself
+//! (one Doo-Sabin step of a Sierpinski tetrahedron: manifold3d then sees genus
+//! 0 instead of 3). Convex faces are fanned
+//! from their first corner; faces star-shaped from their corners' mean are
+//! ear-clipped in linear time ([`star_clip`]); other non-convex faces go to
+//! `earcut` (z-order hashed; near-linear on most polygons, quadratic on
+//! adversarial ones such as stars, hence the star clip). **Global pass**:
+//! every diagonal is tested against the mesh edges (walking the rotation of
+//! its endpoint of smaller valence) and against every other face's diagonals
+//! (one parallel sort). **Retry** of each face with a collision, in face
+//! order, with the edges and the diagonals already accepted forbidden: its
+//! first choice if that no longer collides, else other fans (convex faces),
+//! else an exact O(n³) search over the face's triangulations for faces of up
+//! to [`EXACT_LIMIT`] corners; failing that, one point, the corners' mean,
+//! with the face fanned around it (when the face is small, or star-shaped
+//! from there); failing that (large faces star-shaped from no such point), each forbidden
+//! diagonal of the first choice is split at a point beside its middle. Total
+//! work is near-linear in corners; the output depends only on the mesh
+//! (deterministic at any thread count).
+//!
+//! Meshes with self-loops, one- or two-gons or repeated face vertices keep
+//! the legacy behaviour: self-loop repeats dropped, faces left with fewer
+//! than three corners give no triangle (the triangle mesh pinches there).
+//! Holes are left out.
+
+use crate::mesh::{EdgeId, FaceId, Mesh, VertexId};
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+use std::collections::{HashMap, HashSet};
+
+/// The triangles of a mesh.
+///
+/// Vertex indices below `mesh.n_vertices()` are mesh vertices; an index `i`
+/// at or above it is the added point `points[i - n_vertices]`, so the
+/// triangle mesh's vertex array is the mesh's positions followed by `points`.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Triangulation {
+    /// Points added inside faces that no diagonal-only triangulation fits, in face order.
+    pub points: Vec<DVec3>,
+    /// Counter-clockwise (seen from outside) triangles, grouped by face in face order.
+    pub tris: Vec<[u32; 3]>,
+    /// The face each triangle came from.
+    pub tri_face: Vec<u32>,
+}
+
+impl Mesh {
+    /// Triangulates every non-hole face; see the [module docs](crate::geometry::triangulate).
+    pub fn triangulate(&self) -> Triangulation {
+        triangulate(self)
+    }
+}
+
+/// Faces of up to this many corners are retried by the exact search.
+pub const EXACT_LIMIT: usize = 40;
+/// Larger faces than this are never given to earcut (its node offsets are 32-bit).
+const EARCUT_LIMIT: usize = 1 << 25;
+/// Faces per parallel task.
+const BLOCK: usize = 2048;
+
+/// How a face's projection looks.
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Shape {
+    /// zero Newell normal: no plane to work in
+    Degenerate,
+    Convex,
+    NonConvex,
+}
+
+/// Per-thread buffers.
+#[derive(Default)]
+struct Scratch {
+    cyc: Vec<u32>,
+    p: Vec<DVec2>,
+    local: Vec<[u32; 3]>,
+    ear: earcut::Earcut<f64>,
+    ear_out: Vec<u32>,
+}
+
+fn cross2(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    (b - a).perp_dot(c - a)
+}
+
+/// Key of the unordered vertex pair {a, b}.
+fn pair(a: u32, b: u32) -> u64 {
+    ((a.min(b) as u64) << 32) | a.max(b) as u64
+}
+
+/// Whether `a` and `b` are joined by an edge, in O(min(valence)).
+fn is_edge(m: &Mesh, a: u32, b: u32) -> bool {
+    // added points (beyond the mesh's vertices) lie on no edge
+    let nv = m.n_vertices() as u32;
+    if a >= nv || b >= nv {
+        return false;
+    }
+    let (Some(ha), Some(hb)) = (m.vertex_halfedge(VertexId(a)), m.vertex_halfedge(VertexId(b))) else { return false };
+    let (mut x, mut y) = (ha, hb);
+    loop {
+        if m.head(x).0 == b || m.head(y).0 == a {
+            return true;
+        }
+        x = m.rotate(x);
+        y = m.rotate(y);
+        // one rotation complete: every neighbour of that endpoint seen
+        if x == ha || y == hb {
+            return false;
+        }
+    }
+}
+
+/// The face's vertex cycle with consecutive repeats dropped, cyclically,
+/// and the point of every split multi-edge copy between its two ends.
+fn face_cycle(m: &Mesh, f: FaceId, split: &[u32], cyc: &mut Vec<u32>) {
+    cyc.clear();
+    if split.is_empty() {
+        cyc.extend(m.face_vertices(f).map(|v| v.0));
+    } else {
+        for h in m.face_halfedges(f) {
+            cyc.push(m.vertex(h).0);
+            let p = split[h.edge().idx()];
+            if p != u32::MAX {
+                cyc.push(p);
+            }
+        }
+    }
+    cyc.dedup();
+    while cyc.len() > 1 && cyc.first() == cyc.last() {
+        cyc.pop();
+    }
+}
+
+/// Projects the cycle into its Newell plane, counter-clockwise seen from the
+/// normal; the frame's origin is the corners' mean.
+fn project(cyc: &[u32], pos: &[DVec3], p: &mut Vec<DVec2>) -> Shape {
+    let n = cyc.len();
+    let at = |i: usize| pos[cyc[i] as usize];
+    let mut normal = DVec3::ZERO;
+    let mut c = DVec3::ZERO;
+    for i in 0..n {
+        normal += at(i).cross(at((i + 1) % n));
+        c += at(i);
+    }
+    c /= n as f64;
+    p.clear();
+    let Some(nz) = normal.try_normalize() else { return Shape::Degenerate };
+    let u = nz.any_orthonormal_vector();
+    let w = nz.cross(u);
+    p.extend((0..n).map(|i| {
+        let q = at(i) - c;
+        DVec2::new(q.dot(u), q.dot(w))
+    }));
+    if (0..n).all(|i| cross2(p[i], p[(i + 1) % n], p[(i + 2) % n]) >= 0.0) {
+        Shape::Convex
+    } else {
+        Shape::NonConvex
+    }
+}
+
+fn fan(n: usize, from: usize, out: &mut Vec<[u32; 3]>) {
+    out.clear();
+    out.extend((1..n - 1).map(|i| [from, from + i, from + i + 1].map(|k| (k % n) as u32)));
+}
+
+/// Whether `t` (local indices) is a triangulation of the n-gon as a disk:
+/// n − 2 triangles, every boundary edge once in its own direction, every
+/// other edge once each way.
+fn is_disk_triangulation(n: usize, t: &[[u32; 3]]) -> bool {
+    if t.len() != n - 2 {
+        return false;
+    }
+    let mut e: Vec<u64> = t.iter().flat_map(|t| (0..3).map(move |k| ((t[k] as u64) << 32) | t[(k + 1) % 3] as u64)).collect();
+    e.sort_unstable();
+    if e.windows(2).any(|w| w[0] == w[1]) {
+        return false;
+    }
+    let mut boundary = 0;
+    for &k in &e {
+        let (i, j) = ((k >> 32) as usize, (k & 0xffff_ffff) as usize);
+        if i >= n || j >= n || i == j {
+            return false;
+        }
+        if j == (i + 1) % n {
+            boundary += 1;
+        } else if e.binary_search(&(((j as u64) << 32) | i as u64)).is_err() {
+            return false;
+        }
+    }
+    boundary == n
+}
+
+/// Ear clipping of a simple counter-clockwise polygon, O(n²); cuts the most
+/// convex corner when no strict ear exists (degenerate input), so the result
+/// is always a disk triangulation. The fallback for earcut's rare refusals.
+fn ear_clip_quadratic(p: &[DVec2], out: &mut Vec<[u32; 3]>) {
+    out.clear();
+    let mut idx: Vec<usize> = (0..p.len()).collect();
+    while idx.len() > 3 {
+        let m = idx.len();
+        let mut best: Option<(usize, f64)> = None;
+        let mut ear = None;
+        for i in 0..m {
+            let (a, b, c) = (idx[(i + m - 1) % m], idx[i], idx[(i + 1) % m]);
+            let turn = cross2(p[a], p[b], p[c]);
+            if best.is_none_or(|(_, t)| turn > t) {
+                best = Some((i, turn));
+            }
+            if turn <= 0.0 {
+                continue;
+            }
+            let inside = idx.iter().any(|&k| {
+                k != a && k != b && k != c && p[k] != p[a] && p[k] != p[b] && p[k] != p[c] && {
+                    cross2(p[a], p[b], p[k]) >= 0.0 && cross2(p[b], p[c], p[k]) >= 0.0 && cross2(p[c], p[a], p[k]) >= 0.0
+                }
+            });
+            if !inside {
+                ear = Some(i);
+                break;
+            }
+        }
+        let i = ear.unwrap_or_else(|| best.unwrap().0);
+        let (a, b, c) = (idx[(i + m - 1) % m], idx[i], idx[(i + 1) % m]);
+        out.push([a as u32, b as u32, c as u32]);
+        idx.remove(i);
+    }
+    out.push([idx[0] as u32, idx[1] as u32, idx[2] as u32]);
+}
+
+/// Ear clipping of a polygon star-shaped from the origin (every edge sees it
+/// strictly on its left), in O(n) like a Graham scan: a convex corner whose
+/// chord keeps the origin on its left is an ear, since the triangle lies in
+/// the corner's angular sector, which holds no other corner, and what is left
+/// stays star-shaped. Returns false (output unusable) if it gets stuck.
+fn star_clip(p: &[DVec2], out: &mut Vec<[u32; 3]>) -> bool {
+    let n = p.len();
+    out.clear();
+    let mut next: Vec<u32> = (0..n as u32).map(|i| ((i as usize + 1) % n) as u32).collect();
+    let mut prev: Vec<u32> = (0..n as u32).map(|i| ((i as usize + n - 1) % n) as u32).collect();
+    let (mut i, mut left, mut idle) = (0usize, n, 0usize);
+    while left > 3 {
+        let (a, c) = (prev[i] as usize, next[i] as usize);
+        if cross2(p[a], p[i], p[c]) > 0.0 && cross2(p[a], p[c], DVec2::ZERO) >= 0.0 {
+            out.push([a as u32, i as u32, c as u32]);
+            next[a] = c as u32;
+            prev[c] = a as u32;
+            left -= 1;
+            idle = 0;
+            // the previous corner may have become an ear
+            i = a;
+        } else {
+            i = c;
+            idle += 1;
+            if idle > left {
+                return false;
+            }
+        }
+    }
+    let (a, c) = (prev[i], next[i]);
+    out.push([a, i as u32, c]);
+    true
+}
+
+/// A face of five or more corners that leave its Newell plane by more than this fraction of
+/// their distance from its mean is fanned around its centroid: diagonals of
+/// its projection can fold the surface through itself.
+pub const BENT: f64 = 0.25;
+
+/// Whether the face is bent (see [`BENT`]). Quads never are: either
+/// diagonal makes a faithful two-triangle surface of a folded quad.
+fn is_bent(cyc: &[u32], pos: &[DVec3]) -> bool {
+    let n = cyc.len();
+    if n < 5 {
+        return false;
+    }
+    let at = |i: usize| pos[cyc[i] as usize];
+    let mut normal = DVec3::ZERO;
+    let mut c = DVec3::ZERO;
+    for i in 0..n {
+        normal += at(i).cross(at((i + 1) % n));
+        c += at(i);
+    }
+    c /= n as f64;
+    let Some(nz) = normal.try_normalize() else { return false };
+    let (mut off, mut r) = (0.0f64, 0.0f64);
+    for i in 0..n {
+        let d = at(i) - c;
+        off = off.max(d.dot(nz).abs());
+        r = r.max(d.length());
+    }
+    off > BENT * r
+}
+
+/// Whether the projected polygon is star-shaped from the corners' mean (the
+/// frame's origin).
+fn star_from_mean(p: &[DVec2]) -> bool {
+    let n = p.len();
+    (0..n).all(|i| p[i].perp_dot(p[(i + 1) % n]) > 0.0)
+}
+
+/// The first choice for one face (local indices into its cycle, n ≥ 3).
+fn first_choice(s: &mut Scratch, shape: Shape) {
+    let n = s.cyc.len();
+    if n == 3 || shape != Shape::NonConvex || n > EARCUT_LIMIT {
+        fan(n, 0, &mut s.local);
+        return;
+    }
+    // earcut is quadratic on stars (long thin ears have large bounding
+    // boxes); a face star-shaped from its mean is clipped in linear time
+    if star_from_mean(&s.p) && star_clip(&s.p, &mut s.local) && is_disk_triangulation(n, &s.local) {
+        return;
+    }
+    s.ear.earcut(s.p.iter().map(|q| q.to_array()), &[] as &[u32], &mut s.ear_out);
+    s.local.clear();
+    s.local.extend(s.ear_out.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
+    // earcut emits its own ring orientation: match the face's
+    let reversed = s.local.iter().any(|t| (0..3).any(|k| t[k] == 1 && t[(k + 1) % 3] == 0));
+    if reversed {
+        s.local.iter_mut().for_each(|t| t.swap(1, 2));
+    }
+    // earcut drops collinear and coincident corners: such output is no disk
+    if !is_disk_triangulation(n, &s.local) {
+        if n <= 4096 {
+            ear_clip_quadratic(&s.p, &mut s.local);
+        } else {
+            fan(n, 0, &mut s.local);
+        }
+    }
+}
+
+// -------------------------------------------------------------- segment tests
+
+fn on_segment(a: DVec2, b: DVec2, c: DVec2) -> bool {
+    c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+}
+
+/// Segments ab and cd share a point (touching included).
+fn segments_meet(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let (d1, d2, d3, d4) = (cross2(a, b, c), cross2(a, b, d), cross2(c, d, a), cross2(c, d, b));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+        return true;
+    }
+    (d1 == 0.0 && on_segment(a, b, c)) || (d2 == 0.0 && on_segment(a, b, d)) || (d3 == 0.0 && on_segment(c, d, a)) || (d4 == 0.0 && on_segment(c, d, b))
+}
+
+/// Whether the segment from corner i to corner j runs inside the polygon
+/// (O'Rourke's in-cone test at both ends, no edge met), O(n).
+fn is_inner_diagonal(p: &[DVec2], i: usize, j: usize) -> bool {
+    let n = p.len();
+    let in_cone = |a: usize, b: usize| {
+        let (a0, a1) = (p[(a + n - 1) % n], p[(a + 1) % n]);
+        let (pa, pb) = (p[a], p[b]);
+        if cross2(pa, a1, a0) >= 0.0 {
+            cross2(pa, pb, a0) > 0.0 && cross2(pb, pa, a1) > 0.0
+        } else {
+            !(cross2(pa, pb, a1) >= 0.0 && cross2(pb, pa, a0) >= 0.0)
+        }
+    };
+    if !in_cone(i, j) || !in_cone(j, i) {
+        return false;
+    }
+    (0..n).all(|k| {
+        let k1 = (k + 1) % n;
+        k == i || k == j || k1 == i || k1 == j || !segments_meet(p[i], p[j], p[k], p[k1])
+    })
+}
+
+/// A triangulation by diagonals alone that uses none that `forbidden`
+/// refuses, if one exists: dynamic programme over the sub-polygons i..j,
+/// O(n³). Non-convex faces only use diagonals inside the polygon.
+fn exact(p: &[DVec2], shape: Shape, forbidden: &dyn Fn(usize, usize) -> bool, out: &mut Vec<[u32; 3]>) -> bool {
+    let n = p.len();
+    let geometric = shape == Shape::NonConvex;
+    let id = |i: usize, j: usize| i * n + j;
+    let mut ok = vec![false; n * n];
+    for i in 0..n {
+        for j in i + 1..n {
+            ok[id(i, j)] = j == i + 1 || (i == 0 && j == n - 1) || (!forbidden(i, j) && (!geometric || is_inner_diagonal(p, i, j)));
+        }
+    }
+    // choice[i][j]: the apex k of the triangle on i..j, or usize::MAX if none
+    const NONE: usize = usize::MAX;
+    let mut choice = vec![NONE; n * n];
+    for len in 2..n {
+        for i in 0..n - len {
+            let j = i + len;
+            if !ok[id(i, j)] {
+                continue;
+            }
+            for k in i + 1..j {
+                let left = k == i + 1 || choice[id(i, k)] != NONE;
+                let right = j == k + 1 || choice[id(k, j)] != NONE;
+                if left && right && ok[id(i, k)] && ok[id(k, j)] && (!geometric || cross2(p[i], p[k], p[j]) > 0.0) {
+                    choice[id(i, j)] = k;
+                    break;
+                }
+            }
+        }
+    }
+    if choice[id(0, n - 1)] == NONE {
+        return false;
+    }
+    out.clear();
+    let mut stack = vec![(0, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j <= i + 1 {
+            continue;
+        }
+        let k = choice[id(i, j)];
+        out.push([i as u32, k as u32, j as u32]);
+        stack.push((i, k));
+        stack.push((k, j));
+    }
+    true
+}
+
+/// Re-triangulates a face whose first choice collided. Local indices; an
+/// index n + k is the added point `added[k]`.
+fn retry(
+    cyc: &[u32],
+    pos: &[DVec3],
+    p: &[DVec2],
+    shape: Shape,
+    first: &[[u32; 3]],
+    forbidden: &dyn Fn(usize, usize) -> bool,
+    out: &mut Vec<[u32; 3]>,
+    added: &mut Vec<DVec3>,
+) {
+    let n = cyc.len();
+    added.clear();
+    if shape == Shape::Convex {
+        // other fans first, O(n) each
+        for from in 1..n.min(8) {
+            if (2..n - 1).all(|i| !forbidden(from, (from + i) % n)) {
+                fan(n, from, out);
+                return;
+            }
+        }
+    }
+    if n <= EXACT_LIMIT && shape != Shape::Degenerate && exact(p, shape, forbidden, out) {
+        return;
+    }
+    // one point: the corners' mean, if the face is star-shaped from it, or
+    // if it is small: a small face no diagonals fit is mostly far from planar
+    // (Doo-Sabin faces around opened self-loops), where its projection
+    // misleads and a fan around its centroid is the faithful surface
+    let c2 = p.iter().copied().sum::<DVec2>() / n as f64;
+    if shape != Shape::NonConvex || n <= EXACT_LIMIT || (0..n).all(|i| cross2(p[i], p[(i + 1) % n], c2) > 0.0) {
+        added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
+        out.clear();
+        out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
+        return;
+    }
+    // split each forbidden diagonal of the first choice where it meets the
+    // two triangles beside it, at a point a little off its middle
+    out.clear();
+    out.extend_from_slice(first);
+    let mut by_edge: HashMap<(u32, u32), usize> = HashMap::new();
+    for (t, tri) in out.iter().enumerate() {
+        for k in 0..3 {
+            by_edge.insert((tri[k], tri[(k + 1) % 3]), t);
+        }
+    }
+    let n32 = n as u32;
+    let diags: Vec<(u32, u32)> = first
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+        .filter(|&(i, j)| i < j && j != (i + 1) % n32 && i != (j + 1) % n32 && forbidden(i as usize, j as usize))
+        .collect();
+    let pt = |added: &[DVec3], k: u32| if k < n32 { pos[cyc[k as usize] as usize] } else { added[(k - n32) as usize] };
+    for (i, j) in diags {
+        let (Some(&t1), Some(&t2)) = (by_edge.get(&(i, j)), by_edge.get(&(j, i))) else { continue };
+        let apex = |t: [u32; 3], a: u32, b: u32| t.into_iter().find(|&v| v != a && v != b).unwrap();
+        let (x, y) = (apex(out[t1], i, j), apex(out[t2], j, i));
+        // the middle keeps the four triangles positive (halves of two
+        // positive ones); it lies on the coincident mesh edge, but nothing
+        // better is known without the face's kernel
+        let _ = (x, y);
+        let m = n32 + added.len() as u32;
+        added.push((pt(added, i) + pt(added, j)) / 2.0);
+        out[t1] = [i, m, x];
+        out[t2] = [j, m, y];
+        let (t3, t4) = (out.len(), out.len() + 1);
+        out.push([m, j, x]);
+        out.push([m, i, y]);
+        for (t, tri) in [(t1, out[t1]), (t2, out[t2]), (t3, out[t3]), (t4, out[t4])] {
+            for k in 0..3 {
+                by_edge.insert((tri[k], tri[(k + 1) % 3]), t);
+            }
+        }
+    }
+}
+
+/// The copies of multi-edges after the first (lowest id) of each vertex
+/// pair, in edge order. Each is split at its middle so that the triangle
+/// mesh has one edge per vertex pair. Self-loops are left alone.
+fn multi_edge_copies(m: &Mesh) -> Vec<u32> {
+    // bucket the edges by their lower end (counting sort over the tail
+    // column, read in order), then look for repeated upper ends per bucket
+    let (_, vert, _) = m.halfedge_columns();
+    let ends = |e: usize| {
+        let (a, b) = (vert[2 * e], vert[2 * e + 1]);
+        (a.min(b), a.max(b))
+    };
+    let nv = m.n_vertices();
+    let mut start = vec![0u32; nv + 1];
+    for e in 0..m.n_edges() {
+        let (a, b) = ends(e);
+        if a != b {
+            start[a as usize + 1] += 1;
+        }
+    }
+    for k in 0..nv {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut upper = vec![(0u32, 0u32); start[nv] as usize];
+    for e in 0..m.n_edges() {
+        let (a, b) = ends(e);
+        if a != b {
+            upper[fill[a as usize] as usize] = (b, e as u32);
+            fill[a as usize] += 1;
+        }
+    }
+    let mut copies = Vec::new();
+    for v in 0..nv {
+        let list = &mut upper[start[v] as usize..start[v + 1] as usize];
+        if list.len() > 1 {
+            list.sort_unstable();
+            copies.extend(list.windows(2).filter(|w| w[0].0 == w[1].0).map(|w| w[1].1));
+        }
+    }
+    copies.sort_unstable();
+    copies
+}
+
+/// The diagonal key that marks a bent face (no vertex pair has it).
+const BENT_KEY: u64 = u64::MAX;
+
+/// One block's first choices: triangles (global ids), their faces, and every
+/// diagonal as (pair key, face).
+type BlockOut = (Vec<[u32; 3]>, Vec<u32>, Vec<(u64, u32)>);
+
+fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: std::ops::Range<usize>) -> BlockOut {
+    let mut s = Scratch::default();
+    let (mut tris, mut tri_face, mut diags) = (Vec::new(), Vec::new(), Vec::new());
+    for f in faces {
+        if m.is_hole(FaceId(f as u32)) {
+            continue;
+        }
+        face_cycle(m, FaceId(f as u32), split, &mut s.cyc);
+        let n = s.cyc.len();
+        if n < 3 {
+            continue;
+        }
+        if n == 3 {
+            tris.push([s.cyc[0], s.cyc[1], s.cyc[2]]);
+            tri_face.push(f as u32);
+            continue;
+        }
+        let shape = project(&s.cyc, pos, &mut s.p);
+        first_choice(&mut s, shape);
+        // bent faces are redone around their centroid (no diagonals)
+        let bent = is_bent(&s.cyc, pos);
+        if bent {
+            diags.push((BENT_KEY, f as u32));
+        }
+        for t in &s.local {
+            tris.push(t.map(|k| s.cyc[k as usize]));
+            tri_face.push(f as u32);
+            if bent {
+                continue;
+            }
+            for k in 0..3 {
+                let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                if i < j && j != i + 1 && !(i == 0 && j == n - 1) {
+                    diags.push((pair(s.cyc[i], s.cyc[j]), f as u32));
+                }
+            }
+        }
+    }
+    (tris, tri_face, diags)
+}
+
+/// See the module docs.
+pub fn triangulate(m: &Mesh) -> Triangulation {
+    let nf = m.n_faces();
+    let nv = m.n_vertices() as u32;
+    // multi-edge copies get a point each: the first added points
+    let copies = multi_edge_copies(m);
+    let mut points: Vec<DVec3> = Vec::with_capacity(copies.len());
+    let mut split = Vec::new();
+    if !copies.is_empty() {
+        split = vec![u32::MAX; m.n_edges()];
+        for &e in &copies {
+            split[e as usize] = nv + points.len() as u32;
+            let h = EdgeId(e).halfedge();
+            points.push((m.position(m.vertex(h)) + m.position(m.head(h))) / 2.0);
+        }
+    }
+    let pos: std::borrow::Cow<[DVec3]> =
+        if points.is_empty() { m.positions().into() } else { [m.positions(), &points[..]].concat().into() };
+    let pos = &pos[..];
+    let split = &split[..];
+    let blocks: Vec<BlockOut> = (0..nf.div_ceil(BLOCK))
+        .into_par_iter()
+        .map(|b| first_block(m, pos, split, b * BLOCK..nf.min((b + 1) * BLOCK)))
+        .collect();
+    let nt = blocks.iter().map(|b| b.0.len()).sum();
+    let nd = blocks.iter().map(|b| b.2.len()).sum();
+    let (mut tris, mut tri_face, mut diags) = (Vec::with_capacity(nt), Vec::with_capacity(nt), Vec::with_capacity(nd));
+    for (t, f, d) in blocks {
+        tris.extend(t);
+        tri_face.extend(f);
+        diags.extend(d);
+    }
+
+    // collisions: a diagonal that is a mesh edge, or that two faces chose
+    let mut bad: Vec<u32> = diags
+        .par_iter()
+        .filter(|&&(k, _)| k == BENT_KEY || is_edge(m, (k >> 32) as u32, k as u32))
+        .map(|&(_, f)| f)
+        .collect();
+    diags.par_sort_unstable();
+    let mut i = 0;
+    while i < diags.len() {
+        let mut j = i + 1;
+        while j < diags.len() && diags[j].0 == diags[i].0 {
+            j += 1;
+        }
+        if j - i > 1 && diags[i].0 != BENT_KEY {
+            bad.extend(diags[i..j].iter().map(|d| d.1));
+        }
+        i = j;
+    }
+    if bad.is_empty() {
+        return Triangulation { points, tris, tri_face };
+    }
+    bad.sort_unstable();
+    bad.dedup();
+
+    // the diagonals that stay, among the colliding faces' vertices
+    let mut in_bad = vec![false; pos.len()];
+    let mut s = Scratch::default();
+    for &f in &bad {
+        face_cycle(m, FaceId(f), split, &mut s.cyc);
+        for &v in &s.cyc {
+            in_bad[v as usize] = true;
+        }
+    }
+    let mut taken: HashSet<u64> = diags
+        .iter()
+        .filter(|&&(k, f)| k != BENT_KEY && in_bad[(k >> 32) as usize] && in_bad[(k & 0xffff_ffff) as usize] && bad.binary_search(&f).is_err())
+        .map(|d| d.0)
+        .collect();
+    drop(diags);
+
+    // retry in face order, each face's accepted diagonals forbidden to the next
+    let (mut out, mut added) = (Vec::new(), Vec::new());
+    let mut redone: Vec<(u32, Vec<[u32; 3]>)> = Vec::with_capacity(bad.len());
+    for &f in &bad {
+        face_cycle(m, FaceId(f), split, &mut s.cyc);
+        let shape = project(&s.cyc, pos, &mut s.p);
+        first_choice(&mut s, shape);
+        let cyc = &s.cyc;
+        let forbidden = |i: usize, j: usize| {
+            let (a, b) = (cyc[i], cyc[j]);
+            taken.contains(&pair(a, b)) || is_edge(m, a, b)
+        };
+        let n = cyc.len();
+        // the first choice stands if what it collided with was given up
+        let free = s.local.iter().all(|t| {
+            (0..3).all(|k| {
+                let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                j == (i + 1) % n || i == (j + 1) % n || !forbidden(i, j)
+            })
+        });
+        if is_bent(cyc, pos) {
+            added.clear();
+            added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
+            out.clear();
+            out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
+        } else if free {
+            out.clone_from(&s.local);
+            added.clear();
+        } else {
+            retry(cyc, pos, &s.p, shape, &s.local, &forbidden, &mut out, &mut added);
+        }
+        let n = cyc.len() as u32;
+        let base = nv + points.len() as u32;
+        let global: Vec<[u32; 3]> = out.iter().map(|t| t.map(|k| if k < n { cyc[k as usize] } else { base + k - n })).collect();
+        for t in &out {
+            for k in 0..3 {
+                let (i, j) = (t[k], t[(k + 1) % 3]);
+                if i < j && j < n && j != i + 1 && !(i == 0 && j == n - 1) {
+                    taken.insert(pair(cyc[i as usize], cyc[j as usize]));
+                }
+            }
+        }
+        points.extend_from_slice(&added);
+        redone.push((f, global));
+    }
+
+    // splice the retried faces' triangles in, keeping face order
+    let extra: usize = redone.iter().map(|r| r.1.len()).sum();
+    let (mut t2, mut f2) = (Vec::with_capacity(tris.len() + extra), Vec::with_capacity(tris.len() + extra));
+    let mut next = redone.into_iter().peekable();
+    let mut k = 0;
+    while k < tris.len() {
+        let f = tri_face[k];
+        let mut e = k + 1;
+        while e < tris.len() && tri_face[e] == f {
+            e += 1;
+        }
+        if next.peek().is_some_and(|r| r.0 == f) {
+            let (_, t) = next.next().unwrap();
+            f2.extend(std::iter::repeat(f).take(t.len()));
+            t2.extend(t);
+        } else {
+            t2.extend_from_slice(&tris[k..e]);
+            f2.extend_from_slice(&tri_face[k..e]);
+        }
+        k = e;
+    }
+    Triangulation { points, tris: t2, tri_face: f2 }
+}
+
+#[cfg(test)]
+#[path = "triangulate_tests.rs"]
+mod tests;

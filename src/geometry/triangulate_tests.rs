@@ -1,0 +1,314 @@
+use super::*;
+use crate::mesh::{Corner, EdgeId, HalfedgeId};
+use crate::{primitives, schemes, BuildOptions};
+
+/// No self-loop, face with a repeated vertex or face under three corners
+/// (multi-edges are fine: their copies are split).
+fn is_simple(m: &Mesh) -> bool {
+    let mut cyc = Vec::new();
+    for f in m.faces() {
+        face_cycle(m, f, &[], &mut cyc);
+        let mut s = cyc.clone();
+        s.sort_unstable();
+        s.dedup();
+        if cyc.len() < 3 || s.len() != cyc.len() || cyc.len() != m.face_degree(f) {
+            return false;
+        }
+    }
+    true
+}
+
+/// Every directed triangle edge once and its reverse once (a closed
+/// 2-manifold triangle mesh), every triangle of three distinct ids in range.
+fn assert_closed(m: &Mesh, t: &Triangulation) {
+    let nv = (m.n_vertices() + t.points.len()) as u32;
+    let mut e: Vec<(u32, u32)> = Vec::with_capacity(3 * t.tris.len());
+    for tri in &t.tris {
+        assert!(tri.iter().all(|&v| v < nv) && tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2], "{tri:?}");
+        e.extend((0..3).map(|k| (tri[k], tri[(k + 1) % 3])));
+    }
+    e.sort_unstable();
+    for w in e.windows(2) {
+        assert_ne!(w[0], w[1], "directed edge {:?} in two triangles", w[0]);
+    }
+    for &(a, b) in &e {
+        assert!(e.binary_search(&(b, a)).is_ok(), "edge {a}-{b} has one triangle");
+    }
+    assert_eq!(t.tris.len(), t.tri_face.len());
+    assert!(t.tri_face.windows(2).all(|w| w[0] <= w[1]), "triangles grouped by face");
+}
+
+fn corner_sum(m: &Mesh) -> usize {
+    m.faces().map(|f| m.face_degree(f)).sum()
+}
+
+#[test]
+fn deleted_edges_of_tetrahedron_and_cube() {
+    for base in [primitives::tetrahedron(), primitives::cube()] {
+        for e in 0..base.n_edges() {
+            let mut m = base.clone();
+            m.delete_edge(EdgeId(e as u32)).unwrap();
+            let t = m.triangulate();
+            assert_closed(&m, &t);
+            // the merged faces are folded (bent): each is fanned around one point
+            assert_eq!(t.tris.len(), corner_sum(&m) - 2 * m.n_faces() + 2 * t.points.len());
+        }
+    }
+}
+
+#[test]
+fn smoothed_sierpinski_of_the_platonic_solids() {
+    let solids = [primitives::tetrahedron(), primitives::cube(), primitives::octahedron(), primitives::icosahedron(), primitives::dodecahedron()];
+    for (k, s) in solids.iter().enumerate() {
+        for n in 1..=2 {
+            let f = schemes::sierpinski::sierpinski_iterated(s, n).unwrap();
+            for m in [schemes::doo_sabin::doo_sabin(&f).unwrap(), schemes::catmull_clark::catmull_clark(&f).unwrap()] {
+                m.validate().unwrap();
+                assert!(is_simple(&m), "solid {k} iteration {n}");
+                assert_closed(&m, &m.triangulate());
+            }
+        }
+    }
+}
+
+#[test]
+fn triangle_meshes_come_out_as_they_are() {
+    let m = primitives::icosahedron();
+    let t = m.triangulate();
+    let faces: Vec<[u32; 3]> = m.faces().map(|f| {
+        let v: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
+        [v[0], v[1], v[2]]
+    }).collect();
+    assert_eq!(t.tris, faces);
+    assert_eq!(t.tri_face, (0..20).collect::<Vec<u32>>());
+}
+
+/// A flat sphere of two copies of one polygon: each side's triangulation
+/// must avoid the other's diagonals.
+fn two_sided(pos: Vec<DVec3>) -> Mesh {
+    let n = pos.len() as i64;
+    let mut idx: Vec<i64> = (0..n).collect();
+    idx.extend((0..n).rev());
+    Mesh::from_polygons(pos, &[n, n], &idx, BuildOptions::default()).unwrap()
+}
+
+fn star(n: usize, r_in: f64) -> Vec<DVec3> {
+    (0..n)
+        .map(|k| {
+            let r = if k % 2 == 0 { 1.0 } else { r_in };
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            DVec3::new(r * a.cos(), r * a.sin(), 0.0)
+        })
+        .collect()
+}
+
+/// Area of face 0's triangles (all positive) against the polygon's.
+fn assert_tiles_top(m: &Mesh, t: &Triangulation) {
+    let pos = m.positions();
+    let p = |v: u32| if (v as usize) < pos.len() { pos[v as usize] } else { t.points[v as usize - pos.len()] };
+    let mut area = 0.0;
+    for (tri, &f) in t.tris.iter().zip(&t.tri_face) {
+        if f == 0 {
+            let z = (p(tri[1]) - p(tri[0])).cross(p(tri[2]) - p(tri[0])).z;
+            assert!(z > 0.0, "inverted triangle {tri:?}");
+            area += z / 2.0;
+        }
+    }
+    let n = pos.len();
+    let exact: f64 = (0..n).map(|k| pos[k].truncate().perp_dot(pos[(k + 1) % n].truncate()) / 2.0).sum();
+    assert!((area - exact).abs() < 1e-9 * exact, "{area} vs {exact}");
+}
+
+#[test]
+fn non_convex_stars() {
+    for n in [10, 64, 2000, 100_000] {
+        let m = two_sided(star(n, 0.4));
+        let t = m.triangulate();
+        assert_closed(&m, &t);
+        assert_tiles_top(&m, &t);
+        // both sides need every tip's chord: the second one gets a point
+        assert_eq!(t.points.len(), 1, "{n}-gon");
+    }
+    // star-shaped, but not from the corners' mean: earcut
+    let mut p = star(40, 0.4);
+    p.iter_mut().for_each(|q| if q.x > 0.0 { *q *= DVec3::new(6.0, 1.0, 1.0) });
+    let m = two_sided(p);
+    let t = m.triangulate();
+    assert_closed(&m, &t);
+    assert_tiles_top(&m, &t);
+}
+
+#[test]
+fn star_clip_is_linear_and_right() {
+    let p: Vec<DVec2> = star(1000, 0.3).iter().map(|q| q.truncate()).collect();
+    let mut out = Vec::new();
+    assert!(star_from_mean(&p) && star_clip(&p, &mut out));
+    assert!(is_disk_triangulation(1000, &out));
+    assert!(out.iter().all(|t| cross2(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]) > 0.0));
+}
+
+#[test]
+fn bent_hexagon() {
+    // a hexagon folded along its 0–3 axis: non-planar
+    let pos: Vec<DVec3> = (0..6)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 6.0;
+            let (x, y) = (a.cos(), a.sin());
+            DVec3::new(x, y, 0.6 * y.abs())
+        })
+        .collect();
+    let m = two_sided(pos.clone());
+    let t = m.triangulate();
+    assert_closed(&m, &t);
+    // bent past BENT: both sides fanned around their centroids
+    assert_eq!((t.points.len(), t.tris.len()), (2, 12));
+    // gently bent: diagonals only
+    let flat: Vec<DVec3> = pos.iter().map(|p| DVec3::new(p.x, p.y, p.z * 0.1)).collect();
+    let m = two_sided(flat);
+    let t = m.triangulate();
+    assert_closed(&m, &t);
+    assert_eq!((t.points.len(), t.tris.len()), (0, 8));
+}
+
+#[test]
+fn exact_search_finds_the_one_allowed_triangulation() {
+    let hex: Vec<DVec2> = (0..6).map(|k| DVec2::from_angle(std::f64::consts::TAU * k as f64 / 6.0)).collect();
+    // only the fan from corner 3 is allowed (diagonals 3–5, 3–0, 3–1)
+    let allowed = |i: usize, j: usize| i.min(j) == 3 || i.max(j) == 3;
+    let mut out = Vec::new();
+    assert!(exact(&hex, Shape::Convex, &|i, j| !allowed(i, j), &mut out));
+    assert!(is_disk_triangulation(6, &out));
+    for t in &out {
+        assert!(t.contains(&3), "{t:?}");
+    }
+    // a quad with one diagonal forbidden takes the other
+    let quad = [DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(0.0, 1.0)];
+    assert!(exact(&quad, Shape::Convex, &|i, j| (i, j) == (0, 2), &mut out));
+    assert!(out.iter().all(|t| t.contains(&1) && t.contains(&3)));
+    // every diagonal forbidden: none
+    assert!(!exact(&quad, Shape::Convex, &|_, _| true, &mut out));
+}
+
+#[test]
+fn quad_with_both_diagonals_taken_gets_a_point() {
+    // cube face 0 (a, b, c, d): add edges a–c and b–d through other faces
+    let mut m = primitives::cube();
+    let quad: Vec<u32> = m.face_vertices(FaceId(0)).map(|v| v.0).collect();
+    let outside = |m: &Mesh, v: u32, avoid: &[u32]| {
+        m.halfedges().find(|&h| m.vertex(h).0 == v && !m.face_vertices(m.face(h)).any(|w| avoid.contains(&w.0))).unwrap()
+    };
+    for (a, b) in [(quad[0], quad[2]), (quad[1], quad[3])] {
+        // corners of a and b in faces without the other quad corners
+        let others: Vec<u32> = quad.iter().copied().filter(|&v| v != a && v != b).collect();
+        let (ha, hb): (HalfedgeId, HalfedgeId) = (outside(&m, a, &[b]), outside(&m, b, &[a]));
+        let _ = others;
+        m.insert_edge(Corner::Halfedge(ha), Corner::Halfedge(hb)).unwrap();
+    }
+    m.validate().unwrap();
+    let f = m.faces().find(|&f| { let mut v: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect(); v.sort(); let mut q = quad.clone(); q.sort(); v == q }).unwrap();
+    assert!(is_edge(&m, quad[0], quad[2]) && is_edge(&m, quad[1], quad[3]));
+    let t = m.triangulate();
+    let mine: Vec<[u32; 3]> = t.tris.iter().zip(&t.tri_face).filter(|(_, &g)| g == f.0).map(|(t, _)| *t).collect();
+    assert_eq!(mine.len(), 4);
+    let nv = m.n_vertices() as u32;
+    assert!(mine.iter().all(|t| t.contains(&nv.max(t[0]).max(t[1]).max(t[2])) && t.iter().any(|&v| v >= nv)));
+    assert!(!t.points.is_empty());
+    let p = t.points[(mine[0].iter().copied().max().unwrap() - nv) as usize];
+    let c = quad.iter().map(|&v| m.position(VertexId(v))).sum::<DVec3>() / 4.0;
+    assert!(p.distance(c) < 1e-12, "the point is the face's centroid");
+}
+
+#[test]
+fn retry_splits_forbidden_diagonals_of_non_star_faces() {
+    // a comb of twelve teeth (more than EXACT_LIMIT corners): no point sees
+    // the whole face, every diagonal forbidden
+    let mut p = vec![DVec2::new(0.0, 0.0), DVec2::new(23.0, 0.0)];
+    for k in (0..12).rev() {
+        let x = 2.0 * k as f64;
+        p.extend([DVec2::new(x + 1.0, 3.0), DVec2::new(x, 3.0)]);
+        if k > 0 {
+            p.extend([DVec2::new(x, 1.0), DVec2::new(x - 1.0, 1.0)]);
+        }
+    }
+    let n = p.len();
+    assert!(n > EXACT_LIMIT);
+    let cyc: Vec<u32> = (0..n as u32).collect();
+    let pos: Vec<DVec3> = p.iter().map(|q| q.extend(0.0)).collect();
+    let mut first = Vec::new();
+    ear_clip_quadratic(&p, &mut first);
+    assert!(is_disk_triangulation(n, &first));
+    let (mut out, mut added) = (Vec::new(), Vec::new());
+    retry(&cyc, &pos, &p, Shape::NonConvex, &first, &|_, _| true, &mut out, &mut added);
+    // one point per diagonal (n − 3), each fanned by four triangles
+    assert_eq!(added.len(), n - 3);
+    assert_eq!(out.len(), n - 2 + 2 * (n - 3));
+    let q = |k: u32| if (k as usize) < n { pos[k as usize] } else { added[k as usize - n] };
+    let area: f64 = out
+        .iter()
+        .map(|t| {
+            let z = (q(t[1]) - q(t[0])).cross(q(t[2]) - q(t[0])).z;
+            assert!(z > 0.0, "{t:?}");
+            z / 2.0
+        })
+        .sum();
+    let exact: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n]) / 2.0).sum();
+    assert!((area - exact).abs() < 1e-9, "{area} vs {exact}");
+    // no diagonal between two corners is left
+    for t in &out {
+        for k in 0..3 {
+            let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            assert!(i >= n || j >= n || (i + 1) % n == j || (j + 1) % n == i, "diagonal {i}-{j}");
+        }
+    }
+}
+
+#[test]
+fn simple_operator_outputs_are_closed() {
+    // connect_edges and create_pipe between cube faces
+    let mut m = primitives::cube();
+    let (h1, h2) = (m.face_halfedge(FaceId(0)).unwrap(), m.face_halfedge(FaceId(1)).unwrap());
+    if m.connect_edges(h1, h2).is_ok() {
+        m.validate().unwrap();
+        if is_simple(&m) {
+            assert_closed(&m, &m.triangulate());
+        }
+    }
+    let mut m = primitives::cube();
+    let top: Vec<VertexId> = m.face_vertices(FaceId(0)).collect();
+    let far = m.faces().find(|&f| m.face_vertices(f).all(|v| !top.contains(&v))).unwrap();
+    let (a, b) = (m.face_halfedge(FaceId(0)).unwrap(), m.face_halfedge(far).unwrap());
+    m.create_pipe(Corner::Halfedge(a), Corner::Halfedge(b)).unwrap();
+    m.validate().unwrap();
+    assert!(is_simple(&m));
+    assert_closed(&m, &m.triangulate());
+}
+
+#[test]
+fn deterministic_across_thread_counts() {
+    let m = schemes::doo_sabin::doo_sabin(&schemes::sierpinski::sierpinski_iterated(&primitives::cube(), 2).unwrap()).unwrap();
+    let a = m.triangulate();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let b = pool.install(|| m.triangulate());
+    assert_eq!(a, b);
+}
+
+
+#[test]
+fn multi_edges_are_split() {
+    // Catmull-Clark of a Sierpinski tetrahedron: each subdivided zero-length
+    // self-loop leaves two edges between its vertex and its edge point
+    let f = schemes::sierpinski::sierpinski_iterated(&primitives::tetrahedron(), 1).unwrap();
+    let m = schemes::catmull_clark::catmull_clark(&f).unwrap();
+    let copies = multi_edge_copies(&m);
+    assert_eq!(copies.len(), 6);
+    let t = m.triangulate();
+    assert_closed(&m, &t);
+    for (k, &e) in copies.iter().enumerate() {
+        let h = EdgeId(e).halfedge();
+        let mid = (m.position(m.vertex(h)) + m.position(m.head(h))) / 2.0;
+        assert_eq!(t.points[k], mid);
+    }
+}
+
+
+

@@ -1,0 +1,9 @@
+//! File formats handled by the core: OBJ (read and write) and OFF (write).
+//! PLY and the native `.npz` format are written and read on the Python side
+//! (`topomesh.io`), through plyfile and NumPy.
+
+pub mod obj;
+mod writer;
+
+pub use obj::{parse_obj, read_obj, ObjData};
+pub use writer::{write_text, TextFormat};

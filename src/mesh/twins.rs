@@ -1,0 +1,338 @@
+//! Lossless flat arrays: the twin of every exported corner, and the
+//! constructor that rebuilds exactly the mesh those arrays describe.
+//!
+//! A polygon list alone is ambiguous as soon as several face sides join the
+//! same two vertices (multi-edges, self-loops): [`Mesh::from_polygons`] pairs
+//! them in order of appearance, which need not be how the mesh was connected.
+//! `face_sizes` + `face_indices` + [`Mesh::corner_twins`] are not ambiguous.
+//!
+//! # Encoding
+//! Corners are numbered as in [`Mesh::to_polygons`]: every non-hole face in
+//! face order, from its first corner. `twins[c]` is the corner on the other
+//! side of the edge that starts at corner `c` (it starts where `c`'s side
+//! ends), or `-1` when that other side is a corner of a hole face (a boundary
+//! side) or when `c` is the lone corner of a point-sphere.
+//!
+//! # Canonical hole faces
+//! [`Mesh::from_corner_twins_i64`] re-creates hole faces from the `-1` sides:
+//! each boundary loop becomes one hole face, numbered after all given faces,
+//! in order of the loop's lowest boundary corner; a hole's first corner is the
+//! twin of that lowest boundary corner. A size-1 face with twin `-1` whose
+//! vertex appears in no other face is a point-sphere (a one-gon whose only
+//! neighbour is a one-gon hole is therefore not representable; no constructor
+//! makes one). The round trip `corner_twins` → rebuild is exact for every
+//! mesh in which each edge has a non-hole face on at least one side and each
+//! vertex meets at most one hole corner, which holds for every mesh made by
+//! `close_boundaries=True` and the operators; edge and half-edge ids are
+//! renumbered by first exported corner, as every constructor does.
+
+use super::{FaceStart, Mesh, BuildOptions, NONE, MAX_ELEMENTS};
+use crate::error::{MeshError, Result};
+use glam::DVec3;
+
+impl Mesh {
+    /// The twin corner of every exported corner, aligned with
+    /// `to_polygons().indices`; `-1` for a boundary side (twin in a hole face)
+    /// and for a point-sphere's lone corner. See the module docs.
+    pub fn corner_twins(&self) -> Vec<i64> {
+        let mut pos_of = vec![NONE; self.n_halfedges()];
+        let mut k = 0u32;
+        for f in self.faces() {
+            if self.is_hole(f) {
+                continue;
+            }
+            match self.face_start(f) {
+                FaceStart::Point(_) => k += 1,
+                FaceStart::Halfedge(_) => {
+                    for h in self.face_halfedges(f) {
+                        pos_of[h.idx()] = k;
+                        k += 1;
+                    }
+                }
+            }
+        }
+        let mut out = Vec::with_capacity(k as usize);
+        for f in self.faces() {
+            if self.is_hole(f) {
+                continue;
+            }
+            match self.face_start(f) {
+                FaceStart::Point(_) => out.push(-1),
+                FaceStart::Halfedge(_) => {
+                    for h in self.face_halfedges(f) {
+                        let t = pos_of[h.twin().idx()];
+                        out.push(if t == NONE { -1 } else { t as i64 });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Rebuilds a mesh from positions, face sizes, flat corner vertices and
+    /// [`Mesh::corner_twins`] (all as the user passed them, checked here):
+    /// same faces, same corner order, the same corners joined by edges, hole
+    /// faces re-created canonically (module docs).
+    ///
+    /// Rejects, naming the corner and its face: twins out of range, a corner
+    /// its own twin, asymmetric twins, twins not running between the same two
+    /// vertices in opposite directions, boundary sides whose holes would be
+    /// ambiguous; and every input error of [`Mesh::from_polygons`] about
+    /// positions, sizes and indices.
+    pub fn from_corner_twins_i64(positions: Vec<DVec3>, sizes: &[i64], indices: &[i64], twins: &[i64]) -> Result<Mesh> {
+        let nv = positions.len();
+        let n = indices.len();
+        if nv > MAX_ELEMENTS || n > MAX_ELEMENTS / 2 || sizes.len() > MAX_ELEMENTS / 2 {
+            return Err(MeshError::InvalidArgument(format!(
+                "mesh too large: at most {MAX_ELEMENTS} vertices and {} corners",
+                MAX_ELEMENTS / 2
+            )));
+        }
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(MeshError::NonFinite { vertex: v });
+        }
+        let mut offsets = Vec::with_capacity(sizes.len() + 1);
+        offsets.push(0usize);
+        for (f, &s) in sizes.iter().enumerate() {
+            if s <= 0 {
+                return Err(if s == 0 {
+                    MeshError::EmptyFace { face: f }
+                } else {
+                    MeshError::InvalidArgument(format!("face {f} has negative size {s}"))
+                });
+            }
+            // checked: user sizes near 2^63 would wrap the sum
+            let acc = offsets[f].checked_add(s as usize).ok_or_else(|| {
+                MeshError::InvalidArgument(format!("face sizes add up to more than the {n} face indices given"))
+            })?;
+            offsets.push(acc);
+        }
+        if offsets[sizes.len()] != n {
+            return Err(MeshError::InvalidArgument(format!(
+                "face sizes add up to {} but {n} face indices were given",
+                offsets[sizes.len()]
+            )));
+        }
+        if twins.len() != n {
+            return Err(MeshError::InvalidArgument(format!("twins: {} entries for {n} face indices", twins.len())));
+        }
+        // face of every corner, and the corner after it in its face
+        let mut face = vec![0u32; n];
+        let mut next = vec![0u32; n];
+        for f in 0..sizes.len() {
+            let (s, e) = (offsets[f], offsets[f + 1]);
+            for c in s..e {
+                face[c] = f as u32;
+                next[c] = if c + 1 == e { s } else { c + 1 } as u32;
+            }
+        }
+        for (c, &i) in indices.iter().enumerate() {
+            if i < 0 || i as usize >= nv {
+                let f = face[c] as usize;
+                return Err(MeshError::IndexOutOfRange { face: f, position: c - offsets[f], index: i, n_vertices: nv });
+            }
+        }
+        let verts: Vec<u32> = indices.iter().map(|&i| i as u32).collect();
+        let mut uses = vec![0u32; nv];
+        for &v in &verts {
+            uses[v as usize] += 1;
+        }
+        let head = |c: usize| verts[next[c] as usize];
+        let is_point = |c: usize| sizes[face[c] as usize] == 1 && twins[c] == -1 && uses[verts[c] as usize] == 1;
+        // --- the twins themselves
+        // range first, so the symmetry check below can index by any twin
+        if let Some(c) = twins.iter().position(|&t| t < -1 || t >= n as i64) {
+            return Err(MeshError::InvalidArgument(format!(
+                "twins: corner {c} of face {} has twin {}, out of range (-1 or 0..{n})",
+                face[c], twins[c]
+            )));
+        }
+        for (c, &t) in twins.iter().enumerate() {
+            let f = face[c];
+            if t == -1 {
+                continue;
+            }
+            let t = t as usize;
+            if t == c {
+                return Err(MeshError::InvalidArgument(format!("twins: corner {c} of face {f} is its own twin")));
+            }
+            if twins[t] != c as i64 {
+                return Err(MeshError::InvalidArgument(format!(
+                    "twins: corner {c} of face {f} has twin {t}, but the twin of corner {t} (face {}) is {}, not {c}; twins must be symmetric",
+                    face[t], twins[t]
+                )));
+            }
+            if verts[t] != head(c) {
+                return Err(MeshError::InvalidArgument(format!(
+                    "twins: corner {c} of face {f} runs from vertex {} to {}, but its twin {t} (face {}) starts at vertex {}; twins must run between the same two vertices in opposite directions",
+                    verts[c],
+                    head(c),
+                    face[t],
+                    verts[t]
+                )));
+            }
+        }
+        // --- boundary sides (twin -1, not a point-sphere) and their holes
+        let boundary: Vec<u32> = (0..n).filter(|&c| twins[c] == -1 && !is_point(c)).map(|c| c as u32).collect();
+        let mut entering = vec![NONE; nv];
+        let mut leaving = vec![NONE; nv];
+        for &u in &boundary {
+            let (a, b) = (verts[u as usize] as usize, head(u as usize) as usize);
+            for (slot, v, what) in [(&mut leaving, a, "left"), (&mut entering, b, "entered")] {
+                if slot[v] != NONE {
+                    return Err(MeshError::InvalidArgument(format!(
+                        "twins: vertex {v} is {what} by two boundary sides (corners {} of face {} and {u} of face {}, twin -1): the hole faces would be ambiguous",
+                        slot[v], face[slot[v] as usize], face[u as usize]
+                    )));
+                }
+                slot[v] = u;
+            }
+        }
+        let mut sizes_u: Vec<u32> = sizes.iter().map(|&s| s as u32).collect();
+        let mut corner_verts = verts.clone();
+        let mut twin: Vec<u32> = twins.iter().map(|&t| if t < 0 { NONE } else { t as u32 }).collect();
+        let mut seen = vec![false; n];
+        for &u0 in &boundary {
+            if seen[u0 as usize] {
+                continue;
+            }
+            // the hole runs against the boundary: after the twin of side u
+            // (a -> b) comes the twin of the side entering a
+            let base = corner_verts.len();
+            let mut u = u0;
+            loop {
+                seen[u as usize] = true;
+                twin[u as usize] = corner_verts.len() as u32;
+                twin.push(u);
+                corner_verts.push(head(u as usize));
+                let a = verts[u as usize] as usize;
+                let side = u;
+                u = entering[a];
+                if u == NONE {
+                    return Err(MeshError::InvalidArgument(format!(
+                        "twins: the boundary side at corner {side} of face {} leaves vertex {a}, which no boundary side enters: the boundary is not a closed loop",
+                        face[side as usize]
+                    )));
+                }
+                if u == u0 {
+                    break;
+                }
+            }
+            sizes_u.push((corner_verts.len() - base) as u32);
+        }
+        let n_given = sizes.len();
+        let mut m = Mesh::from_corner_twins(positions, &sizes_u, &corner_verts, &twin)?;
+        for f in n_given..m.f_hole.len() {
+            m.f_hole[f] = true;
+        }
+        Ok(m)
+    }
+
+    /// Whether the mesh has two edges between the same two distinct vertices.
+    pub fn has_multi_edges(&self) -> bool {
+        let mut pairs: Vec<(u32, u32)> = self
+            .edges()
+            .filter_map(|e| {
+                let h = e.halfedge();
+                let (a, b) = (self.vertex(h).0, self.head(h).0);
+                (a != b).then_some((a.min(b), a.max(b)))
+            })
+            .collect();
+        pairs.sort_unstable();
+        pairs.windows(2).any(|w| w[0] == w[1])
+    }
+
+    /// Whether a polygon list alone (OBJ, OFF) gives this mesh back:
+    /// [`Mesh::from_polygons`] of the exports, with `allow_multi_edges` and
+    /// `close_boundaries` where needed, reproduces the same twins and holes.
+    /// Cheap (no rebuild) unless the mesh has self-loops, multi-edges or holes.
+    pub fn polygons_are_lossless(&self) -> bool {
+        if self.n_self_loops() == 0 && self.n_holes() == 0 && !self.has_multi_edges() {
+            return true;
+        }
+        let p = self.to_polygons();
+        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let opts = BuildOptions { close_boundaries: self.n_holes() > 0, allow_multi_edges: true };
+        match Mesh::from_polygons(self.pos.clone(), &sizes, &idx, opts) {
+            Ok(m) => m.n_edges() == self.n_edges() && m.n_holes() == self.n_holes() && m.corner_twins() == self.corner_twins(),
+            Err(_) => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::primitives;
+
+    fn round_trip(m: &Mesh) -> Mesh {
+        let p = m.to_polygons();
+        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let back = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &idx, &m.corner_twins()).unwrap();
+        back.validate().unwrap();
+        assert_eq!(back.to_polygons(), p);
+        assert_eq!(back.corner_twins(), m.corner_twins());
+        assert_eq!((back.n_edges(), back.n_holes(), back.genus()), (m.n_edges(), m.n_holes(), m.genus()));
+        back
+    }
+
+    #[test]
+    fn twins_round_trip_primitives_and_multi_edges() {
+        let cube = primitives::cube();
+        round_trip(&cube);
+        assert!(cube.polygons_are_lossless());
+        // a handle between two faces: two edges join the same vertex pair
+        let mut h = cube.clone();
+        let c1 = h.corner(crate::mesh::FaceId(0), 0).unwrap();
+        let c2 = h.corner(crate::mesh::FaceId(1), 0).unwrap();
+        h.insert_edge(c1, c2).unwrap();
+        round_trip(&h);
+        let s = crate::schemes::sqrt3::sqrt3(&h).unwrap();
+        round_trip(&s);
+        let mut p = Mesh::new();
+        p.create_vertex(DVec3::ZERO).unwrap();
+        assert_eq!(p.corner_twins(), vec![-1]);
+        round_trip(&p);
+        round_trip(&Mesh::new());
+    }
+
+    #[test]
+    fn holes_are_recreated_canonically() {
+        let pos = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+        let opts = BuildOptions { close_boundaries: true, allow_multi_edges: false };
+        let m = Mesh::from_polygons(pos, &[3, 3], &[0, 1, 2, 0, 2, 3], opts).unwrap();
+        assert_eq!(m.n_holes(), 1);
+        let t = m.corner_twins();
+        assert_eq!(t.iter().filter(|&&x| x == -1).count(), 4);
+        round_trip(&m);
+        assert!(m.polygons_are_lossless());
+    }
+
+    #[test]
+    fn bad_twins_name_corner_and_face() {
+        let m = primitives::tetrahedron();
+        let p = m.to_polygons();
+        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
+        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let mut t = m.corner_twins();
+        t.swap(0, 1);
+        let e = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &idx, &t).unwrap_err().to_string();
+        assert!(e.contains("corner 0 of face 0"), "{e}");
+        let mut t = m.corner_twins();
+        t[5] = 99;
+        let e = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &idx, &t).unwrap_err().to_string();
+        assert!(e.contains("corner 5 of face 1") && e.contains("out of range"), "{e}");
+        let e = Mesh::from_corner_twins_i64(m.positions().to_vec(), &[i64::MAX, i64::MAX, 14], &idx, &m.corner_twins());
+        assert!(e.is_err());
+    }
+
+    #[test]
+    fn from_polygons_size_sum_does_not_wrap() {
+        let pos = vec![DVec3::ZERO; 4];
+        let idx = [0i64; 14];
+        let e = Mesh::from_polygons(pos, &[i64::MAX, i64::MAX, 14], &idx, BuildOptions::default()).unwrap_err();
+        assert!(e.to_string().contains("add up to"), "{e}");
+    }
+}

@@ -1,0 +1,504 @@
+"""Lossless exchange (corner twins, .npz, .ply, pickle), OBJ/OFF round trip or
+refusal, atomic saves, the OBJ reader on real-world files, zero-copy views."""
+
+from __future__ import annotations
+
+import copy
+import os
+import pickle
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import topomesh
+from topomesh import GeometryWarning, Mesh, MeshError
+from topomesh import io as tio
+
+T = topomesh
+EMPTY = Mesh.from_flat(np.zeros((0, 3)), [], [])
+
+
+def _point_sphere():
+    return EMPTY.create_vertex([0.0, 0.0, 0.0])[0]
+
+
+def _two_two_gons():
+    # a sphere of two 2-gons: two edges between vertices 0 and 1
+    return Mesh.from_flat([[0.0, 0, 0], [1, 0, 0]], [2, 2], [0, 1, 1, 0], twins=[2, 3, 0, 1])
+
+
+def _beach_ball(turn: int):
+    """Three 2-gons on one vertex pair glued in a 3-cycle: the two cycles
+    give two different valid spheres with the same polygon list."""
+    a_to_b = [0, 2, 4]  # corner of face i running 0 -> 1
+    twins = [0] * 6
+    for i in range(3):
+        j = (i + turn) % 3
+        twins[a_to_b[i]] = 2 * j + 1
+        twins[2 * j + 1] = a_to_b[i]
+    return Mesh.from_flat([[0.0, 0, 0], [1, 0, 0]], [2, 2, 2], [0, 1] * 3, twins=twins)
+
+
+def _corpus():
+    h = T.cube().insert_edge(0, 0, 1, 0)[0]
+    tet1 = T.tetrahedron().sierpinski()
+    open_pair = Mesh.from_polygons(np.eye(4)[:, :3], [[0, 1, 2], [0, 2, 3]], close_boundaries=True)
+    open_cube = Mesh.from_polygons(T.cube().vertices, _faces(T.cube())[1:], close_boundaries=True)
+    return {
+        "tetrahedron": T.tetrahedron(),
+        "cube": T.cube(),
+        "octahedron": T.octahedron(),
+        "dodecahedron": T.dodecahedron(),
+        "icosahedron": T.icosahedron(),
+        "torus": T.torus(6, 4),
+        "genus2": T.genus_surface(2),
+        "tet_sierpinski1": tet1,
+        "tet_sierpinski2": T.tetrahedron().sierpinski(2),
+        "cube_sierpinski1": T.cube().sierpinski(),
+        "tet_sierpinski_cc": tet1.catmull_clark(),
+        "tet_sierpinski_sqrt3": tet1.sqrt3(),
+        "tet_sierpinski_ds": tet1.doo_sabin(),
+        "oct_sierpinski_cc": T.octahedron().sierpinski().catmull_clark(),
+        "handle": h,
+        "handle_sqrt3": h.sqrt3(),
+        "handle_cc": h.catmull_clark(),
+        "handle_ds": h.doo_sabin(),
+        "cube_and_point": T.cube().create_vertex([5.0, 5.0, 5.0])[0],
+        "point_sphere": _point_sphere(),
+        "self_loop_sphere": _point_sphere().insert_edge(0, 0, 0, 0)[0],
+        "two_two_gons": _two_two_gons(),
+        "beach_ball": _beach_ball(1),
+        "open_pair": open_pair,
+        "open_cube": open_cube,
+        "empty": EMPTY,
+        # faces over 255 corners: PLY counts become uint
+        "pillow300": Mesh.from_polygons(
+            np.c_[np.cos(np.arange(300) / 47.0), np.sin(np.arange(300) / 47.0), np.zeros(300)],
+            [list(range(300)), list(range(299, -1, -1))],
+        ),
+    }
+
+
+def _faces(m):
+    return np.split(np.asarray(m.face_indices), np.cumsum(m.face_sizes)[:-1])
+
+
+CORPUS = _corpus()
+NAMES = sorted(CORPUS)
+
+
+def _same(a: Mesh, b: Mesh):
+    assert b == a
+    b.validate()
+    assert (b.n_vertices, b.n_edges, b.n_faces, b.n_holes, b.genus) == (a.n_vertices, a.n_edges, a.n_faces, a.n_holes, a.genus)
+
+
+# ------------------------------------------------------------ flat arrays
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_flat_arrays_with_twins_rebuild_the_same_mesh(name):
+    m = CORPUS[name]
+    t = m.corner_twins
+    assert t.dtype == np.int64 and t.shape == m.face_indices.shape
+    _same(m, Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices, twins=t))
+    # twins are symmetric and -1 exactly at boundary sides and point-spheres
+    inner = t >= 0
+    assert np.array_equal(t[t[inner]], np.flatnonzero(inner))
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: T.tetrahedron().sierpinski().catmull_clark(),
+        lambda: T.cube().insert_edge(0, 0, 1, 0)[0].sqrt3(),
+    ],
+)
+def test_reproducer_polygon_pairing_was_ambiguous(make):
+    m = make()
+    # the polygon list alone cannot be paired back (the reported bug) ...
+    with pytest.raises(MeshError, match="non-manifold"):
+        Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices, allow_multi_edges=True)
+    # ... the twins can
+    _same(m, Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices, twins=m.corner_twins))
+
+
+def test_two_two_gons_and_beach_balls():
+    m = _two_two_gons()
+    m.validate()
+    assert (m.n_vertices, m.n_edges, m.n_faces, m.genus) == (2, 2, 2, 0)
+    a, b = _beach_ball(1), _beach_ball(2)
+    a.validate(), b.validate()
+    # same polygon list, different gluing: equality sees the twins
+    assert np.array_equal(a.face_indices, b.face_indices) and np.array_equal(a.vertices, b.vertices)
+    assert a != b and a == _beach_ball(1)
+
+
+def test_bad_twins_name_corner_and_face():
+    m = T.tetrahedron()
+    v, s, i, t = m.vertices, m.face_sizes, m.face_indices, np.array(m.corner_twins)
+    bad = t.copy()
+    bad[4] = 99
+    with pytest.raises(MeshError, match=r"corner 4 of face 1 has twin 99, out of range"):
+        Mesh.from_flat(v, s, i, twins=bad)
+    bad = t.copy()
+    bad[[0, 1]] = bad[[1, 0]]
+    with pytest.raises(MeshError, match=r"corner 0 of face 0 .* symmetric"):
+        Mesh.from_flat(v, s, i, twins=bad)
+    # a symmetric pair running the same way
+    bad = t.copy()
+    a, b = 0, int(t[0])
+    c = next(k for k in range(len(t)) if k not in (a, b) and i[k] == i[a])
+    d = int(t[c])
+    bad[[a, b, c, d]] = [c, d, a, b]
+    with pytest.raises(MeshError, match=r"twins: corner \d+ of face \d+ .*opposite directions"):
+        Mesh.from_flat(v, s, i, twins=bad)
+    with pytest.raises(MeshError, match=r"twins: 11 entries for 12 face indices"):
+        Mesh.from_flat(v, s, i, twins=t[:-1])
+    with pytest.raises(MeshError, match=r"corner 3 of face 1 is its own twin"):
+        Mesh.from_flat(v, s, i, twins=np.where(np.arange(12) == 3, 3, t))
+
+
+def test_size_sum_overflow_is_a_mesh_error():
+    idx = np.zeros(14, dtype=np.int64)
+    for twins in (None, np.full(14, -1)):
+        with pytest.raises(MeshError, match="add up to more than the 14 face indices"):
+            Mesh.from_flat(T.tetrahedron().vertices, [2**63 - 1, 2**63 - 1, 14], idx, twins=twins)
+
+
+# -------------------------------------------------------- lossless formats
+
+
+@pytest.mark.parametrize("ext", [".npz", ".ply"])
+@pytest.mark.parametrize("name", NAMES)
+def test_lossless_formats_round_trip(tmp_path, name, ext):
+    m = CORPUS[name]
+    p = tmp_path / f"m{ext}"
+    m.save(p)
+    _same(m, T.load(p))
+
+
+def test_ply_is_read_by_plyfile_and_trimesh(tmp_path):
+    from plyfile import PlyData
+
+    for m in (T.cube(), CORPUS["tet_sierpinski1"], CORPUS["pillow300"]):
+        p = tmp_path / "m.ply"
+        m.save(p)
+        ply = PlyData.read(str(p))
+        assert np.array_equal(np.concatenate(list(ply["face"]["vertex_indices"])), m.face_indices)
+        assert np.array_equal(np.concatenate(list(ply["face"]["corner_twins"])), m.corner_twins)
+        assert np.array_equal(np.c_[ply["vertex"]["x"], ply["vertex"]["y"], ply["vertex"]["z"]], m.vertices)
+        # uniform faces take the vectorized reader, mixed ones plyfile: both exact
+        assert (tio._read_ply_uniform(p) is not None) == (len(set(m.face_sizes.tolist())) == 1)
+    trimesh = pytest.importorskip("trimesh")
+    T.icosahedron().save(tmp_path / "i.ply")
+    tm = trimesh.load(tmp_path / "i.ply", process=False)
+    assert np.array_equal(tm.vertices, T.icosahedron().vertices) and tm.is_watertight
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_pickle_and_copy_round_trip(name):
+    m = CORPUS[name]
+    for proto in range(2, pickle.HIGHEST_PROTOCOL + 1):
+        _same(m, pickle.loads(pickle.dumps(m, protocol=proto)))
+    assert copy.copy(m) == m and copy.deepcopy(m) == m
+
+
+def _genus_and_back(m):
+    return m.genus, m
+
+
+def test_meshes_cross_process_boundaries():
+    from concurrent.futures import ProcessPoolExecutor
+    import multiprocessing
+
+    ms = [CORPUS["tet_sierpinski_cc"], CORPUS["handle_sqrt3"], CORPUS["open_cube"]]
+    with ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as ex:
+        out = list(ex.map(_genus_and_back, ms))
+    for m, (g, back) in zip(ms, out):
+        assert g == m.genus and back == m
+
+
+# ---------------------------------------------------- OBJ / OFF: polygons
+
+
+@pytest.mark.parametrize("ext", [".obj", ".off"])
+@pytest.mark.parametrize("name", NAMES)
+def test_polygon_formats_round_trip_or_refuse(tmp_path, name, ext):
+    m = CORPUS[name]
+    p = tmp_path / f"m{ext}"
+    kw = dict(allow_multi_edges=True, close_boundaries=m.n_holes > 0)
+    try:
+        pairing = Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices, **kw)
+        faithful = pairing == m
+    except MeshError:
+        faithful = False
+    if faithful:
+        m.save(p)
+        _same(m, T.load(p, **kw))
+    else:
+        with pytest.raises(MeshError, match=r"save it as \.npz or \.ply"):
+            m.save(p)
+        assert not p.exists()
+
+
+def test_open_mesh_in_obj_needs_close_boundaries(tmp_path):
+    m = CORPUS["open_cube"]
+    m.save(tmp_path / "o.obj")
+    with pytest.raises(MeshError, match="boundary edge"):
+        T.load(tmp_path / "o.obj")
+    _same(m, T.load(tmp_path / "o.obj", close_boundaries=True))
+
+
+def test_empty_mesh_in_every_format(tmp_path):
+    for ext in tio.SAVE_FORMATS:
+        EMPTY.save(tmp_path / f"e{ext}")
+        back = T.load(tmp_path / f"e{ext}")
+        assert back == EMPTY and back.n_vertices == 0
+
+
+def test_cli_chain_reads_what_it_writes(tmp_path, capsys):
+    from topomesh import cli
+
+    src, mid, out = tmp_path / "t.npz", tmp_path / "s.npz", tmp_path / "c.ply"
+    T.tetrahedron().save(src)
+    assert cli.main(["sierpinski", str(src), str(mid), "-n", "1"]) == 0
+    assert cli.main(["subdivide", str(mid), str(out), "--scheme", "catmull_clark", "-n", "1"]) == 0
+    assert cli.main(["info", str(out)]) == 0
+    assert T.load(out) == T.tetrahedron().sierpinski().catmull_clark()
+    # the same chain into OBJ is refused with a message naming the lossless formats
+    assert cli.main(["subdivide", str(mid), str(tmp_path / "c.obj"), "--scheme", "catmull_clark"]) == 2
+    assert ".npz or .ply" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------ atomic saves
+
+
+@pytest.mark.parametrize("ext", [".npz", ".ply"])
+def test_failed_save_leaves_old_file(tmp_path, monkeypatch, ext):
+    p = tmp_path / f"keep{ext}"
+    T.cube().save(p)
+    before = p.read_bytes()
+    writer = "_write_npz" if ext == ".npz" else "_write_ply"
+
+    def broken(tmp, mesh):
+        with open(tmp, "wb") as f:
+            f.write(b"half a file")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(tio, writer, broken)
+    with pytest.raises(MeshError, match=rf"{p.name}: cannot write \(No space left on device\)"):
+        T.torus(20, 20).save(p)
+    assert p.read_bytes() == before
+    assert sorted(os.listdir(tmp_path)) == [p.name]
+
+
+def test_interrupted_save_leaves_no_temp_file(tmp_path, monkeypatch):
+    p = tmp_path / "k.npz"
+
+    def interrupted(tmp, mesh):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(tio, "_write_npz", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        T.cube().save(p)
+    assert os.listdir(tmp_path) == []
+
+
+def test_file_size_limit_leaves_old_file(tmp_path):
+    # a real failure mid-write in every writer (Rust text writer included)
+    script = textwrap.dedent(
+        f"""
+        import os, resource, signal, sys
+        import topomesh
+        d = {str(tmp_path)!r}
+        for ext in (".npz", ".ply", ".obj", ".off"):
+            topomesh.cube().save(os.path.join(d, "old" + ext))
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (20000, 20000))
+        big = topomesh.torus(100, 100)
+        for ext in (".npz", ".ply", ".obj", ".off"):
+            try:
+                big.save(os.path.join(d, "old" + ext))
+            except topomesh.MeshError as e:
+                print(ext, "MeshError", e)
+            else:
+                print(ext, "saved")
+        """
+    )
+    r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert len(lines) == 4 and all("MeshError" in ln and "old." in ln and "cannot write" in ln for ln in lines), r.stdout
+    assert sorted(os.listdir(tmp_path)) == ["old.npz", "old.obj", "old.off", "old.ply"]
+    for ext in (".npz", ".ply", ".obj", ".off"):
+        assert T.load(tmp_path / f"old{ext}") == T.cube()
+
+
+def test_io_errors_name_the_path(tmp_path):
+    for ext in tio.SAVE_FORMATS:
+        missing_dir = tmp_path / "nope" / f"m{ext}"
+        with pytest.raises(MeshError, match=rf"{missing_dir}: cannot write"):
+            T.cube().save(missing_dir)
+    with pytest.raises(MeshError, match=r"m\.stp: unsupported extension"):
+        T.cube().save(tmp_path / "m.stp")
+    for ext, junk in [(".ply", b"ply\nformat nonsense\n"), (".npz", b"not a zip"), (".off", b"OFF\n3 1\n")]:
+        p = tmp_path / f"junk{ext}"
+        p.write_bytes(junk)
+        with pytest.raises(MeshError, match=rf"{p}: "):
+            T.load(p)
+    np.savez(tmp_path / "other.npz", a=np.zeros(3))
+    with pytest.raises(MeshError, match=r"not a topomesh \.npz file \(missing format_version"):
+        T.load(tmp_path / "other.npz")
+    # a mesh error in a file names the file too
+    p = tmp_path / "bad.off"
+    p.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    with pytest.raises(MeshError, match=rf"{p}: edge \(\d, \d\) of face 0 is a boundary edge"):
+        T.load(p)
+
+
+# ------------------------------------------------------------- OBJ reader
+
+BLENDER_CUBE = """\
+# Blender 4.1.1
+# www.blender.org
+mtllib cube.mtl
+o Cube
+v 1.000000 1.000000 -1.000000
+v 1.000000 -1.000000 -1.000000
+v 1.000000 1.000000 1.000000
+v 1.000000 -1.000000 1.000000
+v -1.000000 1.000000 -1.000000
+v -1.000000 -1.000000 -1.000000
+v -1.000000 1.000000 1.000000
+v -1.000000 -1.000000 1.000000
+vn -0.0000 1.0000 -0.0000
+vn -0.0000 -0.0000 1.0000
+vn -1.0000 -0.0000 -0.0000
+vn -0.0000 -1.0000 -0.0000
+vn 1.0000 -0.0000 -0.0000
+vn -0.0000 -0.0000 -1.0000
+vt 0.625000 0.500000
+vt 0.375000 0.500000
+vt 0.625000 0.750000
+vt 0.375000 0.750000
+vt 0.875000 0.500000
+vt 0.625000 0.250000
+vt 0.125000 0.500000
+vt 0.375000 0.250000
+vt 0.875000 0.750000
+vt 0.625000 1.000000
+vt 0.625000 0.000000
+vt 0.375000 1.000000
+vt 0.375000 0.000000
+vt 0.125000 0.750000
+s 0
+usemtl Material
+f 1/1/1 5/5/1 7/9/1 3/3/1
+f 4/4/2 3/3/2 7/10/2 8/12/2
+f 8/13/3 7/11/3 5/6/3 6/8/3
+g bottom
+f 6/7/4 2/2/4 4/4/4 8/14/4
+f 2/2/5 1/1/5 3/3/5 4/4/5
+o Back
+usemtl Other
+f -3//6 -4//6 -8//6 \\
+  -7//6
+l 1 2 3
+l 4 5
+"""
+
+
+def _blender_expected():
+    v = np.array([[1, 1, -1], [1, -1, -1], [1, 1, 1], [1, -1, 1], [-1, 1, -1], [-1, -1, -1], [-1, 1, 1], [-1, -1, 1]], float)
+    f = [[0, 4, 6, 2], [3, 2, 6, 7], [7, 6, 4, 5], [5, 1, 3, 7], [1, 0, 2, 3], [5, 4, 0, 1]]
+    return Mesh.from_polygons(v, f)
+
+
+@pytest.mark.parametrize("newline", ["\n", "\r\n"])
+def test_obj_as_blender_writes_it(tmp_path, newline):
+    p = tmp_path / "cube.obj"
+    p.write_bytes(BLENDER_CUBE.replace("\n", newline).encode())
+    with pytest.warns(GeometryWarning, match=r"cube\.obj: skipped 2 polyline \(l\) and 0 point \(p\) elements"):
+        m = T.load(p)
+    _same(_blender_expected(), m)
+
+
+def test_obj_errors_give_path_line_and_index_as_written(tmp_path):
+    p = tmp_path / "file.obj"
+    lines = [f"v {i} {i * i} 0" for i in range(8)] + ["", "# faces", "f 1 2 3", "f 1 3 4"]
+    lines.insert(11, "f 1 2 9")  # line 12
+    p.write_text("\n".join(lines) + "\n")
+    with pytest.raises(MeshError, match=rf"^{p}:12: face index 9 is out of range \(8 vertices\)$"):
+        T.load(p)
+    p.write_text("v 0 0 0\nv 1 0 0\nf 1 2 -3\n")
+    with pytest.raises(MeshError, match=rf"^{p}:3: face index -3 is out of range \(2 vertices before this line\)$"):
+        T.load(p)
+    p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")
+    with pytest.raises(MeshError, match=rf"^{p}:4: face index 0 is invalid"):
+        T.load(p)
+    p.write_text("v 0 0 zero\n")
+    with pytest.raises(MeshError, match=rf'^{p}:1: vertex coordinate "zero" is not a number'):
+        T.load(p)
+
+
+def test_obj_written_by_trimesh_and_pyvista(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    src = T.icosahedron()
+    p = tmp_path / "t.obj"
+    tm = trimesh.Trimesh(np.array(src.vertices), src.triangles(), process=False)
+    tm.export(p, include_normals=True, include_texture=False)
+    back = T.load(p)  # trimesh writes 8 decimals: positions agree to that
+    assert np.array_equal(back.face_indices, src.face_indices) and np.allclose(back.vertices, src.vertices, atol=1e-7)
+    assert "vn " in p.read_text()
+    pv = pytest.importorskip("pyvista")
+    q = tmp_path / "p.obj"
+    pd = pv.PolyData(np.array(T.cube().vertices), np.array(T.cube().padded_faces))
+    pd.save(q)
+    back = T.load(q)
+    assert back.n_faces == 6 and back.genus == 0
+    assert np.allclose(back.vertices, T.cube().vertices)
+
+
+def test_obj_read_is_exact_float64(tmp_path):
+    m = T.torus(7, 5, 1.0 / 3.0, 0.1 + 0.2)
+    m.save(tmp_path / "x.obj")
+    assert np.array_equal(T.load(tmp_path / "x.obj").vertices, m.vertices)
+
+
+# ----------------------------------------------------- views and caches
+
+
+def test_exports_are_read_only_views():
+    m = T.torus(30, 20)
+    for name in ("vertices", "face_sizes", "face_indices", "corner_twins"):
+        a, b = getattr(m, name), getattr(m, name)
+        assert np.shares_memory(a, b), name
+        assert not a.flags.writeable
+        assert a.dtype == (np.float64 if name == "vertices" else np.int64)
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0
+        with pytest.raises(ValueError):
+            a.flags.writeable = True
+    assert m.vertices.shape == (600, 3)
+    keep = m.vertices
+    del m  # the view keeps the mesh alive
+    assert keep.shape == (600, 3) and np.isfinite(keep).all()
+
+
+def test_peers_get_copies_of_the_views():
+    pytest.importorskip("pyvista")
+    m = T.cube()
+    pd = m.to_pyvista()
+    pd.points[0] = [9.0, 9.0, 9.0]  # VTK ignores NumPy's read-only flag
+    assert np.array_equal(m.vertices, T.cube().vertices)
+
+
+def test_cached_queries_agree():
+    m = T.genus_surface(3)
+    assert m.genus == m.genus == 3
+    assert m.n_components == m.n_components == 1

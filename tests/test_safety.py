@@ -1,0 +1,365 @@
+"""Resource safety: the memory budget, Ctrl-C, and argument hygiene (issue 14, items 3, 4, 5, 8).
+
+Anything that could abort the interpreter runs in a subprocess, so a regression fails a test
+instead of killing pytest.
+"""
+
+from __future__ import annotations
+
+import inspect
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import topomesh
+from topomesh import Mesh, MeshError, _core, ifs
+
+GiB = 1 << 30
+
+# every reproducer of issue 14, item 3: each once aborted the interpreter
+REPRODUCERS = [
+    "topomesh.cube().catmull_clark(15)",
+    "topomesh.cube().loop(15)",
+    "topomesh.cube().doo_sabin(15)",
+    "topomesh.cube().sqrt3(30)",
+    "topomesh.tetrahedron().sierpinski(20)",
+    "topomesh.cube().menger(8)",
+    "topomesh.torus(10**6, 10**6)",
+    "topomesh.ifs.subdivide_curve(np.random.default_rng(0).random((6, 3)), 'chaikin', 25)",
+    "topomesh.ifs.subdivide_surface(np.random.default_rng(0).random((19, 3)), 'loop', 30)",
+]
+
+_CHILD = r"""
+import json, resource, sys, time
+import numpy as np
+import topomesh
+limit = int(sys.argv[1])
+if limit:
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+for expr in json.loads(sys.argv[2]):
+    t = time.perf_counter()
+    try:
+        eval(expr)
+        out = "returned"
+    except topomesh.MeshError as e:
+        out = "MeshError: " + str(e)
+    except Exception as e:
+        out = type(e).__name__ + ": " + str(e)
+    print(json.dumps([expr, out, time.perf_counter() - t]), flush=True)
+"""
+
+
+def _run_child(limit: int, exprs: list[str]) -> list[list]:
+    t = time.perf_counter()
+    p = subprocess.run(
+        [sys.executable, "-c", _CHILD, str(limit), json.dumps(exprs)], capture_output=True, text=True, timeout=120
+    )
+    assert p.returncode == 0, f"child died ({p.returncode}): {p.stderr[-2000:]}"
+    assert time.perf_counter() - t < 60
+    return [json.loads(line) for line in p.stdout.splitlines()]
+
+
+@pytest.mark.parametrize("limit", [0, 8 * GiB], ids=["no-limit", "RLIMIT_AS-8GiB"])
+def test_reproducers_raise_mesh_error_within_a_second(limit):
+    rows = _run_child(limit, REPRODUCERS)
+    assert [r[0] for r in rows] == REPRODUCERS
+    for expr, out, seconds in rows:
+        assert out.startswith("MeshError: "), (expr, out)
+        assert seconds < 1.0, (expr, seconds)
+        call = out.split(": ")[1]
+        assert call in expr, (expr, out)  # the message names the call
+        if "31-bit" not in out:
+            # the level, the bytes needed and the budget
+            assert "needs about" in out and "memory budget" in out or "refused" in out, out
+
+
+def test_cli_subdivide_past_the_budget_is_one_line(tmp_path):
+    src = tmp_path / "cube.obj"
+    topomesh.cube().save(src)
+    t = time.perf_counter()
+    p = subprocess.run(
+        [sys.executable, "-m", "topomesh.cli", "subdivide", str(src), str(tmp_path / "o.obj"), "--scheme", "catmull_clark", "-n", "15"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert time.perf_counter() - t < 30
+    assert p.returncode == 2, p.stderr
+    lines = p.stderr.strip().splitlines()
+    assert lines[-1].startswith("topomesh: error: catmull_clark: level ") and "memory budget" in lines[-1]
+    assert "Traceback" not in p.stderr
+
+
+def test_refusal_message_names_level_bytes_and_budget():
+    with pytest.raises(MeshError, match=r"^catmull_clark: level \d+ of 15 needs about [\d.]+ [kMGTPE]?B, more than the memory budget of [\d.]+ [kMGTPE]?B"):
+        topomesh.cube().catmull_clark(15)
+
+
+def test_set_memory_budget_refuses_then_restores():
+    m = topomesh.cube()
+    assert topomesh.memory_budget() > 0
+    try:
+        topomesh.set_memory_budget(100_000)
+        assert topomesh.memory_budget() == 100_000
+        # a cube's level 3 (384 quads) with the builder's temporaries needs more than 100 kB
+        with pytest.raises(MeshError, match=r"catmull_clark: level [345] of 5 needs about .* memory budget of 100\.0 kB"):
+            m.catmull_clark(5)
+        with pytest.raises(MeshError, match="torus"):
+            topomesh.torus(200, 200)
+        with pytest.raises(MeshError, match="nbytes = -1"):
+            topomesh.set_memory_budget(-1)
+    finally:
+        topomesh.set_memory_budget(None)
+    r = m.catmull_clark(5)
+    assert r.n_faces == 6 * 4**5
+    r.validate()
+
+
+def test_budget_from_the_environment():
+    code = "import topomesh; print(topomesh.memory_budget()); topomesh.cube().catmull_clark(6)"
+    p = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env={**os.environ, "TOPOMESH_MEMORY_BUDGET": "1M"}
+    )
+    assert p.stdout.splitlines()[0] == str(1 << 20)
+    assert "MeshError: catmull_clark: level" in p.stderr
+    p = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env={**os.environ, "TOPOMESH_MEMORY_BUDGET": "lots"}
+    )
+    assert "TOPOMESH_MEMORY_BUDGET" in p.stderr and "MeshError" in p.stderr
+
+
+def test_budget_respects_an_address_space_limit():
+    code = (
+        "import resource, topomesh; resource.setrlimit(resource.RLIMIT_AS, (8 << 30, 8 << 30)); "
+        "print(topomesh.memory_budget())"
+    )
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert 0 < int(p.stdout) < 8 * GiB
+
+
+# ------------------------------------------------------------------ Ctrl-C
+
+_SIGINT_CHILD = r"""
+import os, signal, sys, time
+import topomesh
+caught = [0.0]
+def on_sigint(sig, frame):
+    caught[0] = time.perf_counter()
+    raise KeyboardInterrupt
+signal.signal(signal.SIGINT, on_sigint)
+setup, call = sys.argv[1], sys.argv[2]
+m = eval(setup)
+before = (m.n_vertices, m.n_edges, m.n_faces)
+print("ready", flush=True)
+t = time.perf_counter()
+try:
+    eval(call)
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("interrupted", time.perf_counter() - caught[0], flush=True)
+    # nothing half-done: the input is intact and the next call runs
+    assert (m.n_vertices, m.n_edges, m.n_faces) == before
+    assert topomesh.cube().catmull_clark(2).n_faces == 96
+    sys.stderr.write("KeyboardInterrupt\n")
+    sys.stderr.flush()
+    os._exit(0)
+"""
+
+
+@pytest.mark.parametrize(
+    "setup,call",
+    [
+        ("topomesh.cube()", "m.dual(10**7)"),  # many short levels
+        ("topomesh.torus(2000, 2000)", "m.catmull_clark(1)"),  # one long level (16 M quads)
+    ],
+    ids=["between-levels", "inside-a-level"],
+)
+def test_ctrl_c_stops_within_half_a_second(setup, call):
+    p = subprocess.Popen([sys.executable, "-c", _SIGINT_CHILD, setup, call], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert p.stdout.readline().strip() == "ready"
+        time.sleep(1.0)
+        t = time.perf_counter()
+        os.kill(p.pid, signal.SIGINT)
+        out, err = p.communicate(timeout=30)
+        exit_seconds = time.perf_counter() - t
+    finally:
+        p.kill()
+    assert "KeyboardInterrupt" in err, err
+    word, latency = out.split()
+    assert word == "interrupted"
+    # from the Python handler raising to the call returning
+    assert float(latency) < 0.5, latency
+    assert exit_seconds < 2.0, exit_seconds
+
+
+# ----------------------------------------------------------- argument probe
+
+BAD = {"negative": -1, "huge": 2**70, "nan": math.nan, "inf": math.inf}
+
+
+def _base_calls():
+    """Valid calls of every public function and method with numeric parameters."""
+    from tests.test_ops import face_at, grid_cube
+
+    cube = topomesh.cube()
+    rind = cube.rind(0.1)
+    grid = grid_cube(3)
+    import pyvista as pv
+    import trimesh
+
+    soup_tm = trimesh.creation.box()
+    soup_pv = pv.Cube().triangulate()
+    top, bottom = face_at(grid, [0, 0, 1]), face_at(grid, [0, 0, -1])
+    chaikin = ifs.chaikin(np.random.default_rng(1).random((4, 2)))
+    P = np.random.default_rng(2).random((6, 3))
+    P2 = np.array([[0.0, 0.0], [1.0, 0.2], [2.0, 1.0], [3.0, 0.1]])
+    return {
+        "torus": (_core.torus, {"major": 8, "minor": 5, "major_radius": 2.0, "minor_radius": 0.5}),
+        "genus_surface": (_core.genus_surface, {"g": 2}),
+        "menger_sponge": (_core.menger_sponge, {"level": 1}),
+        "set_memory_budget": (_core.set_memory_budget, {"nbytes": None}),
+        "ifs_hex_lattice": (_core.ifs_hex_lattice, {"radius": 2}),
+        "ifs_curve_subdivide": (_core.ifs_curve_subdivide, {"control_points": P, "stencils": ifs.curve_stencils("chaikin"), "levels": 2, "arity": 2}),
+        "ifs_surface_subdivide": (ifs.subdivide_surface, {"control_points": np.random.default_rng(3).random((19, 3)), "scheme": "loop", "levels": 1}),
+        "ifs_curve": (_core.ifs_curve, {"control_points": P2, "stencils": ifs.curve_stencils("chaikin"), "arity": 2}),
+        "ifs_bspline": (_core.ifs_bspline, {"control_points": P2, "degree": 1, "knots": [0, 1, 2, 3], "pieces": [(1, 1.5), (1.5, 2)]}),
+        **{
+            f"Mesh.{s}": (getattr(cube, s), {"iterations": 1})
+            for s in ("catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual", "sierpinski")
+        },
+        "Mesh.honeycomb": (cube.honeycomb, {"iterations": 1, "t": 0.5, "tension": 0.5}),
+        "Mesh.vertex_truncation": (cube.vertex_truncation, {"iterations": 1, "mode": "polyhedral", "ratio": 0.3}),
+        "Mesh.menger": (cube.menger, {"iterations": 1, "thickness": 0.3, "collapse_angle": 90.0}),
+        "Mesh.rind": (cube.rind, {"thickness": 0.1}),
+        "Mesh.subdivide_edge": (cube.subdivide_edge, {"edge": 0, "t": 0.5}),
+        # a tunnel and a straight pipe through a 3 x 3 grid cube: valid calls free of crossings
+        "Mesh.from_trimesh": (Mesh.from_trimesh, {"tm": soup_tm, "repair": True, "tolerance": 1e-9}),
+        "Mesh.from_pyvista": (Mesh.from_pyvista, {"data": soup_pv, "repair": True, "tolerance": 1e-9}),
+        "Mesh.add_handle": (grid.add_handle, {"face_a": top, "face_b": bottom, "segments": 4, "weights": (-1.0, -1.0)}),
+        "Mesh.insert_edge": (cube.insert_edge, {"face1": 0, "position1": 0, "face2": 0, "position2": 2}),
+        "Mesh.connect_edges": (cube.connect_edges, {"face1": 0, "position1": 0, "face2": 1, "position2": 0}),
+        "Mesh.create_pipe": (grid.create_pipe, {"face1": top, "position1": 0, "face2": bottom, "position2": 2}),
+        "Mesh.delete_edge": (cube.delete_edge, {"edge": 0}),
+        "Mesh.delete_edge_with_cleanup": (cube.delete_edge_with_cleanup, {"edge": 0}),
+        "Mesh.collapse_edge": (cube.collapse_edge, {"edge": 0}),
+        "Mesh.delete_vertex": (cube.create_vertex([0, 0, 5])[0].delete_vertex, {"vertex": 8}),
+        "Rind.face_pair": (rind.face_pair, {"face": 0}),
+        "IFS.fixed_point": (chaikin.fixed_point, {"i": 0}),
+        "IFS.iterate": (chaikin.iterate, {"start": [[0.0]], "levels": 2}),
+        "IFS.subdivide": (chaikin.subdivide, {"levels": 2}),
+        "IFS.polyline": (chaikin.polyline, {"levels": 2}),
+        "IFS.chaos_game": (chaikin.chaos_game, {"n_points": 10, "seed": 0}),
+        "IFS.mesh": (ifs.loop(np.random.default_rng(4).random((19, 3))).mesh, {"levels": 1}),
+    }
+
+
+# parameters that are not numbers (arrays, names, flags), or numbers only as a list
+NOT_NUMERIC = {
+    "self", "control_points", "scheme", "stencils", "knots", "pieces", "name", "mode", "progress", "absolute",
+    "start", "vertices", "faces", "face_sizes", "face_indices", "close_boundaries", "allow_multi_edges", "path",
+    "points", "point", "weights", "corners", "keep", "other", "probabilities", "return_faces", "blocks",
+    "matrices", "translations", "reference", "tm", "data", "repair", "twins", "options",
+}
+
+
+def _public_callables():
+    out = {}
+    for name in dir(_core):
+        obj = getattr(_core, name)
+        if name.startswith("_") or not callable(obj):
+            continue
+        if inspect.isclass(obj):
+            if issubclass(obj, BaseException):
+                continue
+            for m in vars(obj):
+                if not m.startswith("_") and callable(getattr(obj, m)):
+                    out[f"{name}.{m}"] = getattr(obj, m)
+        else:
+            out[name] = obj
+    return out
+
+
+def test_probe_covers_every_public_numeric_parameter():
+    base = _base_calls()
+    for name, fn in _public_callables().items():
+        try:
+            params = [p for p in inspect.signature(fn).parameters if p not in NOT_NUMERIC]
+        except ValueError:
+            continue
+        if params:
+            assert name in base, f"{name}{params}: add it to the argument probe"
+            assert set(params) <= set(base[name][1]), (name, params)
+
+
+def _probe_cases():
+    for name, (fn, kw) in _base_calls().items():
+        for param, value in kw.items():
+            numeric = isinstance(value, (int, float)) and not isinstance(value, bool)
+            if not (numeric or param == "nbytes"):
+                continue
+            for label, bad in BAD.items():
+                yield pytest.param(name, param, bad, id=f"{name}-{param}-{label}")
+
+
+@pytest.mark.parametrize("name,param,bad", list(_probe_cases()))
+def test_bad_numeric_argument_is_a_named_error(name, param, bad):
+    fn, kw = _base_calls()[name]
+    fn(**kw)  # the base call is valid
+    args = {**kw, param: bad}
+    is_int_param = isinstance(kw[param], int) or kw[param] is None
+    # "face1", "face_a" and "position2" may be reported as "face" and "position"
+    stem = param.rstrip("12").removesuffix("_a").removesuffix("_b")
+    try:
+        r = fn(**args)
+    except MeshError as e:
+        assert stem in str(e), f"{name}({param}={bad!r}): {e}"
+        return
+    except TypeError as e:
+        # a float where an integer is required: Python's own TypeError naming the argument
+        text = " ".join([str(e), *getattr(e, "__notes__", [])])
+        assert is_int_param and isinstance(bad, float) and param in text, f"{name}({param}={bad!r}): {text}"
+        return
+    except Exception as e:  # noqa: BLE001
+        pytest.fail(f"{name}({param}={bad!r}) raised {type(e).__name__}: {e}")
+    # accepted: only a huge but finite length, where the result must be valid
+    assert not is_int_param and bad == 2**70, f"{name}({param}={bad!r}) was accepted"
+    r.validate()
+
+
+# ------------------------------------------------------- smaller wrong answers
+
+
+def test_menger_absolute_thickness_is_bounded():
+    with pytest.raises(MeshError, match=r"thickness = 10 \(absolute\) is out of range; on this mesh it must be in \(0, 1"):
+        topomesh.cube().menger(1, thickness=10, absolute=True)
+    ok = topomesh.cube().menger(1, thickness=0.5, absolute=True)
+    ok.validate()
+    assert ok.volume > 0
+
+
+@pytest.mark.parametrize("angle", [math.nan, math.inf, -1.0, 181.0])
+def test_menger_collapse_angle_range(angle):
+    with pytest.raises(MeshError, match=r"collapse_angle = .* must be a finite angle in \[0, 180\]"):
+        topomesh.cube().menger(1, collapse_angle=angle)
+
+
+def test_peeling_every_face_is_refused():
+    r = topomesh.cube().rind(0.1)
+    with pytest.raises(MeshError, match="peel: selecting all 6 remaining outer faces would leave nothing"):
+        r.peel(range(6))
+    p = r.peel(range(5))
+    p.mesh.validate()
+    assert p.mesh.n_faces > 0
+    with pytest.raises(MeshError, match="peel: selecting all 1 remaining"):
+        p.peel([5])
+    # punching them all keeps the walls: a frame of genus F - 1
+    assert r.punch(range(6)).mesh.genus == 5
