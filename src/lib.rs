@@ -15,6 +15,7 @@ pub mod ops;
 pub mod primitives;
 pub mod repair;
 pub mod schemes;
+mod union_find;
 
 #[cfg(feature = "python")]
 mod python;

@@ -143,18 +143,24 @@ fn face_cycle(m: &Mesh, f: FaceId, split: &[u32], cyc: &mut Vec<u32>) {
     }
 }
 
+/// The Newell normal of the cycle (twice its vector area) and its corners' mean.
+fn newell(cyc: &[u32], pos: &[DVec3]) -> (DVec3, DVec3) {
+    let n = cyc.len();
+    let at = |i: usize| pos[cyc[i] as usize];
+    let (mut normal, mut c) = (DVec3::ZERO, DVec3::ZERO);
+    for i in 0..n {
+        normal += at(i).cross(at((i + 1) % n));
+        c += at(i);
+    }
+    (normal, c / n as f64)
+}
+
 /// Projects the cycle into its Newell plane, counter-clockwise seen from the
 /// normal; the frame's origin is the corners' mean.
 fn project(cyc: &[u32], pos: &[DVec3], p: &mut Vec<DVec2>) -> Shape {
     let n = cyc.len();
     let at = |i: usize| pos[cyc[i] as usize];
-    let mut normal = DVec3::ZERO;
-    let mut c = DVec3::ZERO;
-    for i in 0..n {
-        normal += at(i).cross(at((i + 1) % n));
-        c += at(i);
-    }
-    c /= n as f64;
+    let (normal, c) = newell(cyc, pos);
     p.clear();
     let Some(nz) = normal.try_normalize() else { return Shape::Degenerate };
     let u = nz.any_orthonormal_vector();
@@ -286,13 +292,7 @@ fn is_bent(cyc: &[u32], pos: &[DVec3]) -> bool {
         return false;
     }
     let at = |i: usize| pos[cyc[i] as usize];
-    let mut normal = DVec3::ZERO;
-    let mut c = DVec3::ZERO;
-    for i in 0..n {
-        normal += at(i).cross(at((i + 1) % n));
-        c += at(i);
-    }
-    c /= n as f64;
+    let (normal, c) = newell(cyc, pos);
     let Some(nz) = normal.try_normalize() else { return false };
     let (mut off, mut r) = (0.0f64, 0.0f64);
     for i in 0..n {

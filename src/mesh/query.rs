@@ -18,31 +18,15 @@ impl Mesh {
     pub fn vertex_components(&self) -> (Vec<u32>, usize) {
         let nv = self.n_vertices();
         let mut parent: Vec<u32> = (0..nv as u32).collect();
-        fn find(p: &mut [u32], mut x: u32) -> u32 {
-            while p[x as usize] != x {
-                let g = p[p[x as usize] as usize];
-                p[x as usize] = g;
-                x = g;
-            }
-            x
-        }
         for e in 0..self.n_edges() {
             let (a, b) = (self.he_vert[2 * e], self.he_vert[2 * e + 1]);
-            let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-            if ra != rb {
-                // union by index keeps it deterministic
-                if ra < rb {
-                    parent[rb as usize] = ra;
-                } else {
-                    parent[ra as usize] = rb;
-                }
-            }
+            crate::union_find::union(&mut parent, a, b);
         }
         let mut label = vec![u32::MAX; nv];
         let mut n = 0u32;
         let mut out = vec![0u32; nv];
         for v in 0..nv {
-            let r = find(&mut parent, v as u32) as usize;
+            let r = crate::union_find::root(&mut parent, v as u32) as usize;
             if label[r] == u32::MAX {
                 label[r] = n;
                 n += 1;

@@ -1,6 +1,7 @@
 //! Splitting pinched vertices: one output vertex per umbrella (fan of
 //! corners around a vertex joined through edges).
 
+use crate::union_find::{root, union};
 use super::{Faces, NONE};
 
 /// The output vertex of every corner, the cluster each output vertex copies,
@@ -15,21 +16,10 @@ use super::{Faces, NONE};
 pub(super) fn split(f: &Faces, twin: &[u32], n_clusters: usize) -> (Vec<u32>, Vec<u32>, usize) {
     let n = f.verts.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            let g = p[p[x as usize] as usize];
-            p[x as usize] = g;
-            x = g;
-        }
-        x
-    }
     for c in 0..n {
         let t = twin[f.prev(c)];
         if t != NONE {
-            let (a, b) = (find(&mut parent, c as u32), find(&mut parent, t));
-            if a != b {
-                parent[a.max(b) as usize] = a.min(b);
-            }
+            union(&mut parent, c as u32, t);
         }
     }
     // roots: the cluster they keep (tag 0) or the index of their extra copy
@@ -38,7 +28,7 @@ pub(super) fn split(f: &Faces, twin: &[u32], n_clusters: usize) -> (Vec<u32>, Ve
     let mut root_tag = vec![NONE; n];
     let mut extras: Vec<u32> = Vec::new();
     for c in 0..n {
-        let r = find(&mut parent, c as u32) as usize;
+        let r = root(&mut parent, c as u32) as usize;
         if root_tag[r] == NONE {
             let v = f.verts[c];
             root_tag[r] = if primary[v as usize] {
@@ -62,7 +52,7 @@ pub(super) fn split(f: &Faces, twin: &[u32], n_clusters: usize) -> (Vec<u32>, Ve
     source.extend_from_slice(&extras);
     let out = (0..n)
         .map(|c| {
-            let tag = root_tag[find(&mut parent, c as u32) as usize];
+            let tag = root_tag[root(&mut parent, c as u32) as usize];
             if tag & EXTRA != 0 { base + (tag & !EXTRA) } else { number[tag as usize] }
         })
         .collect();

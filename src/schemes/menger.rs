@@ -365,22 +365,6 @@ struct Plan {
     group_pos: Vec<DVec3>,
 }
 
-fn union_find_root(p: &mut [u32], mut x: u32) -> u32 {
-    while p[x as usize] != x {
-        p[x as usize] = p[p[x as usize] as usize];
-        x = p[x as usize];
-    }
-    x
-}
-
-/// Joins the sets of `a` and `b`; the smaller root stays the root.
-fn union_sets(p: &mut [u32], a: u32, b: u32) {
-    let (ra, rb) = (union_find_root(p, a), union_find_root(p, b));
-    if ra != rb {
-        p[ra.max(rb) as usize] = ra.min(rb);
-    }
-}
-
 /// The least-squares solution of `a x = b` (`a` a sum of `n nᵀ` over plane
 /// normals) nearest to `x0` along directions `a` barely constrains. Iterative
 /// refinement of a slightly regularized solve: exact (to rounding) when the
@@ -531,7 +515,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     for h in m.halfedges() {
         if kind[h.edge().idx()] == EdgeKind::Collapse {
             // corners h and next(twin(h)) lie on either side of edge(h) at its tail
-            union_sets(&mut parent, h.0, m.next(h.twin()).0);
+            crate::union_find::union(&mut parent, h.0, m.next(h.twin()).0);
         }
     }
     for v in m.vertices() {
@@ -540,13 +524,13 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
         }
         let hs: Vec<HalfedgeId> = m.vertex_halfedges(v).collect();
         for w in hs.windows(2) {
-            union_sets(&mut parent, w[0].0, w[1].0);
+            crate::union_find::union(&mut parent, w[0].0, w[1].0);
         }
     }
     let mut group = vec![u32::MAX; nh];
     let mut members: Vec<Vec<u32>> = Vec::new();
     for h in 0..nh as u32 {
-        let r = union_find_root(&mut parent, h);
+        let r = crate::union_find::root(&mut parent, h);
         if group[r as usize] == u32::MAX {
             group[r as usize] = members.len() as u32;
             members.push(Vec::new());
@@ -802,11 +786,11 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
         for i in 0..k {
             for j in i + 1..k {
                 if close(WELD_TOL * dmin, i, j) {
-                    union_sets(&mut local, i as u32, j as u32);
+                    crate::union_find::union(&mut local, i as u32, j as u32);
                 }
             }
         }
-        let welded: Vec<u32> = (0..k).map(|i| cyc[union_find_root(&mut local, i as u32) as usize]).collect();
+        let welded: Vec<u32> = (0..k).map(|i| cyc[crate::union_find::root(&mut local, i as u32) as usize]).collect();
         let pieces = split_cycle(&welded);
         let mut pairs: Vec<(u32, u32)> = pieces.iter().filter(|p| p.len() == 2).map(|p| (p[0].min(p[1]), p[0].max(p[1]))).collect();
         pairs.sort_unstable();
@@ -816,12 +800,12 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
         for i in 0..k {
             for j in i + 1..k {
                 if close(tol, i, j) {
-                    union_sets(&mut parent, cyc[i], cyc[j]);
+                    crate::union_find::union(&mut parent, cyc[i], cyc[j]);
                 }
             }
         }
     }
-    let rep: Vec<u32> = (0..ip.len() as u32).map(|i| union_find_root(&mut parent, i)).collect();
+    let rep: Vec<u32> = (0..ip.len() as u32).map(|i| crate::union_find::root(&mut parent, i)).collect();
     Ok(Inner { pos: ip, rep })
 }
 
