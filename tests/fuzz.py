@@ -174,7 +174,7 @@ def _peers_agree(items: list[tuple[Mesh, np.ndarray, np.ndarray, bool]]) -> bool
     return man.status() == m3d.Error.NoError and int(man.genus()) == 1 - chi // 2
 
 
-def run(cases: int, seed: int, batch: int = 256, log=None) -> Stats:
+def run(cases: int, seed: int, batch: int = 256, log=None, start: int = 0) -> Stats:
     st = Stats()
     pending: list[tuple[int, Mesh, np.ndarray, np.ndarray, bool]] = []
 
@@ -190,7 +190,7 @@ def run(cases: int, seed: int, batch: int = 256, log=None) -> Stats:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", topomesh.GeometryWarning)
-        for case in range(cases):
+        for case in range(start, start + cases):
             st.cases += 1
             crng = np.random.default_rng([seed, case])
             try:
@@ -227,6 +227,8 @@ def run(cases: int, seed: int, batch: int = 256, log=None) -> Stats:
                 st.failures.append((case, f"{type(e).__name__}: {e}\n{traceback.format_exc(limit=3)}"))
             if log and case % 10000 == 0 and case:
                 print(f"{case} cases, {len(st.failures)} failures", file=log, flush=True)
+                for c, msg in st.failures[-1:]:
+                    print(f"  last failure: case {c}: {msg}", file=log, flush=True)
         flush()
     return st
 
@@ -235,9 +237,10 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--cases", type=int, default=100_000)
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--start", type=int, default=0, help="first case number (to rerun a range)")
     a = p.parse_args(argv)
     t0 = time.perf_counter()
-    st = run(a.cases, a.seed, log=sys.stderr)
+    st = run(a.cases, a.seed, log=sys.stderr, start=a.start)
     dt = time.perf_counter() - t0
     print(f"{st.cases} cases, {st.meshes} meshes checked, {st.rejected} MeshError rejections, {st.simple} simple "
           f"outputs ({st.realized} realized) in {st.peer_batches} peer batches, {len(st.failures)} failures, {dt:.1f} s")

@@ -111,6 +111,29 @@ def test_flat_arrays_with_twins_rebuild_the_same_mesh(name):
     assert np.array_equal(t[t[inner]], np.flatnonzero(inner))
 
 
+def test_one_gon_on_a_hole_is_not_a_point_sphere(tmp_path):
+    # found by the fuzz target (seed 100, case 27019): a face [1, 0, 1] has a
+    # self-loop side left open, capped by a one-gon hole; deleting its other
+    # edge leaves a one-gon whose self-loop borders the hole. Its polygon list
+    # ([1] with twin "none") is a point-sphere's: -1 and -2 tell them apart.
+    m = Mesh.from_flat(np.array([[0.0, 0, 0], [1, 0, 0]]), [3], [1, 0, 1], close_boundaries=True)
+    e = next(k for k, (a, b) in enumerate(m.edges.tolist()) if a != b)
+    one = m.delete_edge_with_cleanup(e)
+    assert (one.n_vertices, one.n_edges, one.n_faces, one.n_holes) == (1, 1, 2, 1)
+    assert one.corner_twins.tolist() == [-1]
+    point, _, _ = Mesh.from_flat(np.zeros((1, 3)), [1], [0]).create_vertex([1.0, 0.0, 0.0])
+    assert point.corner_twins.tolist() == [-2, -2]
+    for x in (one, point):
+        _same(x, Mesh.from_flat(x.vertices, x.face_sizes, x.face_indices, twins=x.corner_twins))
+        _same(x, pickle.loads(pickle.dumps(x)))
+        for ext in (".npz", ".ply"):
+            x.save(tmp_path / f"x{ext}")
+            _same(x, topomesh.load(tmp_path / f"x{ext}"))
+    # -2 is only for a lone corner whose vertex is in no other face
+    with pytest.raises(MeshError, match=r"twin -2 \(a point-sphere\) but its face has other corners"):
+        Mesh.from_flat(np.eye(3), [3], [0, 1, 2], twins=[-2, -2, -2])
+
+
 @pytest.mark.parametrize(
     "make",
     [

@@ -254,7 +254,7 @@ def _write_ply(tmp: str, mesh: Mesh) -> None:
     count, cs = ("uint", 4) if wide else ("uchar", 1)
     header = (
         "ply\nformat binary_little_endian 1.0\n"
-        "comment written by topomesh; corner_twins: the twin corner of each corner, -1 at a boundary side or a point-sphere\n"
+        "comment written by topomesh; corner_twins: the twin corner of each corner, -1 at a boundary side, -2 at a point-sphere\n"
         f"element vertex {len(verts)}\nproperty double x\nproperty double y\nproperty double z\n"
         f"element face {len(sizes)}\nproperty list {count} int vertex_indices\nproperty list {count} int corner_twins\n"
         "end_header\n"

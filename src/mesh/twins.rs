@@ -10,17 +10,17 @@
 //! Corners are numbered as in [`Mesh::to_polygons`]: every non-hole face in
 //! face order, from its first corner. `twins[c]` is the corner on the other
 //! side of the edge that starts at corner `c` (it starts where `c`'s side
-//! ends), or `-1` when that other side is a corner of a hole face (a boundary
-//! side) or when `c` is the lone corner of a point-sphere.
+//! ends), `-1` when that other side is a corner of a hole face (a boundary
+//! side), or `-2` when `c` is the lone corner of a point-sphere (no edge
+//! starts there). The two are told apart because a one-gon bounded by a
+//! self-loop whose other side is a hole (an operator can leave one) is also
+//! a size-1 face whose vertex is in no other exported face.
 //!
 //! # Canonical hole faces
 //! [`Mesh::from_corner_twins_i64`] re-creates hole faces from the `-1` sides:
 //! each boundary loop becomes one hole face, numbered after all given faces,
 //! in order of the loop's lowest boundary corner; a hole's first corner is the
-//! twin of that lowest boundary corner. A size-1 face with twin `-1` whose
-//! vertex appears in no other face is a point-sphere (a one-gon whose only
-//! neighbour is a one-gon hole is therefore not representable; no constructor
-//! makes one). The round trip `corner_twins` → rebuild is exact for every
+//! twin of that lowest boundary corner. The round trip `corner_twins` → rebuild is exact for every
 //! mesh in which each edge has a non-hole face on at least one side and each
 //! vertex meets at most one hole corner, which holds for every mesh made by
 //! `close_boundaries=True` and the operators; edge and half-edge ids are
@@ -32,8 +32,8 @@ use glam::DVec3;
 
 impl Mesh {
     /// The twin corner of every exported corner, aligned with
-    /// `to_polygons().indices`; `-1` for a boundary side (twin in a hole face)
-    /// and for a point-sphere's lone corner. See the module docs.
+    /// `to_polygons().indices`; `-1` for a boundary side (twin in a hole face),
+    /// `-2` for a point-sphere's lone corner. See the module docs.
     pub fn corner_twins(&self) -> Vec<i64> {
         let mut pos_of = vec![NONE; self.n_halfedges()];
         let mut k = 0u32;
@@ -57,7 +57,7 @@ impl Mesh {
                 continue;
             }
             match self.face_start(f) {
-                FaceStart::Point(_) => out.push(-1),
+                FaceStart::Point(_) => out.push(-2),
                 FaceStart::Halfedge(_) => {
                     for h in self.face_halfedges(f) {
                         let t = pos_of[h.twin().idx()];
@@ -138,18 +138,26 @@ impl Mesh {
             uses[v as usize] += 1;
         }
         let head = |c: usize| verts[next[c] as usize];
-        let is_point = |c: usize| sizes[face[c] as usize] == 1 && twins[c] == -1 && uses[verts[c] as usize] == 1;
+        let is_point = |c: usize| twins[c] == -2;
         // --- the twins themselves
         // range first, so the symmetry check below can index by any twin
-        if let Some(c) = twins.iter().position(|&t| t < -1 || t >= n as i64) {
+        if let Some(c) = twins.iter().position(|&t| t < -2 || t >= n as i64) {
             return Err(MeshError::InvalidArgument(format!(
-                "twins: corner {c} of face {} has twin {}, out of range (-1 or 0..{n})",
+                "twins: corner {c} of face {} has twin {}, out of range (-1 for a boundary side, -2 for a point-sphere, or 0..{n})",
                 face[c], twins[c]
+            )));
+        }
+        // a point-sphere is a face of one corner whose vertex is in no other face
+        if let Some(c) = (0..n).find(|&c| twins[c] == -2 && (sizes[face[c] as usize] != 1 || uses[verts[c] as usize] != 1)) {
+            return Err(MeshError::InvalidArgument(format!(
+                "twins: corner {c} of face {} has twin -2 (a point-sphere) but {}",
+                face[c],
+                if sizes[face[c] as usize] != 1 { "its face has other corners".to_string() } else { format!("its vertex {} is in other faces", verts[c]) }
             )));
         }
         for (c, &t) in twins.iter().enumerate() {
             let f = face[c];
-            if t == -1 {
+            if t < 0 {
                 continue;
             }
             let t = t as usize;
@@ -293,7 +301,7 @@ mod tests {
         round_trip(&s);
         let mut p = Mesh::new();
         p.create_vertex(DVec3::ZERO).unwrap();
-        assert_eq!(p.corner_twins(), vec![-1]);
+        assert_eq!(p.corner_twins(), vec![-2]);
         round_trip(&p);
         round_trip(&Mesh::new());
     }

@@ -213,8 +213,8 @@ impl PyMesh {
 
     /// The twin of every exported corner, int64 aligned with
     /// :attr:`face_indices`, read-only: the corner on the other side of the
-    /// edge that starts at this corner, or -1 when that side belongs to a hole
-    /// face (a boundary side) or for a point-sphere's lone corner. Pass it as
+    /// edge that starts at this corner, -1 when that side belongs to a hole
+    /// face (a boundary side), -2 for a point-sphere's lone corner. Pass it as
     /// ``twins`` to :meth:`from_flat` to rebuild the mesh exactly; hole faces
     /// are re-created one per boundary loop, after the given faces, in order of
     /// the loop's lowest boundary corner, starting at that corner's twin.
