@@ -107,22 +107,28 @@ pub(crate) fn run_interruptible_with<T: Send>(
     work: impl FnOnce() -> crate::Result<T> + Send,
     mut on_poll: impl FnMut(Python<'_>) -> PyResult<()>,
 ) -> PyResult<T> {
+    use std::sync::atomic::{AtomicBool, Ordering};
     let caller = std::thread::current();
+    // set before the unpark: `is_finished` turns true only once the thread
+    // has exited, after the unpark, so waiting on it lost the wake-up and
+    // slept a whole poll interval on every short call
+    let done = AtomicBool::new(false);
     std::thread::scope(|s| {
-        let worker = s.spawn(move || {
+        let worker = s.spawn(|| {
             let r = work();
+            done.store(true, Ordering::Release);
             caller.unpark();
             r
         });
         loop {
             // park_timeout may wake early (the unpark token, spuriously): only
-            // is_finished decides
+            // the flag decides
             py.detach(|| {
-                if !worker.is_finished() {
+                if !done.load(Ordering::Acquire) {
                     std::thread::park_timeout(POLL);
                 }
             });
-            if worker.is_finished() {
+            if done.load(Ordering::Acquire) {
                 break;
             }
             let polled = py.check_signals().and_then(|()| on_poll(py));
