@@ -25,7 +25,8 @@ from topomesh._core import (
     tetrahedron,
     torus,
 )
-from topomesh.io import load  # noqa: E402
+from topomesh.io import load, save  # noqa: E402
+from topomesh.printing import PrintReport, printable  # noqa: E402
 from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
@@ -34,6 +35,7 @@ __all__ = [
     "GeometryWarning",
     "Mesh",
     "MeshError",
+    "PrintReport",
     "RepairReport",
     "Rind",
     "cube",
@@ -46,7 +48,9 @@ __all__ = [
     "memory_budget",
     "menger_sponge",
     "octahedron",
+    "printable",
     "repair",
+    "save",
     "set_memory_budget",
     "tetrahedron",
     "torus",

@@ -9,6 +9,8 @@ from typing import Any, Literal, Sequence, final, overload
 import numpy as np
 import numpy.typing as npt
 
+from topomesh.printing import PrintReport
+
 __all__ = [
     "_read_obj",
     "IFS",
@@ -205,6 +207,13 @@ class Mesh:
         collapse_angle: float = 90.0,
         progress: bool = False,
     ) -> Mesh: ...
+    # --- printing (src/python/printing.rs, topomesh.printing) ---
+    def wall_thickness(self) -> npt.NDArray[np.float64]: ...
+    def printable(self, min_thickness: float) -> PrintReport: ...
+    def _print_check(
+        self,
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64], tuple[int, int]]: ...
+    def _print_triangles(self) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], tuple[int, int]]: ...
     # --- display (topomesh.viz) ---
     def plot(
         self,

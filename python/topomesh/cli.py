@@ -2,12 +2,12 @@
 
     topomesh gallery OUTDIR              every built-in mesh: OBJ + PNG + summary table
     topomesh info FILE                   counts, genus, watertight per trimesh and manifold3d
-    topomesh convert IN OUT              between OBJ, OFF and PLY
+    topomesh convert IN OUT              between NPZ, PLY, OBJ, OFF, STL (binary) and 3MF
     topomesh subdivide IN OUT --scheme S -n K
     topomesh sierpinski IN OUT -n K
     topomesh menger IN OUT -n K [--thickness D]
 
-Every command that reads a file takes ``--close-boundaries``, ``--allow-multi-edges`` and
+Warnings (a ``GeometryWarning``) are one line on stderr too. Every command that reads a file takes ``--close-boundaries``, ``--allow-multi-edges`` and
 ``--repair`` (passed to :func:`topomesh.load`). Errors are one line on stderr, never a
 traceback: bad input (``MeshError``) exits with status 2, Ctrl-C with 130, a file or other
 failure with 1.
@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import re
 import sys
+import warnings
 from typing import Sequence
 
 import topomesh
@@ -126,7 +127,14 @@ def parser() -> argparse.ArgumentParser:
     i = sub.add_parser("info", parents=[reads], help="counts, genus and peer checks of a mesh file")
     i.add_argument("file")
     i.set_defaults(func=cmd_info)
-    c = sub.add_parser("convert", parents=[reads], help="convert between OBJ, OFF and PLY")
+    c = sub.add_parser(
+        "convert",
+        parents=[reads],
+        help="convert between NPZ, PLY, OBJ, OFF, STL and 3MF (by extension)",
+        description="Convert a mesh file; the extensions choose the formats. NPZ and PLY keep every mesh, OBJ and "
+        "OFF its polygons, STL (binary, float32) and 3MF (through trimesh: pip install 'topomesh[print]') its "
+        "triangles. Reads ASCII or binary STL.",
+    )
     c.add_argument("input")
     c.add_argument("output")
     c.set_defaults(func=cmd_convert)
@@ -150,11 +158,18 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
+    print(f"topomesh: warning: {_cli_message(str(message))}", file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (argparse exits 2 itself on bad usage)."""
     args = parser().parse_args(argv)
     try:
-        return int(args.func(args))
+        with warnings.catch_warnings():
+            # a warning (e.g. an STL that is not closed) is one line too
+            warnings.showwarning = _show_warning
+            return int(args.func(args))
     except MeshError as e:
         print(f"topomesh: error: {_cli_message(str(e))}", file=sys.stderr)
         return 2

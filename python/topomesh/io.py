@@ -1,4 +1,5 @@
-"""Mesh files: the lossless ``.npz`` and ``.ply``, and OBJ and OFF.
+"""Mesh files: the lossless ``.npz`` and ``.ply``, OBJ and OFF, and the
+printers' STL and 3MF.
 
 Formats
 -------
@@ -25,6 +26,24 @@ Formats
     OFF has no maintained reader that keeps polygons as float64 (meshio's
     reads triangles only, trimesh's triangulates, off-rs parses to float32),
     so :func:`_read_off` is a short reader of the header, vertex and face rows.
+``.stl``, ``.3mf``
+    Triangle meshes for printers, slicers and CAD: the triangles of
+    :meth:`Mesh.triangulate` (with the points it adds), so the polygon faces,
+    the hole faces and the corner twins are not kept and a file loads back as
+    the triangle mesh (exact duplicate corners welded). STL is binary:
+    an 80-byte header that never starts with ``solid`` (readers take such
+    files for ASCII), float32 corners (coordinates are rounded) and facet
+    normals computed from the triangles, written with NumPy; it is read by
+    :func:`topomesh.stl.read_stl` (binary or ASCII). 3MF is written and
+    read by trimesh (``trimesh.exchange.threemf``, which needs lxml and
+    networkx: ``pip install 'topomesh[print]'``), with exact float64
+    coordinates, in millimetres (3MF's unit). Since printers need a closed
+    surface, :func:`save` warns (:class:`GeometryWarning`) when the
+    triangles written are not a closed, consistently oriented 2-manifold:
+    a mesh with holes, self-loops, one- or two-gons or vertices repeated in
+    a face (the triangles pinch there, as in raw Sierpinski polyhedra), or
+    vertices that coincide (after rounding to float32 for STL).
+    See :func:`topomesh.printing.printable` for a full check.
 
 Saving is atomic: the file is written beside the target under a temporary
 name and renamed over it, so a failed save leaves any existing file as it was.
@@ -46,16 +65,19 @@ from topomesh._core import GeometryWarning, Mesh, MeshError, _read_obj
 if TYPE_CHECKING:
     PathLike = Union[str, os.PathLike]
 
-#: Formats :func:`save` writes (the first two are lossless for every mesh).
-SAVE_FORMATS = (".npz", ".ply", ".obj", ".off")
+#: Formats :func:`save` writes (the first two are lossless for every mesh;
+#: ``.stl`` and ``.3mf`` keep the triangles only).
+SAVE_FORMATS = (".npz", ".ply", ".obj", ".off", ".stl", ".3mf")
+#: The triangle formats of printers.
+TRIANGLE_FORMATS = (".stl", ".3mf")
 #: Version of the ``.npz`` layout written by :func:`save`.
 NPZ_VERSION = 1
 _NPZ_KEYS = ("vertices", "face_sizes", "face_indices", "corner_twins")
 
 
 def read_formats() -> tuple:
-    """Extensions :func:`load` reads: the saved formats and ``.stl``."""
-    return SAVE_FORMATS + (".stl",)
+    """Extensions :func:`load` reads: every format :func:`save` writes."""
+    return SAVE_FORMATS
 
 
 def _suffix(path: PathLike, formats: tuple) -> str:
@@ -71,7 +93,7 @@ def _from_state(vertices, face_sizes, face_indices, corner_twins) -> Mesh:
 
 
 def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool = False, repair: bool = False) -> Mesh:
-    """Read a mesh from a ``.npz``, ``.ply``, ``.obj`` or ``.off`` file.
+    """Read a mesh from a ``.npz``, ``.ply``, ``.obj``, ``.off``, ``.stl`` or ``.3mf`` file.
 
     Parameters
     ----------
@@ -79,8 +101,8 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
         The file; its extension selects the format.
     close_boundaries, allow_multi_edges : bool
         As in :meth:`Mesh.from_polygons`, for files without ``corner_twins``
-        (OBJ, OFF, foreign PLY); ``.npz`` and topomesh's PLY are rebuilt
-        exactly and need neither.
+        (OBJ, OFF, STL, 3MF, foreign PLY); ``.npz`` and topomesh's PLY are
+        rebuilt exactly and need neither.
     repair : bool, default False
         Run the file's polygons through :func:`topomesh.repair`
         (merge coincident vertices, drop degenerate faces, orient) instead of
@@ -91,7 +113,8 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
     MeshError
         Naming the path: unsupported extension, missing or unreadable file,
         malformed content (OBJ errors give the line), or an invalid mesh (the
-        message names the face or vertex).
+        message names the face or vertex); for 3MF, trimesh, lxml or networkx
+        missing.
 
     Warns
     -----
@@ -123,6 +146,9 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
             verts, tris = read_stl(path)
             sizes = np.full(len(tris), 3, dtype=np.int64)
             idx = np.asarray(tris, dtype=np.int64).reshape(-1)
+        elif kind == ".3mf":
+            verts, idx = _read_3mf(path)
+            sizes = np.full(len(idx) // 3, 3, dtype=np.int64)
         else:
             verts, sizes, idx = _read_off(path)
     except MeshError:
@@ -145,21 +171,31 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
 
 
 def save(mesh: Mesh, path: PathLike) -> None:
-    """Write ``mesh`` to a ``.npz``, ``.ply``, ``.obj`` or ``.off`` file.
+    """Write ``mesh`` to a ``.npz``, ``.ply``, ``.obj``, ``.off``, ``.stl`` or ``.3mf`` file.
 
     Coordinates are written exactly (binary float64, or the shortest decimal
-    that reads back to the same bits). ``.npz`` and ``.ply`` keep every mesh;
-    ``.obj`` and ``.off`` keep the polygons only (see the module docs). The
-    file is replaced atomically: on any failure the old file is untouched and
-    no temporary file is left.
+    that reads back to the same bits), except in STL (float32). ``.npz`` and
+    ``.ply`` keep every mesh; ``.obj`` and ``.off`` keep the polygons only;
+    ``.stl`` (binary) and ``.3mf`` keep the triangles of
+    :meth:`Mesh.triangulate` (see the module docs). The file is replaced
+    atomically: on any failure the old file is untouched and no temporary
+    file is left.
 
     Raises
     ------
     MeshError
         Naming the path: unsupported extension, a mesh that OBJ/OFF cannot
         represent (self-loops or multi-edges that a polygon list pairs
-        differently), or any I/O failure (missing directory, permission, disk
-        full, file size limit).
+        differently), 3MF without trimesh, lxml or networkx (optional:
+        ``pip install 'topomesh[print]'``), or any I/O failure (missing
+        directory, permission, disk full, file size limit).
+
+    Warns
+    -----
+    GeometryWarning
+        STL or 3MF whose triangles are not a closed 2-manifold (holes,
+        pinches, vertices that coincide once written): a printer's slicer
+        would reject or misread it.
     """
     kind = _suffix(path, SAVE_FORMATS)
     name = os.fspath(path)
@@ -172,6 +208,14 @@ def save(mesh: Mesh, path: PathLike) -> None:
         _atomic_write(path, lambda tmp: _write_npz(tmp, mesh))
     elif kind == ".ply":
         _atomic_write(path, lambda tmp: _write_ply(tmp, mesh))
+    elif kind in TRIANGLE_FORMATS:
+        write3 = _threemf_exporter(name) if kind == ".3mf" else None
+        verts, tris, (sides, pinched) = mesh._print_triangles()
+        if kind == ".stl":
+            _atomic_write(path, lambda tmp: _write_stl(tmp, verts, tris))
+        else:
+            _atomic_write(path, lambda tmp: _write_3mf(tmp, write3, verts, tris))
+        _warn_unprintable(name, kind, mesh, verts, sides, pinched)
     else:
         _atomic_write(path, lambda tmp: mesh._write_text(tmp, kind[1:]))
 
@@ -338,6 +382,99 @@ def _read_ply_uniform(path: PathLike):
         return None
     verts = np.frombuffer(data, "<f8", 3 * nv, body).reshape(nv, 3).astype(np.float64)
     return verts, np.full(nf, k, np.int64), faces["idx"].reshape(-1).astype(np.int64), faces["tw"].reshape(-1).astype(np.int64)
+
+
+# ------------------------------------------------------------- STL and 3MF
+
+
+#: the 80-byte binary STL header; readers take a file starting with "solid"
+#: for ASCII, so it must not
+STL_HEADER = b"binary STL by topomesh (triangles of Mesh.triangulate, float32)".ljust(80, b" ")
+
+
+def _write_stl(tmp: str, verts: np.ndarray, tris: np.ndarray) -> None:
+    """Binary STL, one 50-byte record per triangle (the layout
+    :mod:`topomesh.stl` reads); facet normals from the float64 corners."""
+    from topomesh.stl import _RECORD
+
+    if len(tris) >= 2**32:
+        raise MeshError(f"binary STL counts triangles in a uint32: {len(tris)} triangles are too many (use .ply or .npz)")
+    c = np.take(verts, tris, axis=0)  # (T, 3, 3) float64
+    n = np.cross(c[:, 1] - c[:, 0], c[:, 2] - c[:, 0])
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+    rec = np.empty(len(tris), dtype=_RECORD)
+    rec["normal"] = n
+    rec["corners"] = c
+    rec["attr"] = 0
+    with open(tmp, "wb") as f:
+        f.write(STL_HEADER)
+        f.write(np.uint32(len(tris)).astype("<u4").tobytes())
+        f.write(rec.tobytes())
+
+
+def _threemf_exporter(name: str):
+    """trimesh's 3MF writer, or a MeshError naming what to install."""
+    try:
+        import lxml  # noqa: F401  trimesh's 3MF code needs both
+        import networkx  # noqa: F401
+        from trimesh.exchange.threemf import export_3MF
+    except ImportError as e:
+        raise MeshError(
+            f"{name}: 3MF is written and read through trimesh, which needs lxml and networkx "
+            f"({e.name or e} is not installed): pip install 'topomesh[print]' (or trimesh lxml networkx)"
+        ) from None
+    return export_3MF
+
+
+def _write_3mf(tmp: str, export, verts: np.ndarray, tris: np.ndarray) -> None:
+    import trimesh
+
+    tm = trimesh.Trimesh(vertices=verts, faces=tris, process=False, validate=False)
+    data = export(tm)
+    with open(tmp, "wb") as f:
+        f.write(data)
+
+
+def _read_3mf(path: PathLike):
+    """Every object of a 3MF file (its build transforms applied), through
+    trimesh, as welded vertices and triangle indices."""
+    name = os.fspath(path)
+    _threemf_exporter(name)
+    import trimesh
+
+    with open(name, "rb") as f:
+        loaded = trimesh.load(f, file_type="3mf", force="mesh", process=False)
+    corners = np.asarray(loaded.vertices, dtype=np.float64)[np.asarray(loaded.faces, dtype=np.int64)].reshape(-1, 3)
+    if not np.isfinite(corners).all():
+        raise MeshError(f"{name}: non-finite vertex coordinate")
+    verts, index = Mesh._weld(corners, 0.0)  # objects and repeated vertices share exact points
+    return verts, index.astype(np.int64)
+
+
+def _warn_unprintable(name: str, kind: str, mesh: Mesh, verts: np.ndarray, sides: int, pinched: int) -> None:
+    """The GeometryWarning of :func:`save` for STL/3MF that do not hold a
+    closed 2-manifold as written (unpaired triangle sides, pinched vertices)."""
+    written = verts.astype(np.float32).astype(np.float64) if kind == ".stl" else verts
+    merged = len(verts) - len(Mesh._weld(written, 0.0)[0])
+    if not (sides or pinched or merged or mesh.n_holes):
+        return
+    what = []
+    if mesh.n_holes:
+        what.append(f"{mesh.n_holes} boundary loops")
+    if sides:
+        what.append(f"{sides} triangle sides without exactly one opposite side")
+    if pinched:
+        what.append(f"{pinched} pinched vertices where triangle fans touch at a point (self-loops)")
+    if merged:
+        coincide = "coincide in float32" if kind == ".stl" else "coincide"
+        what.append(f"{merged} vertices that {coincide} with others and will be welded when read")
+    warnings.warn(
+        f"{name}: the {kind[1:].upper()} triangles are not a closed 2-manifold ({'; '.join(what)}); "
+        "a slicer may reject the file (check with Mesh.printable)",
+        GeometryWarning,
+        stacklevel=3,
+    )
 
 
 def _read_off(path: PathLike):

@@ -1,8 +1,10 @@
 //! Geometry shared by several schemes, operators and exports: one
 //! implementation each, called by all of them. The triangulation every
-//! export, peer check and crossing check uses; the exact crossing checks.
+//! export, peer check and crossing check uses; the exact crossing checks;
+//! wall thickness by ray casting (printability).
 
 pub mod crossing;
+pub mod thickness;
 pub mod triangulate;
 
 pub use triangulate::Triangulation;
@@ -17,4 +19,89 @@ pub fn triangles_with_points(m: &Mesh) -> (Vec<[u32; 3]>, Vec<DVec3>) {
     let mut p = m.positions().to_vec();
     p.extend_from_slice(&t.points);
     (t.tris, p)
+}
+
+/// What keeps a triangle list from being a closed 2-manifold, as printers
+/// and slicers need ([`triangle_defects`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TriangleDefects {
+    /// Sides that do not meet exactly one opposite side, or join a vertex
+    /// to itself.
+    pub unpaired_sides: usize,
+    /// Vertices whose triangles form more than one fan (two sheets touching
+    /// at a point, as the triangulation of a self-loop gives); counted only
+    /// when every side is paired.
+    pub pinched_vertices: usize,
+}
+
+/// The defects of `tris`: both counts are 0 exactly when the triangles form
+/// a closed, consistently oriented 2-manifold. One parallel sort of the
+/// directed sides, a binary search per side, then one walk around every
+/// vertex (`next(twin(c))` turns corner `c` about its vertex).
+pub fn triangle_defects(tris: &[[u32; 3]]) -> TriangleDefects {
+    use rayon::prelude::*;
+    let key = |a: u32, b: u32| (a as u64) << 32 | b as u64;
+    let side = |c: usize| {
+        let t = tris[c / 3];
+        key(t[c % 3], t[(c % 3 + 1) % 3])
+    };
+    let mut sides: Vec<(u64, u32)> = (0..3 * tris.len()).into_par_iter().map(|c| (side(c), c as u32)).collect();
+    sides.par_sort_unstable();
+    let range = |x: u64| sides.partition_point(|s| s.0 < x)..sides.partition_point(|s| s.0 <= x);
+    // the opposite corner of every corner, or u32::MAX
+    let twin: Vec<u32> = (0..3 * tris.len())
+        .into_par_iter()
+        .map(|c| {
+            let s = side(c);
+            let (a, b) = ((s >> 32) as u32, s as u32);
+            let r = range(key(b, a));
+            if a != b && range(s).len() == 1 && r.len() == 1 { sides[r.start].1 } else { u32::MAX }
+        })
+        .collect();
+    let unpaired_sides = twin.iter().filter(|&&t| t == u32::MAX).count();
+    let mut pinched_vertices = 0;
+    if unpaired_sides == 0 && !tris.is_empty() {
+        let nv = tris.iter().flatten().map(|&v| v as usize + 1).max().unwrap_or(0);
+        let mut fans = vec![0u32; nv];
+        let mut seen = vec![false; 3 * tris.len()];
+        for c0 in 0..3 * tris.len() {
+            if seen[c0] {
+                continue;
+            }
+            fans[tris[c0 / 3][c0 % 3] as usize] += 1;
+            let mut c = c0;
+            while !seen[c] {
+                seen[c] = true;
+                let t = twin[c] as usize;
+                c = t - t % 3 + (t % 3 + 1) % 3;
+            }
+        }
+        pinched_vertices = fans.iter().filter(|&&k| k > 1).count();
+    }
+    TriangleDefects { unpaired_sides, pinched_vertices }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defects_of_closed_open_and_pinched_triangles() {
+        let unpaired_sides = |t: &[[u32; 3]]| triangle_defects(t).unpaired_sides;
+        let tet = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        assert_eq!(triangle_defects(&tet), TriangleDefects { unpaired_sides: 0, pinched_vertices: 0 });
+        assert_eq!(unpaired_sides(&tet), 0);
+        assert_eq!(unpaired_sides(&tet[..3]), 3); // one triangle missing: its three sides
+        // a flipped triangle: its sides meet sides of the same direction
+        let flipped = [[0, 2, 1], [0, 1, 3], [1, 3, 2], [0, 3, 2]];
+        assert!(unpaired_sides(&flipped) > 0);
+        // the same tetrahedron twice: every side has two copies
+        let twice: Vec<[u32; 3]> = tet.iter().chain(&tet).copied().collect();
+        assert_eq!(unpaired_sides(&twice), 24);
+        // a triangle with a repeated corner: its side 0-0 (its other two pair each other)
+        assert_eq!(unpaired_sides(&[[0, 0, 1]]), 1);
+        // two tetrahedra sharing only vertex 0: one pinch
+        let two: Vec<[u32; 3]> = tet.iter().chain(&tet.map(|t| t.map(|v| if v == 0 { 0 } else { v + 3 }))).copied().collect();
+        assert_eq!(triangle_defects(&two), TriangleDefects { unpaired_sides: 0, pinched_vertices: 1 });
+    }
 }

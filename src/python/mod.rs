@@ -15,6 +15,7 @@ pub(crate) mod mesh;
 mod refine;
 mod repair;
 mod ops;
+mod printing;
 mod smooth;
 
 pyo3::create_exception!(
