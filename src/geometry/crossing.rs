@@ -311,6 +311,12 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
                     if bi.0.cmpgt(bj.1).any() || bj.0.cmpgt(bi.1).any() {
                         continue;
                     }
+                    // test a pair once, in the cell of its boxes' common
+                    // low corner (both triangles are in it: `key` is monotonic)
+                    let c = key(bi.0.max(bj.0));
+                    if (c[0] * n as u32 + c[1]) * n as u32 + c[2] != cellv[0].0 {
+                        continue;
+                    }
                     let (ti, tj) = (tris[iu], tris[ju]);
                     if triangles_meet(ti, ti.map(|v| p[v as usize]), tj, tj.map(|v| p[v as usize]), coplanar) {
                         out.push((i.min(j), i.max(j)));

@@ -36,28 +36,41 @@ pub struct TriangleDefects {
 
 /// The defects of `tris`: both counts are 0 exactly when the triangles form
 /// a closed, consistently oriented 2-manifold. One parallel sort of the
-/// directed sides, a binary search per side, then one walk around every
-/// vertex (`next(twin(c))` turns corner `c` about its vertex).
+/// sides by their vertex pair (a side pairs when its pair occurs exactly
+/// twice, once each way), then one walk around every vertex
+/// (`next(twin(c))` turns corner `c` about its vertex).
 pub fn triangle_defects(tris: &[[u32; 3]]) -> TriangleDefects {
     use rayon::prelude::*;
-    let key = |a: u32, b: u32| (a as u64) << 32 | b as u64;
-    let side = |c: usize| {
+    let ends = |c: usize| {
         let t = tris[c / 3];
-        key(t[c % 3], t[(c % 3 + 1) % 3])
+        (t[c % 3], t[(c % 3 + 1) % 3])
     };
-    let mut sides: Vec<(u64, u32)> = (0..3 * tris.len()).into_par_iter().map(|c| (side(c), c as u32)).collect();
-    sides.par_sort_unstable();
-    let range = |x: u64| sides.partition_point(|s| s.0 < x)..sides.partition_point(|s| s.0 <= x);
-    // the opposite corner of every corner, or u32::MAX
-    let twin: Vec<u32> = (0..3 * tris.len())
+    let mut sides: Vec<(u64, u32)> = (0..3 * tris.len())
         .into_par_iter()
         .map(|c| {
-            let s = side(c);
-            let (a, b) = ((s >> 32) as u32, s as u32);
-            let r = range(key(b, a));
-            if a != b && range(s).len() == 1 && r.len() == 1 { sides[r.start].1 } else { u32::MAX }
+            let (a, b) = ends(c);
+            (((a.min(b) as u64) << 32) | a.max(b) as u64, c as u32)
         })
         .collect();
+    sides.par_sort_unstable();
+    // the opposite corner of every corner, or u32::MAX
+    let mut twin = vec![u32::MAX; 3 * tris.len()];
+    let mut i = 0;
+    while i < sides.len() {
+        let mut j = i + 1;
+        while j < sides.len() && sides[j].0 == sides[i].0 {
+            j += 1;
+        }
+        if j - i == 2 {
+            let (c, d) = (sides[i].1, sides[i + 1].1);
+            let ((a, b), (x, _)) = (ends(c as usize), ends(d as usize));
+            if a != b && a != x {
+                twin[c as usize] = d;
+                twin[d as usize] = c;
+            }
+        }
+        i = j;
+    }
     let unpaired_sides = twin.iter().filter(|&&t| t == u32::MAX).count();
     let mut pinched_vertices = 0;
     if unpaired_sides == 0 && !tris.is_empty() {
@@ -103,5 +116,11 @@ mod tests {
         // two tetrahedra sharing only vertex 0: one pinch
         let two: Vec<[u32; 3]> = tet.iter().chain(&tet.map(|t| t.map(|v| if v == 0 { 0 } else { v + 3 }))).copied().collect();
         assert_eq!(triangle_defects(&two), TriangleDefects { unpaired_sides: 0, pinched_vertices: 1 });
+        // a Sierpinski polyhedron pinches at every self-loop; a sponge nowhere
+        let s = crate::schemes::sierpinski::sierpinski_iterated(&crate::primitives::tetrahedron(), 2).unwrap();
+        let d = triangle_defects(&s.triangulate().tris);
+        assert_eq!((d.unpaired_sides, d.pinched_vertices), (0, s.n_self_loops()));
+        let sponge = crate::schemes::menger_sponge::menger_sponge(2).unwrap();
+        assert_eq!(triangle_defects(&sponge.triangulate().tris), TriangleDefects { unpaired_sides: 0, pinched_vertices: 0 });
     }
 }

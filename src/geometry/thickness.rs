@@ -158,16 +158,20 @@ impl Bvh {
         let inv = d.recip();
         let mut best: Option<(f64, u32)> = None;
         let mut tmax = f64::INFINITY;
-        // depth <= log2(T) + 1 < 40 for any u32 count; one pending sibling per level
-        let mut stack = [0u32; 64];
+        let root = self.nodes[0];
+        let Some(t0) = ray_box(o, d, inv, root.lo, root.hi, tmax) else { return None };
+        // (node, entry distance); depth <= log2(T) + 1 < 40 for any u32
+        // count, one pending sibling per level
+        let mut stack = [(0u32, 0.0f64); 64];
+        stack[0] = (0, t0);
         let mut top = 1usize;
         while top > 0 {
             top -= 1;
-            let node = self.nodes[stack[top] as usize];
-            match ray_box(o, d, inv, node.lo, node.hi, tmax) {
-                Some(_) => {}
-                None => continue,
+            let (k, entry) = stack[top];
+            if entry > tmax {
+                continue; // a nearer hit was found since it was pushed
             }
+            let node = self.nodes[k as usize];
             if node.n > 0 {
                 for &t in &self.order[node.a as usize..(node.a + node.n) as usize] {
                     if t == skip {
@@ -183,26 +187,26 @@ impl Bvh {
                 }
                 continue;
             }
-            // visit the nearer child first (pushed last)
-            let (l, r) = (stack[top] + 1, node.a);
+            // the nearer child is pushed last, so visited first
+            let (l, r) = (k + 1, node.a);
             let (nl, nr) = (self.nodes[l as usize], self.nodes[r as usize]);
             let dl = ray_box(o, d, inv, nl.lo, nl.hi, tmax);
             let dr = ray_box(o, d, inv, nr.lo, nr.hi, tmax);
-            let mut push = |x: u32| {
-                stack[top] = x;
+            let mut push = |x: u32, e: f64| {
+                stack[top] = (x, e);
                 top += 1;
             };
             match (dl, dr) {
                 (Some(a), Some(b)) if a <= b => {
-                    push(r);
-                    push(l);
+                    push(r, b);
+                    push(l, a);
                 }
-                (Some(_), Some(_)) => {
-                    push(l);
-                    push(r);
+                (Some(a), Some(b)) => {
+                    push(l, a);
+                    push(r, b);
                 }
-                (Some(_), None) => push(l),
-                (None, Some(_)) => push(r),
+                (Some(a), None) => push(l, a),
+                (None, Some(b)) => push(r, b),
                 (None, None) => {}
             }
         }
