@@ -7,10 +7,10 @@
     topomesh sierpinski IN OUT -n K
     topomesh menger IN OUT -n K [--thickness D]
 
-Warnings (a ``GeometryWarning``) are one line on stderr too. Every command that reads a file takes ``--close-boundaries``, ``--allow-multi-edges`` and
+Every command that reads a file takes ``--close-boundaries``, ``--allow-multi-edges`` and
 ``--repair`` (passed to :func:`topomesh.load`). Errors are one line on stderr, never a
 traceback: bad input (``MeshError``) exits with status 2, Ctrl-C with 130, a file or other
-failure with 1.
+failure with 1. Warnings (``GeometryWarning``, e.g. an STL that is not closed) are one line too.
 """
 
 from __future__ import annotations

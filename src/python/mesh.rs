@@ -470,7 +470,9 @@ impl PyMesh {
     /// Write to ``path``, atomically; the format comes from the extension:
     /// ``.npz`` and ``.ply`` keep every mesh exactly, ``.obj`` and ``.off``
     /// only meshes their polygon list gives back (else :class:`MeshError`
-    /// naming the lossless formats). See :func:`topomesh.io.save`.
+    /// naming the lossless formats), ``.stl`` (binary, float32) and
+    /// ``.3mf`` (through trimesh) the triangles of :meth:`triangulate`, for
+    /// printers. See :func:`topomesh.io.save`.
     fn save<'py>(slf: &Bound<'py, Self>, path: &Bound<'py, PyAny>) -> PyResult<()> {
         Self::delegate(slf, "topomesh.io", "save", &[path.clone()])?;
         Ok(())
