@@ -30,6 +30,8 @@ STUBS = ROOT / "python" / "topomesh" / "_core.pyi"
 GALLERY_DIR = DOCS / "_build" / "gallery"
 #: the gallery entries the site shows (names of topomesh.gallery entries and pictures)
 GALLERY = [
+    # the landing page
+    "genus3", "tetrahedron_sierpinski_doo_sabin",
     # subdivision and smoothing
     "cube_catmull_clark", "cube_doo_sabin", "cube_loop", "cube_sqrt3", "cube_simplest", "cube_midpoint", "cube_dual",
     # high-genus remeshing
@@ -133,14 +135,28 @@ def stub_docstring(app: Any, what: str, name: str, obj: Any, options: Any, lines
 
 
 def make_gallery(app: Any) -> None:
+    """Render :data:`GALLERY` and write ``page.md`` (a grid of the renders
+    and the peer table) for ``gallery.md`` to include."""
     from topomesh import gallery
 
     t0 = time.perf_counter()
     GALLERY_DIR.mkdir(parents=True, exist_ok=True)
-    gallery.run(GALLERY_DIR, only=GALLERY, progress=False)
+    rows = gallery.run(GALLERY_DIR, only=GALLERY, progress=False)
     missing = [n for n in GALLERY if not (GALLERY_DIR / f"{n}.png").is_file()]
     if missing:
         raise RuntimeError(f"gallery entries not rendered: {', '.join(missing)}")
+    titles = {e.name: e.title for e in gallery.entries()} | {p.name: p.title for p in gallery.pictures()}
+    lines = []
+    for n in GALLERY:
+        lines += [f"```{{image}} /_build/gallery/{n}.png", f":alt: {titles[n]}", ":width: 32%", "```"]
+    cols = {"V": "V", "E": "E", "F": "F", "genus": "genus", "self_loops": "loops",
+            "trimesh_watertight": "trimesh closed", "trimesh_genus": "trimesh genus", "manifold_genus": "manifold3d genus"}
+    lines += ["", "| entry | " + " | ".join(cols.values()) + " |", "|---" * (len(cols) + 1) + "|"]
+    for r in rows:
+        cells = [str(r.get(c, "")).replace(" (smoothed)", "*") for c in cols]
+        lines.append(f"| {r['title']} | " + " | ".join(cells) + " |")
+    lines += ["", "\\* after two Doo-Sabin steps, which open the zero-length self-loops."]
+    (GALLERY_DIR / "page.md").write_text("\n".join(lines) + "\n")
     from sphinx.util import logging
 
     logging.getLogger(__name__).info(f"gallery: {len(GALLERY)} images in {time.perf_counter() - t0:.1f} s -> {GALLERY_DIR}")
