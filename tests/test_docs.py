@@ -160,3 +160,55 @@ def test_browser_pages(site: Path, page: str, title: str, heading: str, min_imag
             assert driver.save_screenshot(str(SHOTS / f"{name}_explore.png"))
     finally:
         driver.quit()
+
+
+#: the sources each scheme page's formulas are taken from (module docs of the Rust schemes, the docs pages)
+FORMULA_SOURCES = {
+    "schemes/subdivision.md": ["src/schemes/catmull_clark.rs", "src/schemes/doo_sabin.rs", "src/schemes/loop_subdivision.rs",
+                               "src/schemes/sqrt3.rs", "src/schemes/simplest.rs", "src/schemes/midpoint.rs", "src/schemes/dual.rs"],
+    "schemes/high_genus.md": ["src/schemes/honeycomb.rs", "src/schemes/vertex_truncation.rs", "docs/ops.md"],
+    "schemes/sierpinski.md": ["src/schemes/sierpinski.rs"],
+    "schemes/menger.md": ["src/schemes/menger.rs", "src/schemes/menger_sponge.rs"],
+    "schemes/ifs.md": ["docs/ifs.md", "python/topomesh/ifs.py"],
+}
+
+
+def _norm(s: str) -> str:
+    import re
+
+    s = s.replace("`", "").replace("′", "'").replace("//!", " ")
+    return re.sub(r"\s+", " ", s).strip()
+
+
+def _formula_pieces(page: str) -> list[str]:
+    """The formulas a scheme page states: every line of its ```text blocks
+    (split where columns are aligned) and every cell of its count tables
+    (tables whose header names V′)."""
+    import re
+
+    pieces: list[str] = []
+    for block in re.findall(r"```text\n(.*?)```", page, flags=re.S):
+        for line in block.splitlines():
+            pieces += [p for p in re.split(r"\s{2,}", line.strip()) if p]
+    header: list[str] = []
+    for line in page.splitlines():
+        if not line.startswith("|"):
+            header = []
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if not header:
+            header = cells
+        elif not set(line) <= set("|- ") and any("V′" in h for h in header):
+            pieces += [c for c in cells if c]
+    return pieces
+
+
+@pytest.mark.parametrize("page", sorted(FORMULA_SOURCES))
+def test_scheme_formulas_come_from_the_code_docs(page: str) -> None:
+    """Nothing on a scheme page's formula blocks and count tables is
+    invented: each piece is in the module docs (or docs page) it cites."""
+    sources = _norm("\n".join((ROOT / s).read_text() for s in FORMULA_SOURCES[page]))
+    pieces = _formula_pieces((DOCS / page).read_text())
+    assert pieces, f"{page}: no formulas found"
+    missing = [p for p in pieces if _norm(p) not in sources]
+    assert not missing, f"{page}: not in {', '.join(FORMULA_SOURCES[page])}: {missing}"
