@@ -595,6 +595,10 @@ fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: std::ops::Range<us
 }
 
 /// See the module docs.
+///
+/// Cancellable ([`crate::cancel`]): once cancellation is requested it returns
+/// early with an incomplete triangulation, so a caller that may be cancelled
+/// calls [`crate::cancel::check`] before using the result.
 pub fn triangulate(m: &Mesh) -> Triangulation {
     let nf = m.n_faces();
     let nv = m.n_vertices() as u32;
@@ -616,7 +620,8 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
     let split = &split[..];
     let blocks: Vec<BlockOut> = (0..nf.div_ceil(BLOCK))
         .into_par_iter()
-        .map(|b| first_block(m, pos, split, b * BLOCK..nf.min((b + 1) * BLOCK)))
+        // cancelled: empty blocks, see `triangulate`'s docs
+        .map(|b| if crate::cancel::requested() { Default::default() } else { first_block(m, pos, split, b * BLOCK..nf.min((b + 1) * BLOCK)) })
         .collect();
     let nt = blocks.iter().map(|b| b.0.len()).sum();
     let nd = blocks.iter().map(|b| b.2.len()).sum();
@@ -645,7 +650,7 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
         }
         i = j;
     }
-    if bad.is_empty() {
+    if bad.is_empty() || crate::cancel::requested() {
         return Triangulation { points, tris, tri_face };
     }
     bad.sort_unstable();
@@ -670,7 +675,10 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
     // retry in face order, each face's accepted diagonals forbidden to the next
     let (mut out, mut added) = (Vec::new(), Vec::new());
     let mut redone: Vec<(u32, Vec<[u32; 3]>)> = Vec::with_capacity(bad.len());
-    for &f in &bad {
+    for (k, &f) in bad.iter().enumerate() {
+        if k % 1024 == 0 && crate::cancel::requested() {
+            break;
+        }
         face_cycle(m, FaceId(f), split, &mut s.cyc);
         let shape = project(&s.cyc, pos, &mut s.p);
         first_choice(&mut s, shape);
