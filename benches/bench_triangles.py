@@ -71,7 +71,12 @@ def main() -> None:
     rows = []
     for name, m in inputs():
         sizes = m.face_sizes
-        t_raw = median_time(lambda: m.face_indices, args.repeat)
+        # face_indices is computed once per mesh and then a cached view: time it on fresh copies
+        from topomesh import Mesh
+
+        fresh = [Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices, twins=m.corner_twins) for _ in range(args.repeat + 1)]
+        t_raw = median_time(lambda: fresh.pop().face_indices, args.repeat)
+        del fresh
         t_tri = median_time(lambda: m.triangles(), args.repeat)
         t_all = median_time(lambda: m.triangulate(), args.repeat)
         v, t, _ = m.triangulate()
@@ -108,8 +113,13 @@ def main() -> None:
     lines += ["| " + " | ".join(str(r[k]) for k in keys) + " |" for r in rows]
     lines += [
         "",
-        "The star is clipped in linear time (src/geometry/triangulate.rs, `star_clip`): earcut, z-order hashed, is "
+        "The star is clipped in linear time (src/geometry/triangulate/, `star_clip`): earcut, z-order hashed, is "
         "quadratic on it (long thin ears have large bounding boxes; 0.47 s at 20,000 corners, measured).",
+        "",
+        "In the Sierpinski case 216 k faces collide and are redone (src/geometry/triangulate/redo.rs): grouped into "
+        "the components of faces sharing a possible diagonal and redone in parallel, in face order within each, "
+        "which gives the sequential pass's output. Before that grouping (one sequential loop, SipHash sets) "
+        "`triangles()` took 1.68 s here (39× the raw export), now about 0.3 s (load average 6-8 on 2 cores).",
         "",
     ]
     out = Path(__file__).with_name("TRIANGLES.md")

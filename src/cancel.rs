@@ -22,6 +22,16 @@ pub fn check() -> Result<()> {
     }
 }
 
+/// [`check`] on every 64 Ki-th index of a sequential loop (`i % 65536 == 0`).
+#[inline]
+pub fn poll(i: usize) -> Result<()> {
+    if i & 0xffff == 0 {
+        check()
+    } else {
+        Ok(())
+    }
+}
+
 /// Whether cancellation was requested (for loops that cannot return an error,
 /// e.g. rayon `for_each` bodies: they skip their work and the caller's next
 /// [`check`] reports it).

@@ -1,4 +1,4 @@
-"""The triangulation (src/geometry/triangulate.rs) against its contract: on a
+"""The triangulation (src/geometry/triangulate/) against its contract: on a
 mesh without self-loops, one- or two-gons or repeated face vertices, every
 triangle edge has exactly two triangles (issue 14, reproducer 1), checked
 through the peer harness where the peers can judge."""

@@ -16,6 +16,9 @@ use glam::DVec3;
 /// `owner`) are tested pairwise per vertex; both triangles' owners of every
 /// crossing pair are returned. Linear in the output (a vertex's triangles
 /// are bounded by its valence), parallel over vertices.
+///
+/// Cancellable ([`crate::cancel`]): once cancellation is requested the
+/// result is incomplete, and callers check [`crate::cancel::check`].
 pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], first_inner: u32, only: Option<&[bool]>) -> Vec<u32> {
     use rayon::prelude::*;
     // points added by the triangulation have no owner
@@ -53,6 +56,10 @@ pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], fir
         .par_iter()
         .flat_map_iter(|&k| {
             let mut out: Vec<u32> = Vec::new();
+            // cancelled: nothing, the caller checks
+            if crate::cancel::requested() {
+                return out;
+            }
             // sweep along x over the bucket's boxes; two triangles of the
             // outer remeshing (all corners below `first_inner`) lie in the
             // input's faces and cannot cross
@@ -249,6 +256,8 @@ fn triangles_meet_edges(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 
 /// pairs with at least one focused triangle are tested, and the grid covers
 /// only the focused triangles' bounding box (a local check after a local
 /// change costs what the change touched). Pairs are sorted.
+///
+/// Cancellable like [`local_crossings`].
 pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
     let boxes: Vec<(DVec3, DVec3)> = tris
@@ -259,6 +268,10 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
         })
         .collect();
     let focused = |i: usize| focus.map_or(true, |f| f[i]);
+    let cancelled = crate::cancel::requested;
+    if cancelled() {
+        return Vec::new();
+    }
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     let mut n_focus = 0usize;
     for (i, b) in boxes.iter().enumerate() {
@@ -282,7 +295,10 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
         [k(c.x), k(c.y), k(c.z)]
     };
     let mut entries: Vec<(u32, u32)> = Vec::with_capacity(cand.len());
-    for &i in &cand {
+    for (k, &i) in cand.iter().enumerate() {
+        if k % 65536 == 0 && cancelled() {
+            return Vec::new();
+        }
         let (a, b) = (key(boxes[i as usize].0), key(boxes[i as usize].1));
         for x in a[0]..=b[0] {
             for y in a[1]..=b[1] {
@@ -292,7 +308,13 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
             }
         }
     }
+    if cancelled() {
+        return Vec::new();
+    }
     entries.par_sort_unstable();
+    if cancelled() {
+        return Vec::new();
+    }
     let starts: Vec<usize> = (0..entries.len()).filter(|&k| k == 0 || entries[k].0 != entries[k - 1].0).collect();
     let mut found: Vec<(u32, u32)> = starts
         .par_iter()
@@ -301,6 +323,10 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
             let b = starts.get(s + 1).copied().unwrap_or(entries.len());
             let cellv = &entries[a..b];
             let mut out = Vec::new();
+            // cancelled: nothing, the caller checks
+            if crate::cancel::requested() {
+                return out;
+            }
             for (k, &(_, i)) in cellv.iter().enumerate() {
                 for &(_, j) in &cellv[k + 1..] {
                     let (iu, ju) = (i as usize, j as usize);

@@ -50,6 +50,7 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
     let mut joined: Vec<u8> = Vec::new();
     let mut lines = bytes.split(|&b| b == b'\n').enumerate();
     while let Some((i, raw)) = lines.next() {
+        crate::cancel::poll(i)?;
         let lineno = i + 1;
         let mut line = strip_cr(raw);
         // `\` at the end continues the statement on the next line

@@ -66,7 +66,8 @@ impl Mesh {
         let mut offsets = Vec::with_capacity(sizes.len() + 1);
         offsets.push(0usize);
         let mut acc = 0usize;
-        for &s in sizes {
+        for (f, &s) in sizes.iter().enumerate() {
+            crate::cancel::poll(f)?;
             // checked: user sizes near 2^63 would wrap the sum
             acc = acc.checked_add(s as usize).ok_or_else(|| {
                 MeshError::InvalidArgument(format!("face sizes add up to more than the {} face indices given", indices.len()))
@@ -91,8 +92,10 @@ impl Mesh {
         // at the end of a face, which wraps to its first corner
         let mut head: Vec<u32> = (0..n).into_par_iter().with_min_len(PAR_CHUNK).map(|c| if c + 1 < n { verts[c + 1] } else { 0 }).collect();
         for f in 0..sizes.len() {
+            crate::cancel::poll(f)?;
             head[offsets[f + 1] - 1] = verts[offsets[f]];
         }
+        crate::cancel::check()?;
         // corners per vertex: point-spheres are size-1 faces whose vertex is used once
         let mut uses = vec![0u32; nv];
         for &v in &verts {
@@ -121,7 +124,11 @@ impl Mesh {
             .par_chunks(chunk_len)
             .map(|ch| {
                 let mut cnt = vec![0u32; nv];
-                for &lo in ch {
+                for (i, &lo) in ch.iter().enumerate() {
+                    // cancelled: garbage counts, the check below reports it
+                    if i % 65536 == 0 && crate::cancel::requested() {
+                        break;
+                    }
                     if lo != NONE {
                         cnt[lo as usize] += 1;
                     }
@@ -129,9 +136,11 @@ impl Mesh {
                 cnt
             })
             .collect();
+        crate::cancel::check()?;
         let mut bucket_start = vec![0u32; nv + 1];
         let mut acc = 0u32;
         for v in 0..nv {
+            crate::cancel::poll(v)?;
             bucket_start[v] = acc;
             for cnt in fill.iter_mut() {
                 let k = cnt[v];
@@ -145,6 +154,10 @@ impl Mesh {
             let out = SyncPtr(bucket.as_mut_ptr());
             lo_of.par_chunks(chunk_len).zip(fill.par_iter_mut()).enumerate().for_each(|(k, (ch, slot))| {
                 for (i, &lo) in ch.iter().enumerate() {
+                    // cancelled: stop early (writes stay in their ranges)
+                    if i % 65536 == 0 && crate::cancel::requested() {
+                        break;
+                    }
                     if lo != NONE {
                         // SAFETY: slot[lo] runs through the slots reserved for
                         // chunk k in bucket lo (the prefix above gives every
@@ -158,6 +171,7 @@ impl Mesh {
         }
         drop(fill);
         drop(lo_of);
+        crate::cancel::check()?;
         // pair each bucket's sides, in parallel over vertex ranges; the error
         // reported is the one of the lowest vertex, as in a sequential sweep,
         // and unmatched sides are listed in vertex order
@@ -166,6 +180,7 @@ impl Mesh {
         let pieces: Vec<Result<Vec<u32>>> = (0..nv.div_ceil(VERTEX_CHUNK))
             .into_par_iter()
             .map(|k| {
+                crate::cancel::check()?;
                 let mut unmatched: Vec<u32> = Vec::new();
                 let mut group: Vec<(u32, u32)> = Vec::new(); // (other vertex, corner)
                 for lo in k * VERTEX_CHUNK..((k + 1) * VERTEX_CHUNK).min(nv) {
@@ -400,6 +415,7 @@ impl Mesh {
             }
         }
         for f in 0..nf {
+            crate::cancel::poll(f)?;
             let s = offsets[f] as usize;
             if twin[s] == NONE {
                 let v = verts[s];
@@ -477,7 +493,10 @@ fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
         base.push(acc);
         acc += c;
     }
-    let mut first_ids = vec![NONE; n];
+    // only the first corners' entries are read below: zeroed (calloc) memory
+    // is mapped lazily, so the parallel fill takes its page faults instead
+    // of a sequential memset
+    let mut first_ids = vec![0u32; n];
     first_ids.par_chunks_mut(PAR_CHUNK).enumerate().for_each(|(k, chunk)| {
         if crate::cancel::requested() {
             return;
@@ -495,7 +514,7 @@ fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
         .with_min_len(PAR_CHUNK)
         .map(|c| {
             let t = twin[c];
-            if t == NONE {
+            if t == NONE || crate::cancel::requested() {
                 NONE
             } else if t as usize > c {
                 first_ids[c]

@@ -311,7 +311,7 @@ fn ear_clipping_handles_a_star() {
     let m = Mesh::from_polygons(pos.clone(), &[10, 10], &idx, BuildOptions::default()).unwrap();
     let (tris, _) = m.triangles();
     // both sides need every tip's chord, so the second side is fanned
-    // around an added point (src/geometry/triangulate.rs)
+    // around an added point (src/geometry/triangulate/)
     assert_eq!(tris.len(), 8 + 10);
     // every triangle of the top face has positive area and lies inside the star
     let area: f64 = tris[..8]

@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 /// n_polylines, n_points)``; indices are 0-based in the file's ``v`` order.
 #[pyfunction]
 fn _read_obj<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Bound<'py, PyAny>> {
-    let d = py.detach(|| crate::io::read_obj(&path)).map_err(err)?;
+    let d = super::run_interruptible(py, || crate::io::read_obj(&path))?;
     let out = (
         vec3_array(py, &d.positions),
         i64_array(py, d.sizes),

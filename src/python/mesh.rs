@@ -88,7 +88,7 @@ impl PyMesh {
 }
 
 fn build_twins(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], twins: &[i64]) -> PyResult<PyMesh> {
-    let m = py.detach(|| Mesh::from_corner_twins_i64(pos, sizes, idx, twins)).map_err(err)?;
+    let m = super::run_interruptible(py, || Mesh::from_corner_twins_i64(pos, sizes, idx, twins))?;
     Ok(PyMesh::wrap(m))
 }
 
@@ -345,7 +345,10 @@ impl PyMesh {
     /// ``return_faces=True`` also returns the source face of every triangle.
     #[pyo3(signature = (return_faces = false))]
     fn triangles<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
-        let (t, f) = py.detach(|| self.inner.triangles());
+        let (t, f) = super::run_interruptible(py, || {
+            let t = self.inner.triangles();
+            crate::cancel::check().map(|()| t)
+        })?;
         let tris = u32_rows(py, &t).into_any();
         if return_faces {
             Ok((tris, i64_array(py, f.iter().map(|&x| x as i64))).into_pyobject(py)?.into_any())
@@ -376,11 +379,14 @@ impl PyMesh {
     fn triangulate<'py>(
         &self,
         py: Python<'py>,
-    ) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>, Bound<'py, PyArray1<i64>>) {
-        let t = py.detach(|| self.inner.triangulate());
+    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>, Bound<'py, PyArray1<i64>>)> {
+        let t = super::run_interruptible(py, || {
+            let t = self.inner.triangulate();
+            crate::cancel::check().map(|()| t)
+        })?;
         let mut v = self.inner.positions().to_vec();
         v.extend_from_slice(&t.points);
-        (vec3_array(py, &v), u32_rows(py, &t.tris), i64_array(py, t.tri_face.iter().map(|&x| x as i64)))
+        Ok((vec3_array(py, &v), u32_rows(py, &t.tris), i64_array(py, t.tri_face.iter().map(|&x| x as i64))))
     }
 
     /// Check every structural invariant; raise :class:`MeshError` naming the

@@ -231,13 +231,15 @@ impl PyMesh {
     /// sharing an edge never count; sharing a vertex, only when they meet
     /// away from it. The exact check ``menger``, ``add_handle`` and
     /// ``create_pipe`` use (``src/geometry/crossing.rs``); near-linear.
-    fn self_intersections<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {
-        let pairs = py.detach(|| {
+    fn self_intersections<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<i64>>> {
+        let pairs = super::run_interruptible(py, || {
             let (tris, p) = crate::geometry::triangles_with_points(&self.inner);
-            crate::geometry::crossing::crossing_pairs(&p, &tris, None, true)
-        });
+            crate::cancel::check()?;
+            let pairs = crate::geometry::crossing::crossing_pairs(&p, &tris, None, true);
+            crate::cancel::check().map(|()| pairs)
+        })?;
         let rows: Vec<[u32; 2]> = pairs.iter().map(|&(i, j)| [i, j]).collect();
-        super::convert::u32_rows(py, &rows)
+        Ok(super::convert::u32_rows(py, &rows))
     }
 
     /// The offset shell of this mesh for rind modeling (dissertation ch.
@@ -261,7 +263,10 @@ impl PyMesh {
 /// operator made and raises a `GeometryWarning` with the count when they
 /// pass through the rest of the surface.
 fn warn_new_crossings(py: Python<'_>, op: &str, before: &crate::Mesh, after: &crate::Mesh) -> PyResult<()> {
-    let n = py.detach(|| crate::geometry::crossing::crossings_of_new_faces(before, after));
+    let n = super::run_interruptible(py, || {
+        let n = crate::geometry::crossing::crossings_of_new_faces(before, after);
+        crate::cancel::check().map(|()| n)
+    })?;
     if n > 0 {
         let msg = format!(
             "{op}: the new faces pass through the surface: {n} crossing triangle pairs (the mesh is a valid manifold but self-intersecting; choose other faces, weights or corners)"

@@ -56,7 +56,7 @@ fn run<'py>(
     close_boundaries: bool,
 ) -> PyResult<(PyMesh, Bound<'py, PyDict>)> {
     let pos = positions(py, vertices)?;
-    let (m, r) = py.detach(|| repair_mesh(&pos, sizes, idx, tolerance, close_boundaries)).map_err(err)?;
+    let (m, r) = super::run_interruptible(py, || repair_mesh(&pos, sizes, idx, tolerance, close_boundaries))?;
     Ok((PyMesh::wrap(m), report_dict(py, &r)?))
 }
 

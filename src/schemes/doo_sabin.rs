@@ -46,7 +46,7 @@ pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("doo_sabin", 4 * m.n_halfedges(), m.n_halfedges())?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m);
+    let vl = VertexLayout::new(m)?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     let (next, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -57,9 +57,12 @@ fn step(m: &Mesh) -> Result<Mesh> {
         .into_par_iter()
         .with_min_len(MIN_LEN)
         .map(|f| {
+            let mut s = [DVec3::ZERO; 3];
+            if crate::cancel::requested() {
+                return s; // the check below reports it
+            }
             let hs = fl.corners(f);
             let n = hs.len();
-            let mut s = [DVec3::ZERO; 3];
             let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
             let (mut cs, mut sn) = (1.0, 0.0);
             for &h in hs {
@@ -73,17 +76,22 @@ fn step(m: &Mesh) -> Result<Mesh> {
             s
         })
         .collect();
+    crate::cancel::check()?;
     let mut pos = vec![DVec3::ZERO; nh];
     // corner c belongs to the face whose range holds it: walk faces in parallel
     // by splitting the buffer along face offsets
     let mut chunks: Vec<&mut [DVec3]> = Vec::with_capacity(nf);
     let mut rest: &mut [DVec3] = &mut pos;
     for f in 0..nf {
+        crate::cancel::poll(f)?;
         let (a, b) = rest.split_at_mut(fl.degree(f));
         chunks.push(a);
         rest = b;
     }
     chunks.into_par_iter().with_min_len(MIN_LEN).enumerate().for_each(|(f, out)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         let hs = fl.corners(f);
         let n = hs.len();
         if n == 1 {
@@ -101,6 +109,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         }
     });
 
+    crate::cancel::check()?;
     // --- connectivity
     let (hu, eu) = (nh as u32, ne as u32);
     let vbase = hu + 4 * eu;
@@ -119,12 +128,18 @@ fn step(m: &Mesh) -> Result<Mesh> {
         let (te, tvf) = rest_t.split_at_mut(4 * ne);
         // F-faces: corner c is vertex c
         cf.par_iter_mut().zip(tf.par_iter_mut()).with_min_len(MIN_LEN).enumerate().for_each(|(c, (v, t))| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
             let h = fl.fh[c];
             *v = c as u32;
             *t = hu + 4 * (h >> 1) + 2 * (h & 1);
         });
         // E-faces [p(next a), p(a), p(next b), p(b)]
         ce.par_chunks_mut(4).zip(te.par_chunks_mut(4)).with_min_len(MIN_LEN).enumerate().for_each(|(e, (v, t))| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
             let (a, b) = (2 * e, 2 * e + 1);
             let (na, nb) = (next[a] as usize, next[b] as usize);
             v[0] = cidx[na];
@@ -139,6 +154,9 @@ fn step(m: &Mesh) -> Result<Mesh> {
         // V-faces in rotation order: corner of x, twin on the E-face of rotate(x)
         let (cvf, tvf) = (SyncPtr(cvf.as_mut_ptr()), SyncPtr(tvf.as_mut_ptr()));
         (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|x| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
             let slot = vl.vidx[x] as usize;
             let r = prev[x] ^ 1;
             // SAFETY: vidx is a permutation of 0..nh, so every slot is written once.
@@ -148,6 +166,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             }
         });
     }
+    crate::cancel::check()?;
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 

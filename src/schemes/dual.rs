@@ -26,7 +26,7 @@ pub fn dual(m: &Mesh) -> Result<Mesh> {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("dual", m.n_halfedges(), m.n_faces())?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m);
+    let vl = VertexLayout::new(m)?;
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (next, _, face) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -37,6 +37,9 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let mut tw = vec![0u32; nh];
     let (pc, pt) = (super::hosts::SyncPtr(cv.as_mut_ptr()), super::hosts::SyncPtr(tw.as_mut_ptr()));
     (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         let slot = vl.vidx[h] as usize;
         // side face(h) -> face(rotate h) crosses edge(prev h); its twin is the
         // side at next(rotate h) around the other end
@@ -47,6 +50,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             *pt.get().add(slot) = vl.vidx[next[r as usize] as usize];
         }
     });
+    crate::cancel::check()?;
     let sizes: Vec<u32> = (0..nv).map(|v| vl.valence(v)).collect();
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }

@@ -63,7 +63,7 @@ pub fn default_tension(n: usize) -> f64 {
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m);
+    let vl = VertexLayout::new(m)?;
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     let (next, vert, face) = m.halfedge_columns();
@@ -81,6 +81,10 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         .into_par_iter()
         .map(|f| {
             let hs = fl.corners(f);
+            // cancelled: the check below reports it
+            if crate::cancel::requested() {
+                return Sums::default();
+            }
             let Some(&h0) = hs.first() else {
                 return Sums::default(); // a point-sphere face
             };
@@ -98,11 +102,15 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
             out
         })
         .collect();
+    crate::cancel::check()?;
 
     // ---- new positions: [one per old half-edge | point-spheres]
     let mut new_pos: Vec<DVec3> = (0..nh)
         .into_par_iter()
         .map(|h| {
+            if crate::cancel::requested() {
+                return DVec3::ZERO;
+            }
             let f = face[h] as usize;
             let nn = fl.degree(f);
             let p = edge_point(pos, vert[h], vert[h ^ 1], t);
@@ -118,9 +126,10 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
             sm.origin + a * p + c1 * rest
         })
         .collect();
+    crate::cancel::check()?;
 
     // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex]
-    let faces = FaceThenVertexFaces::new(m, &fl, &vl, 1, 2, &mut new_pos);
+    let faces = FaceThenVertexFaces::new(m, &fl, &vl, 1, 2, &mut new_pos)?;
     let out_off = &faces.off;
     let vb = faces.vertex_base();
     let n_corners = vb as usize + 2 * nh;
@@ -131,6 +140,7 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     // v'_g, then v'_{prev g} (the back face's edge g -> prev g, then the inserted edge)
     let vc_even = |g: usize| vb + 2 * vl.vidx[g];
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         let hp = m.he_prev[h] as usize;
         let hn = next[h] as usize;
         let cf = front(h) as usize;

@@ -123,7 +123,8 @@ pub(crate) struct VertexLayout {
 }
 
 impl VertexLayout {
-    pub fn new(m: &Mesh) -> Self {
+    /// Fails only when cancelled, polled every 64 Ki vertices.
+    pub fn new(m: &Mesh) -> Result<Self> {
         let nv = m.n_vertices();
         let nh = m.n_halfedges();
         let mut off = Vec::with_capacity(nv + 1);
@@ -131,6 +132,7 @@ impl VertexLayout {
         off.push(0u32);
         let mut k = 0u32;
         for v in 0..nv {
+            crate::cancel::poll(v)?;
             let s = m.v_out[v];
             if s & POINT != 0 {
                 off.push(k);
@@ -147,7 +149,7 @@ impl VertexLayout {
             }
             off.push(k);
         }
-        VertexLayout { off, vidx }
+        Ok(VertexLayout { off, vidx })
     }
 
     /// Number of outgoing half-edges of `v` (0 for a point-sphere).
@@ -174,8 +176,8 @@ pub(crate) struct FaceThenVertexFaces {
 impl FaceThenVertexFaces {
     /// Old face `f` gets `per_corner · degree(f)` corners, vertex `v`
     /// `per_slot · valence(v)`. Appends the point-sphere vertices to `pos`,
-    /// in vertex order.
-    pub fn new(m: &Mesh, fl: &FaceLayout, vl: &VertexLayout, per_corner: u32, per_slot: u32, pos: &mut Vec<DVec3>) -> Self {
+    /// in vertex order. Fails only when cancelled.
+    pub fn new(m: &Mesh, fl: &FaceLayout, vl: &VertexLayout, per_corner: u32, per_slot: u32, pos: &mut Vec<DVec3>) -> Result<Self> {
         let (nf, nv) = (m.n_faces(), m.n_vertices());
         let mut point_id = vec![NONE; nv];
         let n_points = m.v_out.iter().filter(|&&o| o & POINT != 0).count();
@@ -192,17 +194,19 @@ impl FaceThenVertexFaces {
         let mut off: Vec<u32> = Vec::with_capacity(nf + 1);
         off.push(0);
         for f in 0..nf {
+            crate::cancel::poll(f)?;
             let d = (per_corner * fl.degree(f) as u32).max(1); // a point-sphere face keeps its one corner
             sizes.push(d);
             off.push(off[f] + d);
         }
         for v in 0..nv {
+            crate::cancel::poll(v)?;
             let k = vl.valence(v);
             if k > 0 {
                 sizes.push(per_slot * k);
             }
         }
-        FaceThenVertexFaces { sizes, off, point_id }
+        Ok(FaceThenVertexFaces { sizes, off, point_id })
     }
 
     /// The first corner of the vertex faces.
@@ -272,10 +276,12 @@ pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) ->
             rest.f_hole.push(false);
         }
     }
+    crate::cancel::check()?;
     rest.he_next = m.he_next.clone();
     rest.he_prev = m.he_prev.clone();
     rest.he_vert = m.he_vert.iter().map(|&v| vmap[v as usize]).collect();
     rest.he_face = m.he_face.iter().map(|&f| fmap[f as usize]).collect();
+    crate::cancel::check()?;
     let mut out = if rest.n_faces() == 0 { Mesh::new() } else { scheme(&rest)? };
     for p in points {
         let (v, f) = (out.pos.len() as u32, out.f_start.len() as u32);

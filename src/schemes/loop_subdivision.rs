@@ -57,6 +57,9 @@ fn step(m: &Mesh) -> Result<Mesh> {
     rayon::join(
         || {
             ep.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, out)| {
+                if crate::cancel::requested() {
+                    return; // the check after the loop reports it
+                }
                 let (a, b) = (2 * e, 2 * e + 1);
                 let ab = p[vert[a] as usize] + p[vert[b] as usize];
                 let cd = p[vert[prev[a] as usize] as usize] + p[vert[prev[b] as usize] as usize];
@@ -65,12 +68,16 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
         || {
             vp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, out)| {
+                if crate::cancel::requested() {
+                    return; // the check after the loop reports it
+                }
                 let (sum, n) = super::hosts::neighbor_sum(m, v);
                 let beta = loop_beta(n);
                 *out = p[v] * (1.0 - n as f64 * beta) + sum * beta;
             })
         },
     );
+    crate::cancel::check()?;
     let face_point = vec![NONE; nf];
     primal_host(m, &fl, &face_point, pos)
 }

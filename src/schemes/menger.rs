@@ -415,6 +415,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     for f in m.faces() {
+        crate::cancel::poll(f.0 as usize)?;
         if m.face_halfedge(f).is_none() || m.face_degree(f) < 3 {
             return Err(MeshError::InvalidArgument(format!(
                 "menger: face {} has {} corner(s); every face needs at least three",
@@ -432,6 +433,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     let mut face_n = vec![DVec3::ZERO; nf];
     let mut face_d = vec![0.0; nf];
     for f in m.faces() {
+        crate::cancel::poll(f.0 as usize)?;
         let nw = m.face_newell(f);
         let n = nw.normalize_or_zero();
         if n == DVec3::ZERO {
@@ -478,6 +480,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     // --- inset corners
     let mut q = vec![DVec3::ZERO; nh];
     for h in m.halfedges() {
+        crate::cancel::poll(h.0 as usize)?;
         let f = m.face(h).idx();
         let n = face_n[f];
         let pv = p(h);
@@ -513,12 +516,14 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     // --- merge offset corners across collapsed edges, per vertex
     let mut parent: Vec<u32> = (0..nh as u32).collect();
     for h in m.halfedges() {
+        crate::cancel::poll(h.0 as usize)?;
         if kind[h.edge().idx()] == EdgeKind::Collapse {
             // corners h and next(twin(h)) lie on either side of edge(h) at its tail
             crate::union_find::union(&mut parent, h.0, m.next(h.twin()).0);
         }
     }
     for v in m.vertices() {
+        crate::cancel::poll(v.0 as usize)?;
         if !full[v.idx()] {
             continue;
         }
@@ -530,6 +535,7 @@ fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
     let mut group = vec![u32::MAX; nh];
     let mut members: Vec<Vec<u32>> = Vec::new();
     for h in 0..nh as u32 {
+        crate::cancel::poll(h as usize)?;
         let r = crate::union_find::root(&mut parent, h);
         if group[r as usize] == u32::MAX {
             group[r as usize] = members.len() as u32;
@@ -694,6 +700,7 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
     let mut ip = pl.group_pos.clone();
     ip.resize(ng + 2 * ne, DVec3::NAN);
     for e in m.edges() {
+        crate::cancel::poll(e.0 as usize)?;
         if pl.kind[e.idx()] != EdgeKind::Miter {
             continue;
         }
@@ -743,6 +750,7 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
         }
     }
     for e in m.edges() {
+        crate::cancel::poll(e.0 as usize)?;
         if pl.kind[e.idx()] != EdgeKind::Miter {
             continue;
         }
@@ -760,6 +768,7 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
     let mut parent: Vec<u32> = (0..ip.len() as u32).collect();
     let mut cyc: Vec<u32> = Vec::new();
     for v in m.vertices() {
+        crate::cancel::poll(v.0 as usize)?;
         let Some(h0) = m.vertex_halfedge(v) else { continue };
         cyc.clear();
         let mut dmin = f64::INFINITY;
@@ -990,6 +999,7 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
     let mut out_pos: Vec<DVec3> = Vec::with_capacity(i0 + pl.group_pos.len());
     out_pos.extend_from_slice(pos);
     for e in m.edges() {
+        crate::cancel::poll(e.0 as usize)?;
         let h = e.halfedge();
         let (a, b) = (pos[m.vertex(h).idx()], pos[m.head(h).idx()]);
         let len = (b - a).length();
@@ -1035,6 +1045,7 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
     let ng = pl.group_pos.len();
     let mut group_vertex = vec![u32::MAX; ng];
     for h in m.halfedges() {
+        crate::cancel::poll(h.0 as usize)?;
         group_vertex[pl.group[h.idx()] as usize] = m.vertex(h).0;
     }
     let mut owner = vec![u32::MAX; q0];
@@ -1173,6 +1184,7 @@ fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), usize)> {
         let only = (round > 0).then_some(&recheck[..]);
         let mut lc = local_crossings(&tri_pos, &tris, &cur.0.owner, cur.0.first_inner, only);
         drop((tris, tri_pos));
+        crate::cancel::check()?;
         for (v, c) in crossing.iter_mut().enumerate() {
             if only.map_or(true, |r| r[v]) {
                 *c = false;

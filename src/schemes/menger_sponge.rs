@@ -155,6 +155,9 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     // --- exposed-face mask per cell, face offsets per cell
     let mut mask = vec![0u8; n * slab];
     mask.par_chunks_mut(slab).enumerate().for_each(|(x, row)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         for y in 0..n {
             for z in 0..n {
                 let c = [x as i64, y as i64, z as i64];
@@ -183,12 +186,16 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     debug_assert_eq!(nf as u64, menger_sponge_faces(level));
     let mut off = vec![0u32; n * slab];
     off.par_chunks_mut(slab).enumerate().for_each(|(x, row)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         let mut k = slab_start[x] as u32;
         for (o, m) in row.iter_mut().zip(&mask[x * slab..(x + 1) * slab]) {
             *o = k;
             k += m.count_ones();
         }
     });
+    crate::cancel::check()?;
     let face_id = |c: [i64; 3], d: usize| -> u32 {
         let i = g.cell(c);
         off[i] + (mask[i] & ((1u8 << d) - 1)).count_ones()
@@ -198,6 +205,9 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     let gp = n + 1;
     let mut vid = vec![u32::MAX; gp * gp * gp];
     vid.par_chunks_mut(gp * gp).enumerate().for_each(|(x, row)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         for y in 0..gp {
             for z in 0..gp {
                 let (mut any_in, mut any_out) = (false, false);
@@ -217,7 +227,8 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     });
     crate::cancel::check()?;
     let mut nv = 0u32;
-    for v in vid.iter_mut() {
+    for (i, v) in vid.iter_mut().enumerate() {
+        crate::cancel::poll(i)?;
         if *v == 0 {
             *v = nv;
             nv += 1;
@@ -228,6 +239,9 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     {
         let pos_ptr = SyncPtr(pos.as_mut_ptr());
         vid.par_chunks(gp * gp).enumerate().for_each(|(x, row)| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
             for y in 0..gp {
                 for z in 0..gp {
                     let v = row[y * gp + z];
@@ -261,6 +275,9 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     crate::cancel::check()?;
     let bad = std::sync::atomic::AtomicBool::new(false);
     chunks.into_par_iter().for_each(|(x, cvs, tws)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         let mut k = 0usize;
         for y in 0..n {
             for z in 0..n {

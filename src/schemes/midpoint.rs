@@ -35,6 +35,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let mut face_point = vec![NONE; nf];
     let mut k = 0u32;
     for (f, fp) in face_point.iter_mut().enumerate() {
+        crate::cancel::poll(f)?;
         if fl.degree(f) != 3 {
             *fp = k;
             k += 1;
@@ -43,8 +44,16 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let p = &m.pos;
     let mut pos = Vec::with_capacity(nv + ne + k as usize);
     pos.extend_from_slice(p);
-    pos.par_extend((0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5));
+    pos.par_extend((0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+        // cancelled: zeros, the check below reports it
+        if crate::cancel::requested() {
+            DVec3::ZERO
+        } else {
+            (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5
+        }
+    }));
     for f in 0..nf {
+        crate::cancel::poll(f)?;
         if face_point[f] != NONE {
             let hs = fl.corners(f);
             let s: DVec3 = hs.iter().map(|&h| p[vert[h as usize] as usize]).sum();

@@ -97,7 +97,8 @@ impl Walk {
             .into_par_iter()
             .with_min_len(4096)
             .map(|h| {
-                if is_loop(h) {
+                // cancelled: garbage, the caller's next poll reports it
+                if is_loop(h) || crate::cancel::requested() {
                     return (NONE, 0);
                 }
                 let mut k = 0u32;
@@ -143,6 +144,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
     let mut mid = vec![NONE; nh / 2];
     let mut n_mid = 0usize;
     for (e, slot) in mid.iter_mut().enumerate() {
+        crate::cancel::poll(e)?;
         if w.is_nonloop(2 * e) {
             *slot = (nv + n_mid) as u32;
             n_mid += 1;
@@ -177,6 +179,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
     let mut sizes: Vec<u32> = Vec::with_capacity(2 * n_mid + 2 * n_mid / 3 + 16);
     let mut n_corners = 0u32;
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         if w.is_nonloop(h) {
             base[h] = n_corners;
             let s = w.loops_after[h] + 3;
@@ -189,6 +192,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
     let mut cone_pos = vec![NONE; nh];
     let mut next_pos = 0u32;
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         if !w.is_nonloop(h) || cone_pos[h] != NONE {
             continue;
         }
@@ -225,6 +229,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
     // --- output slot of every input self-loop half-edge
     let mut loop_slot = vec![NONE; nh];
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         if w.is_nonloop(h) {
             let mut x = m.next(HalfedgeId(h as u32)).idx();
             for j in 0..w.loops_after[h] {
@@ -253,6 +258,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
     // triangle of π(h), the non-loop half-edge before h in its face
     let mut pi = vec![NONE; nh];
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         if w.is_nonloop(h) {
             pi[w.nu[h] as usize] = h as u32;
         }
@@ -262,6 +268,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
         base[p] + w.loops_after[p] + 1
     };
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         if !w.is_nonloop(h) {
             continue;
         }
@@ -288,6 +295,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
         tw[b + k + 2] = back0 + 2 * cone_pos[h ^ 1] + 1;
     }
     for bb in 0..nh {
+        crate::cancel::poll(bb)?;
         if !w.is_nonloop(bb) {
             continue;
         }
@@ -373,6 +381,7 @@ pub fn sierpinski_by_operators(m: &Mesh) -> Result<Mesh> {
     //    mid(h) -> mid(ν(h)) on the central side.
     let mut central = vec![NONE; nh];
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         if !w.is_nonloop(h) {
             continue;
         }

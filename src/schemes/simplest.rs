@@ -22,6 +22,7 @@
 use super::hosts::{check_output_size, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// One level of mid-edge ("simplest") subdivision. See the module docs.
@@ -32,12 +33,20 @@ pub fn simplest(m: &Mesh) -> Result<Mesh> {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m);
+    let vl = VertexLayout::new(m)?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     let (next, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
     let p = &m.pos;
-    let pos: Vec<_> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5).collect();
+    let pos: Vec<_> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+        // cancelled: zeros, the check below reports it
+        if crate::cancel::requested() {
+            DVec3::ZERO
+        } else {
+            (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5
+        }
+    }).collect();
+    crate::cancel::check()?;
     let hu = nh as u32;
     let mut cv = vec![0u32; 2 * nh];
     let mut tw = vec![0u32; 2 * nh];
@@ -45,12 +54,18 @@ fn step(m: &Mesh) -> Result<Mesh> {
         let (cf, cvf) = cv.split_at_mut(nh);
         let (tf, tvf) = tw.split_at_mut(nh);
         cf.par_iter_mut().zip(tf.par_iter_mut()).with_min_len(MIN_LEN).enumerate().for_each(|(c, (v, t))| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
             let h = fl.fh[c];
             *v = h >> 1;
             *t = hu + vl.vidx[next[h as usize] as usize];
         });
         let (pc, pt) = (super::hosts::SyncPtr(cvf.as_mut_ptr()), super::hosts::SyncPtr(tvf.as_mut_ptr()));
         (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|x| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
             let slot = vl.vidx[x] as usize;
             // SAFETY: vidx is a permutation of 0..nh.
             unsafe {
@@ -59,6 +74,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             }
         });
     }
+    crate::cancel::check()?;
     let mut sizes = Vec::with_capacity(nf + nv);
     sizes.extend((0..nf).map(|f| fl.degree(f) as u32));
     sizes.extend((0..nv).map(|v| vl.valence(v)));

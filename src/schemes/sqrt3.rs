@@ -46,6 +46,9 @@ fn step(m: &Mesh) -> Result<Mesh> {
     rayon::join(
         || {
             vp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, out)| {
+                if crate::cancel::requested() {
+                    return; // the check after the loop reports it
+                }
                 let (sum, n) = neighbor_sum(m, v);
                 let a = sqrt3_alpha(n);
                 *out = p[v] * (1.0 - a) + sum * (a / n as f64);
@@ -53,6 +56,9 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
         || {
             fp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, out)| {
+                if crate::cancel::requested() {
+                    return; // the check after the loop reports it
+                }
                 let s = m.f_start[f];
                 let mut h = s;
                 let mut sum = DVec3::ZERO;
@@ -69,10 +75,14 @@ fn step(m: &Mesh) -> Result<Mesh> {
             })
         },
     );
+    crate::cancel::check()?;
     let nvu = nv as u32;
     let mut cv = vec![0u32; 3 * nh];
     let mut tw = vec![0u32; 3 * nh];
     cv.par_chunks_mut(3).zip(tw.par_chunks_mut(3)).with_min_len(MIN_LEN).enumerate().for_each(|(h, (c, t))| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
         let t_h = h ^ 1;
         c[0] = vert[h];
         c[1] = nvu + face[t_h];
@@ -81,6 +91,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         t[1] = 3 * t_h as u32 + 1;
         t[2] = 3 * (prev[h] ^ 1);
     });
+    crate::cancel::check()?;
     let sizes = vec![3u32; nh];
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }

@@ -90,22 +90,25 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     mode.check()?;
     let r = mode.ratio();
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m);
+    let vl = VertexLayout::new(m)?;
     let nh = m.n_halfedges();
     let (next, vert, face) = m.halfedge_columns();
     let pos = m.positions();
     let merge = r == 0.5;
 
     // ---- positions: [cut points (per half-edge, or per edge when merged) | point-spheres]
+    // (cancelled: zeros, the check below reports it)
+    let stop = crate::cancel::requested;
     let mut new_pos: Vec<DVec3> = if merge {
-        (0..nh / 2).into_par_iter().map(|e| 0.5 * (pos[vert[2 * e] as usize] + pos[vert[2 * e + 1] as usize])).collect()
+        (0..nh / 2).into_par_iter().map(|e| if stop() { DVec3::ZERO } else { 0.5 * (pos[vert[2 * e] as usize] + pos[vert[2 * e + 1] as usize]) }).collect()
     } else {
-        (0..nh).into_par_iter().map(|h| (1.0 - r) * pos[vert[h] as usize] + r * pos[vert[h ^ 1] as usize]).collect()
+        (0..nh).into_par_iter().map(|h| if stop() { DVec3::ZERO } else { (1.0 - r) * pos[vert[h] as usize] + r * pos[vert[h ^ 1] as usize] }).collect()
     };
+    crate::cancel::check()?;
 
     // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex]
     let per_corner = if merge { 1 } else { 2 };
-    let faces = FaceThenVertexFaces::new(m, &fl, &vl, per_corner, 1, &mut new_pos);
+    let faces = FaceThenVertexFaces::new(m, &fl, &vl, per_corner, 1, &mut new_pos)?;
     let out_off = &faces.off;
     let vb = faces.vertex_base();
     let n_corners = vb as usize + nh;
@@ -116,6 +119,7 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     // corner of outgoing half-edge g in its tail's vertex face
     let vc = |g: usize| vb + vl.vidx[g];
     for h in 0..nh {
+        crate::cancel::poll(h)?;
         let hp = m.he_prev[h] as usize;
         let hn = next[h] as usize;
         let c = fc(h) as usize;

@@ -41,7 +41,6 @@
 use crate::mesh::{EdgeId, FaceId, Mesh, VertexId};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
-use std::collections::{HashMap, HashSet};
 
 /// The triangles of a mesh.
 ///
@@ -340,169 +339,6 @@ fn first_choice(s: &mut Scratch, shape: Shape) {
     }
 }
 
-// -------------------------------------------------------------- segment tests
-
-fn on_segment(a: DVec2, b: DVec2, c: DVec2) -> bool {
-    c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
-}
-
-/// Segments ab and cd share a point (touching included).
-fn segments_meet(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
-    let (d1, d2, d3, d4) = (cross2(a, b, c), cross2(a, b, d), cross2(c, d, a), cross2(c, d, b));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
-        return true;
-    }
-    (d1 == 0.0 && on_segment(a, b, c)) || (d2 == 0.0 && on_segment(a, b, d)) || (d3 == 0.0 && on_segment(c, d, a)) || (d4 == 0.0 && on_segment(c, d, b))
-}
-
-/// Whether the segment from corner i to corner j runs inside the polygon
-/// (O'Rourke's in-cone test at both ends, no edge met), O(n).
-fn is_inner_diagonal(p: &[DVec2], i: usize, j: usize) -> bool {
-    let n = p.len();
-    let in_cone = |a: usize, b: usize| {
-        let (a0, a1) = (p[(a + n - 1) % n], p[(a + 1) % n]);
-        let (pa, pb) = (p[a], p[b]);
-        if cross2(pa, a1, a0) >= 0.0 {
-            cross2(pa, pb, a0) > 0.0 && cross2(pb, pa, a1) > 0.0
-        } else {
-            !(cross2(pa, pb, a1) >= 0.0 && cross2(pb, pa, a0) >= 0.0)
-        }
-    };
-    if !in_cone(i, j) || !in_cone(j, i) {
-        return false;
-    }
-    (0..n).all(|k| {
-        let k1 = (k + 1) % n;
-        k == i || k == j || k1 == i || k1 == j || !segments_meet(p[i], p[j], p[k], p[k1])
-    })
-}
-
-/// A triangulation by diagonals alone that uses none that `forbidden`
-/// refuses, if one exists: dynamic programme over the sub-polygons i..j,
-/// O(n³). Non-convex faces only use diagonals inside the polygon.
-fn exact(p: &[DVec2], shape: Shape, forbidden: &dyn Fn(usize, usize) -> bool, out: &mut Vec<[u32; 3]>) -> bool {
-    let n = p.len();
-    let geometric = shape == Shape::NonConvex;
-    let id = |i: usize, j: usize| i * n + j;
-    let mut ok = vec![false; n * n];
-    for i in 0..n {
-        for j in i + 1..n {
-            ok[id(i, j)] = j == i + 1 || (i == 0 && j == n - 1) || (!forbidden(i, j) && (!geometric || is_inner_diagonal(p, i, j)));
-        }
-    }
-    // choice[i][j]: the apex k of the triangle on i..j, or usize::MAX if none
-    const NONE: usize = usize::MAX;
-    let mut choice = vec![NONE; n * n];
-    for len in 2..n {
-        for i in 0..n - len {
-            let j = i + len;
-            if !ok[id(i, j)] {
-                continue;
-            }
-            for k in i + 1..j {
-                let left = k == i + 1 || choice[id(i, k)] != NONE;
-                let right = j == k + 1 || choice[id(k, j)] != NONE;
-                if left && right && ok[id(i, k)] && ok[id(k, j)] && (!geometric || cross2(p[i], p[k], p[j]) > 0.0) {
-                    choice[id(i, j)] = k;
-                    break;
-                }
-            }
-        }
-    }
-    if choice[id(0, n - 1)] == NONE {
-        return false;
-    }
-    out.clear();
-    let mut stack = vec![(0, n - 1)];
-    while let Some((i, j)) = stack.pop() {
-        if j <= i + 1 {
-            continue;
-        }
-        let k = choice[id(i, j)];
-        out.push([i as u32, k as u32, j as u32]);
-        stack.push((i, k));
-        stack.push((k, j));
-    }
-    true
-}
-
-/// Re-triangulates a face whose first choice collided. Local indices; an
-/// index n + k is the added point `added[k]`.
-fn retry(
-    cyc: &[u32],
-    pos: &[DVec3],
-    p: &[DVec2],
-    shape: Shape,
-    first: &[[u32; 3]],
-    forbidden: &dyn Fn(usize, usize) -> bool,
-    out: &mut Vec<[u32; 3]>,
-    added: &mut Vec<DVec3>,
-) {
-    let n = cyc.len();
-    added.clear();
-    if shape == Shape::Convex {
-        // other fans first, O(n) each
-        for from in 1..n.min(8) {
-            if (2..n - 1).all(|i| !forbidden(from, (from + i) % n)) {
-                fan(n, from, out);
-                return;
-            }
-        }
-    }
-    if n <= EXACT_LIMIT && shape != Shape::Degenerate && exact(p, shape, forbidden, out) {
-        return;
-    }
-    // one point: the corners' mean, if the face is star-shaped from it, or
-    // if it is small: a small face no diagonals fit is mostly far from planar
-    // (Doo-Sabin faces around opened self-loops), where its projection
-    // misleads and a fan around its centroid is the faithful surface
-    let c2 = p.iter().copied().sum::<DVec2>() / n as f64;
-    if shape != Shape::NonConvex || n <= EXACT_LIMIT || (0..n).all(|i| cross2(p[i], p[(i + 1) % n], c2) > 0.0) {
-        added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
-        out.clear();
-        out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
-        return;
-    }
-    // split each forbidden diagonal of the first choice where it meets the
-    // two triangles beside it, at a point a little off its middle
-    out.clear();
-    out.extend_from_slice(first);
-    let mut by_edge: HashMap<(u32, u32), usize> = HashMap::new();
-    for (t, tri) in out.iter().enumerate() {
-        for k in 0..3 {
-            by_edge.insert((tri[k], tri[(k + 1) % 3]), t);
-        }
-    }
-    let n32 = n as u32;
-    let diags: Vec<(u32, u32)> = first
-        .iter()
-        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
-        .filter(|&(i, j)| i < j && j != (i + 1) % n32 && i != (j + 1) % n32 && forbidden(i as usize, j as usize))
-        .collect();
-    let pt = |added: &[DVec3], k: u32| if k < n32 { pos[cyc[k as usize] as usize] } else { added[(k - n32) as usize] };
-    for (i, j) in diags {
-        let (Some(&t1), Some(&t2)) = (by_edge.get(&(i, j)), by_edge.get(&(j, i))) else { continue };
-        let apex = |t: [u32; 3], a: u32, b: u32| t.into_iter().find(|&v| v != a && v != b).unwrap();
-        let (x, y) = (apex(out[t1], i, j), apex(out[t2], j, i));
-        // the middle keeps the four triangles positive (halves of two
-        // positive ones); it lies on the coincident mesh edge, but nothing
-        // better is known without the face's kernel
-        let _ = (x, y);
-        let m = n32 + added.len() as u32;
-        added.push((pt(added, i) + pt(added, j)) / 2.0);
-        out[t1] = [i, m, x];
-        out[t2] = [j, m, y];
-        let (t3, t4) = (out.len(), out.len() + 1);
-        out.push([m, j, x]);
-        out.push([m, i, y]);
-        for (t, tri) in [(t1, out[t1]), (t2, out[t2]), (t3, out[t3]), (t4, out[t4])] {
-            for k in 0..3 {
-                by_edge.insert((tri[k], tri[(k + 1) % 3]), t);
-            }
-        }
-    }
-}
-
 /// The copies of multi-edges after the first (lowest id) of each vertex
 /// pair, in edge order. Each is split at its middle so that the triangle
 /// mesh has one edge per vertex pair. Self-loops are left alone.
@@ -595,7 +431,16 @@ fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: std::ops::Range<us
 }
 
 /// See the module docs.
+///
+/// Cancellable ([`crate::cancel`]): once cancellation is requested it returns
+/// early with an incomplete triangulation, so a caller that may be cancelled
+/// calls [`crate::cancel::check`] before using the result.
 pub fn triangulate(m: &Mesh) -> Triangulation {
+    triangulate_with(m, true)
+}
+
+/// [`triangulate`], with the retry pass grouped (parallel) or sequential.
+fn triangulate_with(m: &Mesh, grouped: bool) -> Triangulation {
     let nf = m.n_faces();
     let nv = m.n_vertices() as u32;
     // multi-edge copies get a point each: the first added points
@@ -616,7 +461,8 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
     let split = &split[..];
     let blocks: Vec<BlockOut> = (0..nf.div_ceil(BLOCK))
         .into_par_iter()
-        .map(|b| first_block(m, pos, split, b * BLOCK..nf.min((b + 1) * BLOCK)))
+        // cancelled: empty blocks, see `triangulate`'s docs
+        .map(|b| if crate::cancel::requested() { Default::default() } else { first_block(m, pos, split, b * BLOCK..nf.min((b + 1) * BLOCK)) })
         .collect();
     let nt = blocks.iter().map(|b| b.0.len()).sum();
     let nd = blocks.iter().map(|b| b.2.len()).sum();
@@ -645,73 +491,16 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
         }
         i = j;
     }
-    if bad.is_empty() {
+    if bad.is_empty() || crate::cancel::requested() {
         return Triangulation { points, tris, tri_face };
     }
     bad.sort_unstable();
     bad.dedup();
 
-    // the diagonals that stay, among the colliding faces' vertices
-    let mut in_bad = vec![false; pos.len()];
-    let mut s = Scratch::default();
-    for &f in &bad {
-        face_cycle(m, FaceId(f), split, &mut s.cyc);
-        for &v in &s.cyc {
-            in_bad[v as usize] = true;
-        }
-    }
-    let mut taken: HashSet<u64> = diags
-        .iter()
-        .filter(|&&(k, f)| k != BENT_KEY && in_bad[(k >> 32) as usize] && in_bad[(k & 0xffff_ffff) as usize] && bad.binary_search(&f).is_err())
-        .map(|d| d.0)
-        .collect();
+    let base = nv + points.len() as u32;
+    let (redone, added) = redo::redo(m, pos, split, &bad, &diags, base, grouped);
     drop(diags);
-
-    // retry in face order, each face's accepted diagonals forbidden to the next
-    let (mut out, mut added) = (Vec::new(), Vec::new());
-    let mut redone: Vec<(u32, Vec<[u32; 3]>)> = Vec::with_capacity(bad.len());
-    for &f in &bad {
-        face_cycle(m, FaceId(f), split, &mut s.cyc);
-        let shape = project(&s.cyc, pos, &mut s.p);
-        first_choice(&mut s, shape);
-        let cyc = &s.cyc;
-        let forbidden = |i: usize, j: usize| {
-            let (a, b) = (cyc[i], cyc[j]);
-            taken.contains(&pair(a, b)) || is_edge(m, a, b)
-        };
-        let n = cyc.len();
-        // the first choice stands if what it collided with was given up
-        let free = s.local.iter().all(|t| {
-            (0..3).all(|k| {
-                let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
-                j == (i + 1) % n || i == (j + 1) % n || !forbidden(i, j)
-            })
-        });
-        if is_bent(cyc, pos) {
-            added.clear();
-            added.push(cyc.iter().map(|&v| pos[v as usize]).sum::<DVec3>() / n as f64);
-            out.clear();
-            out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
-        } else if free {
-            out.clone_from(&s.local);
-            added.clear();
-        } else {
-            retry(cyc, pos, &s.p, shape, &s.local, &forbidden, &mut out, &mut added);
-        }
-        let n = cyc.len() as u32;
-        let base = nv + points.len() as u32;
-        let global: Vec<[u32; 3]> = out.iter().map(|t| t.map(|k| if k < n { cyc[k as usize] } else { base + k - n })).collect();
-        for t in &out {
-            for k in 0..3 {
-                let (i, j) = (t[k], t[(k + 1) % 3]);
-                if i < j && j < n && j != i + 1 && !(i == 0 && j == n - 1) {
-                    taken.insert(pair(cyc[i as usize], cyc[j as usize]));
-                }
-            }
-        }
-        points.extend_from_slice(&added);
-        redone.push((f, global));
-    }
+    points.extend(added);
 
     // splice the retried faces' triangles in, keeping face order
     let extra: usize = redone.iter().map(|r| r.1.len()).sum();
@@ -737,6 +526,7 @@ pub fn triangulate(m: &Mesh) -> Triangulation {
     Triangulation { points, tris: t2, tri_face: f2 }
 }
 
+mod redo;
+
 #[cfg(test)]
-#[path = "triangulate_tests.rs"]
 mod tests;
