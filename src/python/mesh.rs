@@ -258,10 +258,12 @@ impl PyMesh {
         u32_rows(py, &rows)
     }
 
+    /// Number of vertices, point-spheres included.
     #[getter]
     fn n_vertices(&self) -> usize {
         self.inner.n_vertices()
     }
+    /// Number of edges (each is two half-edges; self-loops and multi-edges count once per edge).
     #[getter]
     fn n_edges(&self) -> usize {
         self.inner.n_edges()
