@@ -1,7 +1,6 @@
 //! File readers of the core exposed to `topomesh.io` (private helpers).
 
 use super::convert::{i64_array, vec3_array};
-use super::err;
 use pyo3::prelude::*;
 
 /// Reads an OBJ file with the core reader (GIL released). Returns

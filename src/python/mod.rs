@@ -270,5 +270,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     io::register(m)?;
     m.add_function(wrap_pyfunction!(set_memory_budget, m)?)?;
     m.add_function(wrap_pyfunction!(memory_budget, m)?)?;
+    // rust-numpy imports NumPy's C API (and checks its version, in Python)
+    // on the first array it makes; done here, a Ctrl-C can never land in
+    // that import (it panicked there when the first array of a process was
+    // an interrupted call's result)
+    let _ = numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     Ok(())
 }
