@@ -1,0 +1,257 @@
+//! The corpus every scheme's unit tests run over.
+
+/// Schemes without boundary rules refuse a capped hole instead of
+/// refining the cap into a real face (the hole would close silently).
+#[test]
+fn schemes_without_boundary_rules_refuse_holes() {
+    use crate::error::MeshError;
+    use crate::schemes::*;
+    let open = cube_with_hole();
+    let o = menger::MengerOptions::default();
+    let runs: [(&str, crate::error::Result<Mesh>); 9] = [
+        ("catmull_clark", catmull_clark::catmull_clark(&open)),
+        ("doo_sabin", doo_sabin::doo_sabin(&open)),
+        ("dual", dual::dual(&open)),
+        ("loop", loop_subdivision::loop_subdivision(&open)),
+        ("midpoint", midpoint::midpoint(&open)),
+        ("simplest", simplest::simplest(&open)),
+        ("sqrt3", sqrt3::sqrt3(&open)),
+        ("sierpinski", sierpinski::sierpinski(&open)),
+        ("menger", menger::menger(&open, &o)),
+    ];
+    for (name, r) in runs {
+        match r {
+            Err(MeshError::Precondition(msg)) => assert!(msg.starts_with(name) && msg.contains("1 boundary loop"), "{msg}"),
+            other => panic!("{name} on an open cube: {other:?}"),
+        }
+    }
+    // the closed cube still goes through
+    assert!(catmull_clark::catmull_clark(&primitives::cube()).is_ok());
+}
+
+#[test]
+fn sierpinski_counts() {
+    let s = sierpinski_tetrahedron();
+    s.validate().unwrap();
+    assert_eq!((s.n_vertices(), s.n_edges(), s.n_faces(), s.genus(), s.n_self_loops()), (10, 30, 16, 3, 6));
+}
+use crate::mesh::{BuildOptions, Corner, Mesh};
+use crate::primitives;
+use crate::FaceId;
+use glam::DVec3;
+
+/// A cube with a self-loop splitting one face into a one-gon and a
+/// 5-corner face (the loop's vertex repeated in it).
+pub fn cube_with_self_loop() -> Mesh {
+    let mut m = primitives::cube();
+    let c = m.corner(FaceId(0), 0).unwrap();
+    m.insert_edge(c, c).unwrap();
+    m
+}
+/// A cube with a second edge beside an existing one (a multi-edge),
+/// splitting a two-gon off a face.
+pub fn cube_with_two_gon() -> Mesh {
+    let mut m = primitives::cube();
+    // corners 0 and 1 of face 0 are joined by an edge already; a second
+    // edge between them splits off a two-gon.
+    let c0 = m.corner(FaceId(0), 0).unwrap();
+    let c1 = m.corner(FaceId(0), 1).unwrap();
+    m.insert_edge(c0, c1).unwrap();
+    m
+}
+/// Self-loop joining two different faces at one vertex (Sierpinski's
+/// kind): merges them, genus +1.
+pub fn cube_with_handle_loop() -> Mesh {
+    let mut m = primitives::cube();
+    let v = m.corner_vertex(m.corner(FaceId(0), 0).unwrap());
+    // another face around the same vertex
+    let mut other = None;
+    for f in m.faces() {
+        if f == FaceId(0) {
+            continue;
+        }
+        for (k, x) in m.face_vertices(f).enumerate() {
+            if x == v && other.is_none() {
+                other = Some((f, k));
+            }
+        }
+    }
+    let (f, k) = other.unwrap();
+    let c0 = m.corner(FaceId(0), 0).unwrap();
+    let c1 = m.corner(f, k).unwrap();
+    m.insert_edge(c0, c1).unwrap();
+    m
+}
+pub fn with_point_sphere() -> Mesh {
+    let mut m = primitives::tetrahedron();
+    m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
+    m
+}
+/// Level 1 of the Sierpinski paper's scheme on a tetrahedron: four corner
+/// tetrahedra whose back faces are hexagons `[x, x, y, y, z, z]` with a
+/// zero-length self-loop at every edge midpoint; each loop joins the back
+/// faces of two corner pyramids. V = 10, E = 30, F = 16, genus 3.
+pub fn sierpinski_tetrahedron() -> Mesh {
+    let t = primitives::tetrahedron();
+    let tp = t.positions().to_vec();
+    let mut pos = tp.clone();
+    let mut mid = std::collections::HashMap::new();
+    let mut m = |a: u32, b: u32, pos: &mut Vec<DVec3>| -> i64 {
+        *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            pos.push((tp[a as usize] + tp[b as usize]) * 0.5);
+            pos.len() as i64 - 1
+        })
+    };
+    let (mut sizes, mut idx) = (Vec::new(), Vec::new());
+    for f in t.faces() {
+        let v: Vec<u32> = t.face_vertices(f).map(|x| x.0).collect();
+        let (a, b, c) = (v[0], v[1], v[2]);
+        let (ab, bc, ca) = (m(a, b, &mut pos), m(b, c, &mut pos), m(c, a, &mut pos));
+        idx.extend([a as i64, ab, ca, b as i64, bc, ab, c as i64, ca, bc]);
+        sizes.extend([3, 3, 3]);
+    }
+    for a in 0..4u32 {
+        let o: Vec<i64> = (0..4u32).filter(|&o| o != a).map(|o| m(a, o, &mut pos)).collect();
+        let (x, mut y, mut z) = (o[0], o[1], o[2]);
+        let n = (pos[y as usize] - pos[x as usize]).cross(pos[z as usize] - pos[x as usize]);
+        if n.dot(pos[x as usize] - tp[a as usize]) < 0.0 {
+            std::mem::swap(&mut y, &mut z);
+        }
+        idx.extend([x, x, y, y, z, z]);
+        sizes.push(6);
+    }
+    Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
+}
+
+pub fn corpus() -> Vec<(&'static str, Mesh)> {
+    vec![
+        ("tetrahedron", primitives::tetrahedron()),
+        ("cube", primitives::cube()),
+        ("octahedron", primitives::octahedron()),
+        ("dodecahedron", primitives::dodecahedron()),
+        ("icosahedron", primitives::icosahedron()),
+        ("torus", primitives::torus(8, 5, 1.0, 0.4).unwrap()),
+        ("genus3", primitives::genus_surface(3).unwrap()),
+        ("self_loop", cube_with_self_loop()),
+        ("two_gon", cube_with_two_gon()),
+        ("handle_loop", cube_with_handle_loop()),
+        ("point_sphere", with_point_sphere()),
+        ("sierpinski", sierpinski_tetrahedron()),
+    ]
+}
+
+/// The degree of every face, in face order.
+pub fn face_sizes(m: &Mesh) -> Vec<usize> {
+    m.faces().map(|f| m.face_degree(f)).collect()
+}
+pub fn n_point_spheres(m: &Mesh) -> usize {
+    m.vertices().filter(|&v| m.point_sphere_face(v).is_some()).count()
+}
+
+/// Whether every face of `m` other than a one-gon has `n` corners.
+pub fn all_faces_but_one_gons_have(m: &Mesh, n: usize) -> bool {
+    face_sizes(m).iter().filter(|&&s| s != 1).all(|&s| s == n)
+}
+
+/// The checks every scheme's output `r` of input `m` must pass: it
+/// validates, keeps the point-spheres, the genus and the number of
+/// components, and has `(V', E', F')` = `want` with the point-spheres left
+/// out of V' and F'.
+pub fn check_output(name: &str, m: &Mesh, r: &Mesh, want: (usize, usize, usize)) {
+    let ps = n_point_spheres(m);
+    r.validate().unwrap_or_else(|err| panic!("{name}: {err}"));
+    assert_eq!(n_point_spheres(r), ps, "{name} point-spheres");
+    assert_eq!(r.n_vertices() - ps, want.0, "{name} V'");
+    assert_eq!(r.n_edges(), want.1, "{name} E'");
+    assert_eq!(r.n_faces() - ps, want.2, "{name} F'");
+    assert_eq!(r.genus(), m.genus(), "{name} genus");
+    assert_eq!(r.n_components(), m.n_components(), "{name} components");
+}
+
+/// Runs `scheme` on every mesh of the [`corpus`] and makes the checks of
+/// [`check_output`], with the counts `counts(m, (V, E, F))` from the
+/// input's `V`, `E`, `F` (point-spheres left out), then the scheme's own
+/// checks `more(name, m, r)`.
+pub fn check_on_corpus(
+    scheme: impl Fn(&Mesh) -> crate::error::Result<Mesh>,
+    counts: impl Fn(&Mesh, (usize, usize, usize)) -> (usize, usize, usize),
+    more: impl Fn(&str, &Mesh, &Mesh),
+) {
+    for (name, m) in corpus() {
+        let ps = n_point_spheres(&m);
+        let want = counts(&m, (m.n_vertices() - ps, m.n_edges(), m.n_faces() - ps));
+        let r = scheme(&m).unwrap_or_else(|err| panic!("{name}: {err}"));
+        check_output(name, &m, &r, want);
+        more(name, &m, &r);
+    }
+}
+
+/// A cube without its first face, closed by a hole face.
+pub fn cube_with_hole() -> Mesh {
+    let c = primitives::cube().to_polygons();
+    let sizes: Vec<i64> = c.sizes[1..].iter().map(|&s| s as i64).collect();
+    let idx: Vec<i64> = c.indices[4..].iter().map(|&s| s as i64).collect();
+    let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+    Mesh::from_polygons(primitives::cube().positions().to_vec(), &sizes, &idx, opts).unwrap()
+}
+
+/// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
+/// merged face runs along both sides of the new edge.
+pub fn handle_cube() -> Mesh {
+    let mut m = crate::primitives::cube();
+    let a = m.face_halfedge(FaceId(0)).unwrap();
+    let b = m.face_halfedge(FaceId(1)).unwrap();
+    m.insert_edge(Corner::Halfedge(a), Corner::Halfedge(b)).unwrap();
+    assert_eq!(m.genus(), 1);
+    m
+}
+
+/// A prism over a counter-clockwise simple polygon (may be non-convex):
+/// planar faces, every vertex 3-valent.
+pub fn prism(profile: &[[f64; 2]], height: f64) -> Mesh {
+    let n = profile.len() as i64;
+    let mut pos: Vec<DVec3> = profile.iter().map(|p| DVec3::new(p[0], p[1], 0.0)).collect();
+    pos.extend(profile.iter().map(|p| DVec3::new(p[0], p[1], height)));
+    let mut sizes = vec![n, n];
+    let mut idx: Vec<i64> = (0..n).rev().collect();
+    idx.extend(n..2 * n);
+    for i in 0..n {
+        let j = (i + 1) % n;
+        sizes.push(4);
+        idx.extend([i, j, n + j, n + i]);
+    }
+    Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap()
+}
+
+/// A five-pointed star prism (non-convex planar faces).
+pub fn star_prism() -> Mesh {
+    let pts: Vec<[f64; 2]> = (0..10)
+        .map(|k| {
+            let r = if k % 2 == 0 { 1.0 } else { 0.4 };
+            let a = std::f64::consts::PI * k as f64 / 5.0;
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect();
+    prism(&pts, 0.5)
+}
+
+pub fn counts(m: &Mesh) -> (usize, usize, usize) {
+    (m.n_vertices(), m.n_edges(), m.n_faces())
+}
+
+/// A cube with a self-loop (a one-gon inside a quad, made by InsertEdge
+/// on one corner twice) and a two-gon (an edge doubling a cube edge).
+pub fn one_gon_two_gon_cube() -> Mesh {
+    let mut m = crate::primitives::cube();
+    let h = m.face_halfedge(FaceId(0)).unwrap();
+    m.insert_edge(Corner::Halfedge(h), Corner::Halfedge(h)).unwrap();
+    let g = m.face_halfedge(FaceId(3)).unwrap();
+    let g2 = m.next(g);
+    m.insert_edge(Corner::Halfedge(g), Corner::Halfedge(g2)).unwrap();
+    m.validate().unwrap();
+    assert_eq!(m.n_self_loops(), 1);
+    let hist = m.face_size_histogram();
+    assert_eq!(hist.get(&1), Some(&1));
+    assert_eq!(hist.get(&2), Some(&1));
+    m
+}
