@@ -232,8 +232,6 @@ pub(super) fn redo(m: &Mesh, pos: &[DVec3], split: &[u32], bad: &[u32], diags: &
         .par_iter()
         .filter(|&&(k, f)| k != BENT_KEY && in_bad[(k >> 32) as usize] && in_bad[(k & 0xffff_ffff) as usize] && bad.binary_search(&f).is_err())
         .map(|d| d.0)
-        .collect::<Vec<u64>>()
-        .into_iter()
         .collect();
     drop(in_bad);
     if crate::cancel::requested() {
