@@ -16,8 +16,20 @@
 //!
 //! Counts (H = 2E half-edges): V' = V + E + F, E' = 2E + H = 4E, F' = H.
 //! Output vertices are laid out `[vertex points | edge points | face points]`.
+//!
+//! Open meshes, creases, stencils and correspondence ([`catmull_clark_level`]):
+//! boundary and crease rules are OpenSubdiv's (see [`super::creases`]); a
+//! hole face of n corners stays one hole of 2n corners and gets no face
+//! point, so with b boundary edges (H_r = H − b corners in real faces):
+//! V' = V + E + F_r, E' = 2E + H_r, F' = H_r real faces and the same holes.
+//! The positions are then `S · P` with the level's stencils `S`, which are
+//! also the rows of the subdivision matrix; closed meshes without creases
+//! keep the direct computation above (the same weights, tested equal).
 
-use super::hosts::{check_output_size, face_centroids, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
+use super::creases::{EdgeRule, LevelSharpness, Rule};
+use super::hosts::{check_output_size, face_centroids, primal_host, primal_host_sides, with_point_spheres, FaceLayout, HOLE, MIN_LEN};
+use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::{Row, Stencils};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -31,6 +43,13 @@ pub fn catmull_clark(m: &Mesh) -> Result<Mesh> {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("catmull_clark", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
     let fl = FaceLayout::new(m)?;
+    let pos = smooth_positions(m, &fl)?;
+    let face_point: Vec<u32> = (0..m.n_faces() as u32).collect();
+    primal_host(m, &fl, &face_point, pos)
+}
+
+/// The closed-surface masks computed directly (no hole, no crease).
+fn smooth_positions(m: &Mesh, fl: &FaceLayout) -> Result<Vec<DVec3>> {
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, face) = m.halfedge_columns();
     let mut pos = vec![DVec3::ZERO; nv + ne + nf];
@@ -73,8 +92,117 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
     );
     crate::cancel::check()?;
-    let face_point: Vec<u32> = (0..nf as u32).collect();
-    primal_host(m, &fl, &face_point, pos)
+    Ok(pos)
+}
+
+/// One level with what `req` asks for: OpenSubdiv's boundary and crease
+/// rules (holes stay open), the stencils, the origins and the output's
+/// crease sharpness. Without holes, creases or requests it is
+/// [`catmull_clark`].
+pub fn catmull_clark_level(m: &Mesh, req: &Request) -> Result<Level> {
+    with_point_spheres_level(m, req, level_step)
+}
+
+fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
+    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth());
+    if smooth && !req.stencils && !req.origins && req.creases.is_none() {
+        return Ok(Level::plain(step(m)?));
+    }
+    check_output_size("catmull_clark", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
+    let fl = FaceLayout::new(m)?;
+    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
+    let mut face_point = vec![HOLE; nf];
+    let mut real = Vec::with_capacity(nf);
+    for f in 0..nf {
+        if !m.f_hole[f] {
+            face_point[f] = real.len() as u32;
+            real.push(f as u32);
+        }
+    }
+    let ls = LevelSharpness::new(m, req.creases, req.options);
+    let stencils = if !smooth || req.stencils { Some(stencils(m, &fl, &ls, req, &real)?) } else { None };
+    let pos = match (&stencils, smooth) {
+        (Some(s), false) => s.apply_points(&m.pos)?,
+        _ => smooth_positions(m, &fl)?,
+    };
+    let (mesh, sides) = primal_host_sides(m, &fl, &face_point, pos, req.creases.is_some())?;
+    let creases = match (req.creases, &sides) {
+        (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
+        _ => None,
+    };
+    let origins = req.origins.then(|| {
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(FACE).take(real.len())));
+        o.vertex.extend((0..nv as u32).chain(0..ne as u32).chain(real.iter().copied()));
+        for f in 0..nf {
+            let k = if m.f_hole[f] { 1 } else { fl.degree(f) };
+            o.face_kind.extend(std::iter::repeat(FACE).take(k));
+            o.face.extend(std::iter::repeat(f as u32).take(k));
+        }
+        primal_edge_origins(&mesh, &mut o);
+        o
+    });
+    Ok(Level { mesh, stencils, origins, creases })
+}
+
+/// The level's stencils: rows `[vertex points | edge points | face points
+/// of the real faces]` over the input vertices.
+fn stencils(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real: &[u32]) -> Result<Stencils> {
+    let (nv, ne) = (m.n_vertices(), m.n_edges());
+    let (_, vert, face) = m.halfedge_columns();
+    let face_row = |f: usize, w: f64, row: &mut Row| {
+        let hs = fl.corners(f);
+        let k = w / hs.len() as f64;
+        for &h in hs {
+            row.add(vert[h as usize], k);
+        }
+    };
+    let head = |h: u32| vert[(h ^ 1) as usize];
+    let mask = |v: usize, rule: Rule, ends: [u32; 2], w: f64, row: &mut Row| match rule {
+        Rule::Smooth | Rule::Dart => {
+            let ring: Vec<u32> = super::creases::ring(m, m.v_out[v]).collect();
+            let n = ring.len() as f64;
+            row.add(v as u32, w * (n - 2.0) / n);
+            for h in ring {
+                row.add(head(h), w / (n * n));
+                face_row(face[h as usize] as usize, w / (n * n), row);
+            }
+        }
+        Rule::Crease => {
+            row.add(v as u32, 0.75 * w);
+            row.add(head(ends[0]), 0.125 * w);
+            row.add(head(ends[1]), 0.125 * w);
+        }
+        Rule::Corner => row.add(v as u32, w),
+    };
+    Stencils::build(nv + ne + real.len(), nv, |i, row| {
+        if i < nv {
+            let r = ls.vertex_rule(m, i, req.options.crease_method);
+            match r.child {
+                None => mask(i, r.parent, r.parent_ends, 1.0, row),
+                Some((crule, cends, pw)) => {
+                    mask(i, r.parent, r.parent_ends, pw, row);
+                    mask(i, crule, cends, 1.0 - pw, row);
+                }
+            }
+        } else if i < nv + ne {
+            let e = i - nv;
+            let (a, b) = (vert[2 * e], vert[2 * e + 1]);
+            let (wv, wf) = match ls.edge_rule(e) {
+                EdgeRule::Smooth => (0.25, 0.25),
+                EdgeRule::Crease => (0.5, 0.0),
+                EdgeRule::Blend(s) => (0.5 * s + 0.25 * (1.0 - s), 0.25 * (1.0 - s)),
+            };
+            row.add(a, wv);
+            row.add(b, wv);
+            if wf != 0.0 {
+                face_row(face[2 * e] as usize, wf, row);
+                face_row(face[2 * e + 1] as usize, wf, row);
+            }
+        } else {
+            face_row(real[i - nv - ne] as usize, 1.0, row);
+        }
+    })
 }
 
 #[cfg(test)]
@@ -87,6 +215,90 @@ mod tests {
         check_on_corpus(catmull_clark, |_, (v, e, f)| (v + e + f, 4 * e, 2 * e), |name, _, r| {
             assert!(all_faces_but_one_gons_have(r, 4), "{name} quads");
         });
+    }
+
+    fn full() -> Request<'static> {
+        Request { stencils: true, origins: true, ..Default::default() }
+    }
+
+    #[test]
+    fn level_stencils_equal_the_direct_masks_on_corpus() {
+        for (name, m) in corpus() {
+            let lv = catmull_clark_level(&m, &full()).unwrap();
+            check_level(name, &m, &lv);
+            let plain = catmull_clark(&m).unwrap();
+            assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
+            for (a, b) in lv.mesh.positions().iter().zip(plain.positions()) {
+                assert!((*a - *b).length() < 1e-12, "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn open_meshes_keep_their_holes_with_boundary_rules() {
+        use crate::schemes::creases::{Boundary, SubdivOptions};
+        for (name, m) in [("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole())] {
+            let b: usize = (0..m.n_edges()).filter(|&e| m.f_hole[m.he_face[2 * e] as usize] || m.f_hole[m.he_face[2 * e + 1] as usize]).count();
+            let (v, e, f, hr) = (m.n_vertices(), m.n_edges(), m.n_faces() - m.n_holes(), m.n_halfedges() - b);
+            for boundary in [Boundary::EdgeOnly, Boundary::EdgeAndCorner] {
+                let req = Request { options: SubdivOptions { boundary, ..Default::default() }, ..full() };
+                let lv = catmull_clark_level(&m, &req).unwrap();
+                check_level(name, &m, &lv);
+                let r = &lv.mesh;
+                assert_eq!((r.n_vertices(), r.n_edges(), r.n_faces() - r.n_holes(), r.n_holes()), (v + e + f, 2 * e + hr, hr, m.n_holes()), "{name}");
+                assert_eq!(open_euler(r), open_euler(&m), "{name}");
+                // boundary edge points are midpoints; boundary vertices follow (a + 6v + b)/8 or stay (corners)
+                let p = m.positions();
+                for ed in 0..m.n_edges() {
+                    let (h0, h1) = (2 * ed, 2 * ed + 1);
+                    if m.f_hole[m.he_face[h0] as usize] || m.f_hole[m.he_face[h1] as usize] {
+                        let mid = (p[m.he_vert[h0] as usize] + p[m.he_vert[h1] as usize]) * 0.5;
+                        assert!((r.positions()[v + ed] - mid).length() < 1e-12, "{name} edge {ed}");
+                    }
+                }
+                for vv in 0..v {
+                    let ring: Vec<u32> = crate::schemes::creases::ring(&m, m.v_out[vv]).collect();
+                    let bnd: Vec<u32> = ring.iter().copied().filter(|&h| m.f_hole[m.he_face[h as usize] as usize] || m.f_hole[m.he_face[(h ^ 1) as usize] as usize]).collect();
+                    if bnd.len() != 2 {
+                        continue;
+                    }
+                    let corner = ring.len() == 2 && boundary == Boundary::EdgeAndCorner;
+                    let want = if corner {
+                        p[vv]
+                    } else {
+                        (p[vv] * 6.0 + p[m.he_vert[(bnd[0] ^ 1) as usize] as usize] + p[m.he_vert[(bnd[1] ^ 1) as usize] as usize]) / 8.0
+                    };
+                    assert!((r.positions()[vv] - want).length() < 1e-12, "{name} vertex {vv}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sharp_edges_decay_by_one_per_level() {
+        use crate::schemes::creases::{Creases, INFINITE};
+        let m = crate::primitives::cube();
+        let mut c = Creases { edge: vec![0.0; m.n_edges()], vertex: vec![0.0; m.n_vertices()] };
+        c.edge[0] = INFINITE;
+        c.edge[1] = 1.5;
+        let lv = catmull_clark_level(&m, &Request { creases: Some(&c), ..full() }).unwrap();
+        check_level("creased cube", &m, &lv);
+        let nv = m.n_vertices();
+        let p = m.positions();
+        let mid = |e: usize| (p[m.he_vert[2 * e] as usize] + p[m.he_vert[2 * e + 1] as usize]) * 0.5;
+        assert!((lv.mesh.positions()[nv] - mid(0)).length() < 1e-12);
+        assert!((lv.mesh.positions()[nv + 1] - mid(1)).length() < 1e-12);
+        let out = lv.creases.as_ref().unwrap();
+        assert_eq!(out.edge.len(), lv.mesh.n_edges());
+        let mut got: Vec<f64> = out.edge.iter().copied().filter(|&s| s > 0.0).collect();
+        got.sort_by(f64::total_cmp);
+        assert_eq!(got, vec![0.5, 0.5, INFINITE, INFINITE]);
+        // level 2: the 0.5 children blend and die; the infinite crease has 4 children
+        let lv2 = catmull_clark_level(&lv.mesh, &Request { creases: Some(out), ..full() }).unwrap();
+        check_level("creased cube 2", &lv.mesh, &lv2);
+        let out2 = lv2.creases.unwrap();
+        assert_eq!(out2.edge.iter().filter(|&&s| s > 0.0).count(), 4);
+        assert!(out2.edge.iter().all(|&s| s == 0.0 || s == INFINITE));
     }
 
     #[test]

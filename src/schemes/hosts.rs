@@ -311,7 +311,7 @@ pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
 /// Every face with other than three corners fanned into triangles around a
 /// new vertex at its centroid (the "extended" triangle schemes' first step).
 ///
-/// Triangles are kept; an n-gon (n ≠ 3, one-gons and two-gons included)
+/// Triangles and hole faces are kept; an n-gon (n ≠ 3, one-gons and two-gons included)
 /// becomes the n triangles `[tail(h), head(h), c]`, one per corner, so its
 /// edges keep their twins and the n spokes are new edges. New vertices
 /// follow the input ones, in face order. Returns `None` when every face is
@@ -321,7 +321,10 @@ pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
 pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
     let nf = m.n_faces();
     let (next, _, _) = m.halfedge_columns();
-    let all_triangles = m.f_start.par_iter().with_min_len(MIN_LEN).all(|&s| {
+    let all_triangles = m.f_start.par_iter().zip(&m.f_hole).with_min_len(MIN_LEN).all(|(&s, &hole)| {
+        if hole {
+            return true;
+        }
         let h1 = next[s as usize];
         let h2 = next[h1 as usize];
         h1 != s && h2 != s && next[h2 as usize] == s
@@ -345,8 +348,9 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
         }
         base.push(b);
         let n = fl.degree(f);
-        if n == 3 {
-            b += 3;
+        if n == 3 || m.f_hole[f] {
+            // triangles and holes are kept
+            b += n as u32;
             n_faces += 1;
         } else {
             b += 3 * n as u32;
@@ -376,7 +380,7 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
         let hs = fl.corners(f);
         let b = base[f] as usize;
         if cvert[f] == NONE {
-            sizes.push(3);
+            sizes.push(hs.len() as u32);
             for (k, &h) in hs.iter().enumerate() {
                 cv[b + k] = vert[h as usize];
                 tw[b + k] = side(h ^ 1);
@@ -396,27 +400,52 @@ pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
             }
         }
     }
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw).map(Some)
+    let mut out = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
+    if m.n_holes() > 0 {
+        // output faces: one per kept face, n per fanned face, in face order
+        let mut of = 0;
+        for f in 0..nf {
+            if cvert[f] == NONE {
+                out.f_hole[of] = m.f_hole[f];
+                of += 1;
+            } else {
+                of += fl.degree(f);
+            }
+        }
+    }
+    Ok(Some(out))
 }
+
+/// `face_point` marker of a hole face in [`primal_host`].
+pub(crate) const HOLE: u32 = NONE - 1;
 
 /// Output connectivity of the primal splits with edge points.
 ///
 /// Output vertices are laid out `[V vertex points | E edge points | face
 /// points]`; `face_point[f]` is the index of face `f`'s point within the
-/// face-point block, or `NONE` if the face has none.
+/// face-point block, `NONE` if the face has none, or [`HOLE`] for a hole.
 ///
 /// A face with a face point becomes n quads `[v, e(h), f, e(prev h)]`, one
 /// per corner `h` (Catmull-Clark's host). A face without one must be a
 /// triangle and becomes four: `[v, e(h), e(prev h)]` per corner and the
-/// middle `[e(h0), e(h1), e(h2)]` (Loop's host).
+/// middle `[e(h0), e(h1), e(h2)]` (Loop's host). A hole face of n corners
+/// stays one hole face of 2n corners `[v0, e(h0), v1, e(h1), …]`, so the
+/// boundary stays open.
 ///
 /// Returns the output mesh with the new points `pos` laid out as above.
 pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>) -> Result<Mesh> {
+    primal_host_sides(m, fl, face_point, pos, false).map(|r| r.0)
+}
+
+/// [`primal_host`], and on request, per output edge, the input half-edge
+/// `h` such that the edge is the child of edge `h >> 1` at the tail of `h`
+/// (`NONE` for edges inside an input face).
+pub(crate) fn primal_host_sides(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
     let (next, vert, face) = m.halfedge_columns();
     let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
     let prev = &m.he_prev;
     // output corner base per face
-    let mut base = Vec::with_capacity(nf);
+    let mut base = Vec::with_capacity(nf + 1);
     let mut b = 0u32;
     let mut n_out_faces = 0usize;
     for f in 0..nf {
@@ -429,32 +458,44 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
             debug_assert_eq!(n, 3);
             b += 12;
             n_out_faces += 4;
+        } else if face_point[f] == HOLE {
+            b += 2 * n;
+            n_out_faces += 1;
         } else {
             b += 4 * n;
             n_out_faces += n as usize;
         }
     }
+    base.push(b);
     crate::cancel::check()?;
     let nc = b as usize;
     // the output corners of the two outer sides at corner h: v -> e(h) and e(prev h) -> v
     let outer = |h: u32| -> (u32, u32) {
         let f = face[h as usize];
         let k = fl.local(h, f) as u32;
-        if face_point[f as usize] == NONE {
+        let fp = face_point[f as usize];
+        if fp == NONE {
             let c = base[f as usize] + 3 * k;
             (c, c + 2)
+        } else if fp == HOLE {
+            let n = fl.degree(f as usize) as u32;
+            (base[f as usize] + 2 * k, base[f as usize] + (2 * k + 2 * n - 1) % (2 * n))
         } else {
             let c = base[f as usize] + 4 * k;
             (c, c + 3)
         }
     };
     let mut sizes = Vec::with_capacity(n_out_faces);
+    let mut holes = Vec::new();
     for f in 0..nf {
         if f % 65536 == 0 {
             crate::cancel::check()?;
         }
         if face_point[f] == NONE {
             sizes.extend_from_slice(&[3, 3, 3, 3]);
+        } else if face_point[f] == HOLE {
+            holes.push(sizes.len());
+            sizes.push(2 * fl.degree(f) as u32);
         } else {
             sizes.extend(std::iter::repeat(4).take(fl.degree(f)));
         }
@@ -462,7 +503,9 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
     crate::cancel::check()?;
     let mut cv = vec![0u32; nc];
     let mut tw = vec![0u32; nc];
-    let (pc, pt) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()));
+    // per output corner: the input half-edge whose tail-end child its side is
+    let mut side = if want_sides { vec![NONE; nc] } else { Vec::new() };
+    let (pc, pt, ps) = (SyncPtr(cv.as_mut_ptr()), SyncPtr(tw.as_mut_ptr()), SyncPtr(side.as_mut_ptr()));
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
         // cancelled: skip the rest, the check after the loop reports it
         if crate::cancel::requested() {
@@ -471,14 +514,10 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
         let hs = fl.corners(f);
         let n = hs.len();
         let b = base[f] as usize;
+        let len = (base[f + 1] - base[f]) as usize;
         // SAFETY: face f writes only its own range base[f]..base[f + 1].
-        let (cv, tw) = unsafe {
-            let len = if face_point[f] == NONE { 12 } else { 4 * n };
-            (
-                std::slice::from_raw_parts_mut(pc.get().add(b), len),
-                std::slice::from_raw_parts_mut(pt.get().add(b), len),
-            )
-        };
+        let (cv, tw) = unsafe { (std::slice::from_raw_parts_mut(pc.get().add(b), len), std::slice::from_raw_parts_mut(pt.get().add(b), len)) };
+        let mut sd = if want_sides { Some(unsafe { std::slice::from_raw_parts_mut(ps.get().add(b), len) }) } else { None };
         if face_point[f] == NONE {
             for (k, &h) in hs.iter().enumerate() {
                 let p = prev[h as usize];
@@ -492,6 +531,22 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
                 // middle triangle side e(h_k) -> e(h_k+1)
                 cv[9 + k] = nv + (h >> 1);
                 tw[9 + k] = (b + 3 * ((k + 1) % 3) + 1) as u32;
+                if let Some(sd) = sd.as_mut() {
+                    sd[c] = h;
+                    sd[c + 2] = p ^ 1;
+                }
+            }
+        } else if face_point[f] == HOLE {
+            for (k, &h) in hs.iter().enumerate() {
+                let c = 2 * k;
+                cv[c] = vert[h as usize];
+                cv[c + 1] = nv + (h >> 1);
+                tw[c] = outer(next[(h ^ 1) as usize]).1;
+                tw[c + 1] = outer(h ^ 1).0;
+                if let Some(sd) = sd.as_mut() {
+                    sd[c] = h;
+                    sd[c + 1] = h ^ 1;
+                }
             }
         } else {
             let fp = nv + ne + face_point[f];
@@ -506,11 +561,32 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
                 tw[c + 1] = (b + 4 * ((k + 1) % n) + 2) as u32;
                 tw[c + 2] = (b + 4 * ((k + n - 1) % n) + 1) as u32;
                 tw[c + 3] = outer(p ^ 1).0;
+                if let Some(sd) = sd.as_mut() {
+                    sd[c] = h;
+                    sd[c + 3] = p ^ 1;
+                }
             }
         }
     });
     crate::cancel::check()?;
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+    let mut out = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
+    for f in holes {
+        out.f_hole[f] = true;
+    }
+    let sides = if want_sides {
+        // output half-edge of every corner: faces were built from their first corner, in order
+        let ofl = FaceLayout::new(&out)?;
+        let mut es = vec![NONE; out.n_edges()];
+        for (c, &h) in ofl.fh.iter().enumerate() {
+            if h & 1 == 0 {
+                es[(h >> 1) as usize] = side[c];
+            }
+        }
+        Some(es)
+    } else {
+        None
+    };
+    Ok((out, sides))
 }
 
 /// Sum of `pos[head(h)]` over the outgoing half-edges of `v` and their count.

@@ -255,3 +255,64 @@ pub fn one_gon_two_gon_cube() -> Mesh {
     assert_eq!(hist.get(&2), Some(&1));
     m
 }
+
+/// An open n × n grid of quads on a bumpy height field (one boundary loop).
+pub fn open_grid(n: usize) -> Mesh {
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64, j as f64);
+            pos.push(DVec3::new(x, y, 0.3 * (x * 0.9).sin() * (y * 1.3).cos()));
+        }
+    }
+    let mut idx = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let a = (j * (n + 1) + i) as i64;
+            let w = (n + 1) as i64;
+            idx.extend_from_slice(&[a, a + 1, a + w + 1, a + w]);
+        }
+    }
+    let sizes = vec![4i64; n * n];
+    Mesh::from_polygons(pos, &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap()
+}
+
+/// An open tube of `n` × `m` quads (two boundary loops).
+pub fn open_tube(n: usize, m: usize) -> Mesh {
+    let mut pos = Vec::new();
+    for j in 0..=m {
+        for i in 0..n {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            pos.push(DVec3::new(t.cos(), t.sin(), j as f64 * 0.7));
+        }
+    }
+    let mut idx = Vec::new();
+    for j in 0..m {
+        for i in 0..n {
+            let (a, b) = ((j * n + i) as i64, (j * n + (i + 1) % n) as i64);
+            idx.extend_from_slice(&[a, b, b + n as i64, a + n as i64]);
+        }
+    }
+    Mesh::from_polygons(pos, &vec![4i64; n * m], &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap()
+}
+
+/// Every output of a level with stencils and origins: the mesh is valid,
+/// `S · P` is the output positions, and the origins are in range.
+pub fn check_level(name: &str, m: &Mesh, lv: &crate::schemes::level::Level) {
+    lv.mesh.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+    if let Some(s) = &lv.stencils {
+        assert_eq!((s.n_rows(), s.n_cols), (lv.mesh.n_vertices(), m.n_vertices()), "{name}: stencil shape");
+        let p = s.apply_points(m.positions()).unwrap();
+        for (i, (a, b)) in p.iter().zip(lv.mesh.positions()).enumerate() {
+            assert!((*a - *b).length() <= 1e-12 * (1.0 + b.length()), "{name}: S·P row {i}: {a} vs {b}");
+        }
+    }
+    if let Some(o) = &lv.origins {
+        o.check(m, &lv.mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+/// χ of the open surface: V − E + real faces.
+pub fn open_euler(m: &Mesh) -> i64 {
+    m.n_vertices() as i64 - m.n_edges() as i64 + (m.n_faces() - m.n_holes()) as i64
+}

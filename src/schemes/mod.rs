@@ -4,6 +4,9 @@
 pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
+pub mod creases;
+pub mod level;
+pub mod stencil;
 pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod dual;
