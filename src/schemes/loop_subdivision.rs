@@ -20,8 +20,19 @@
 //! Counts on triangles: V' = V + E, E' = 2E + 3F, F' = 4F. With n-gons, apply
 //! them to the fanned mesh: V + F_≠3 vertices, E + Σ_≠3 n edges, F_3 + Σ_≠3 n
 //! triangles. Output vertices are `[vertex points | edge points]`.
+//!
+//! Open meshes, creases, stencils and correspondence ([`loop_level`]):
+//! OpenSubdiv's Loop boundary and crease rules ([`super::creases`]; the
+//! crease masks are Catmull-Clark's: midpoint, `3/4 v + 1/8 (a + b)`,
+//! corner). Hole faces are not fanned and stay one hole of 2n corners; on
+//! triangles with b boundary edges: V' = V + E, E' = 2E + 3F_r, F' = 4F_r.
+//! With n-gons the level is the fan followed by the Loop step, and its
+//! stencils and origins are the composition of the two.
 
-use super::hosts::{check_output_size, fan_triangulate, primal_host, with_point_spheres, FaceLayout, MIN_LEN};
+use super::creases::{Creases, EdgeRule, LevelSharpness, Rule};
+use super::hosts::{check_output_size, fan_triangulate, primal_host, primal_host_sides, with_point_spheres, FaceLayout, HOLE, MIN_LEN};
+use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::{Row, Stencils};
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
@@ -48,7 +59,14 @@ pub fn loop_beta(n: usize) -> f64 {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("loop", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges())?;
     let fl = FaceLayout::new(m)?;
-    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
+    let pos = smooth_positions(m)?;
+    let face_point = vec![NONE; m.n_faces()];
+    primal_host(m, &fl, &face_point, pos)
+}
+
+/// The closed-surface masks computed directly (no hole, no crease).
+fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
+    let (nv, ne) = (m.n_vertices(), m.n_edges());
     let (_, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
     let p = &m.pos;
@@ -78,8 +96,190 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
     );
     crate::cancel::check()?;
-    let face_point = vec![NONE; nf];
-    primal_host(m, &fl, &face_point, pos)
+    Ok(pos)
+}
+
+/// One level with what `req` asks for: OpenSubdiv's boundary and crease
+/// rules (holes stay open), the stencils, the origins and the output's
+/// crease sharpness. Without holes, creases or requests it is
+/// [`loop_subdivision`].
+pub fn loop_level(m: &Mesh, req: &Request) -> Result<Level> {
+    with_point_spheres_level(m, req, |m, req| {
+        if m.n_holes() == 0 && req.creases.is_none() && !req.stencils && !req.origins {
+            return Ok(Level::plain(match fan_triangulate(m)? {
+                Some(t) => step(&t)?,
+                None => step(m)?,
+            }));
+        }
+        let Some(fan) = fan_triangulate(m)? else {
+            return triangle_level(m, req);
+        };
+        let fl = fan_level(m, &fan, req)?;
+        let lv = triangle_level(&fan, &Request { creases: fl.creases.as_ref(), ..*req })?;
+        let stencils = match (&lv.stencils, &fl.stencils) {
+            (Some(s), Some(f)) => Some(s.compose(f)?),
+            _ => None,
+        };
+        let origins = match (&lv.origins, &fl.origins) {
+            (Some(o), Some(f)) => Some(o.compose(f)),
+            _ => None,
+        };
+        Ok(Level { mesh: lv.mesh, stencils, origins, creases: lv.creases })
+    })
+}
+
+/// The fan's own stencils, origins and creases (spokes and centroids are smooth).
+fn fan_level(m: &Mesh, fan: &Mesh, req: &Request) -> Result<Level> {
+    let fl = FaceLayout::new(m)?;
+    let ofl = FaceLayout::new(fan)?;
+    let (nv, nf) = (m.n_vertices(), m.n_faces());
+    let (_, vert, _) = m.halfedge_columns();
+    // per fanned edge: the input edge it is, or NONE for a spoke (with its face)
+    let mut edge_of = vec![NONE; fan.n_edges()];
+    let mut spoke_face = vec![NONE; fan.n_edges()];
+    let mut face_of = Vec::with_capacity(fan.n_faces());
+    let mut centroid_face = Vec::new();
+    let mut of = 0usize;
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        let hs = fl.corners(f);
+        if hs.len() == 3 || m.f_hole[f] {
+            for (k, &h) in hs.iter().enumerate() {
+                edge_of[(ofl.corners(of)[k] >> 1) as usize] = h >> 1;
+            }
+            face_of.push(f as u32);
+            of += 1;
+        } else {
+            centroid_face.push(f as u32);
+            for &h in hs {
+                let c = ofl.corners(of);
+                edge_of[(c[0] >> 1) as usize] = h >> 1;
+                spoke_face[(c[1] >> 1) as usize] = f as u32;
+                spoke_face[(c[2] >> 1) as usize] = f as u32;
+                face_of.push(f as u32);
+                of += 1;
+            }
+        }
+    }
+    let stencils = if req.stencils {
+        Some(Stencils::build(fan.n_vertices(), nv, |i, row| {
+            if i < nv {
+                row.add(i as u32, 1.0);
+            } else {
+                let hs = fl.corners(centroid_face[i - nv] as usize);
+                for &h in hs {
+                    row.add(vert[h as usize], 1.0 / hs.len() as f64);
+                }
+            }
+        })?)
+    } else {
+        None
+    };
+    let origins = req.origins.then(|| {
+        let mut o = Origins::with_capacity(fan.n_vertices(), fan.n_edges(), fan.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(FACE).take(centroid_face.len())));
+        o.vertex.extend((0..nv as u32).chain(centroid_face.iter().copied()));
+        for (e, &x) in edge_of.iter().enumerate() {
+            if x == NONE {
+                o.edge_kind.push(FACE);
+                o.edge.push(spoke_face[e]);
+            } else {
+                o.edge_kind.push(EDGE);
+                o.edge.push(x);
+            }
+        }
+        o.face_kind.extend(std::iter::repeat(FACE).take(face_of.len()));
+        o.face.extend_from_slice(&face_of);
+        o
+    });
+    let creases = req.creases.map(|c| Creases {
+        edge: edge_of.iter().map(|&x| if x == NONE { 0.0 } else { c.edge(x as usize) }).collect(),
+        vertex: (0..fan.n_vertices()).map(|v| if v < nv { c.vertex(v) } else { 0.0 }).collect(),
+    });
+    Ok(Level { mesh: Mesh::new(), stencils, origins, creases })
+}
+
+/// A level on a mesh whose real faces are triangles.
+fn triangle_level(m: &Mesh, req: &Request) -> Result<Level> {
+    check_output_size("loop", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges())?;
+    let fl = FaceLayout::new(m)?;
+    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
+    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth());
+    let face_point: Vec<u32> = m.f_hole.iter().map(|&h| if h { HOLE } else { NONE }).collect();
+    let ls = LevelSharpness::new(m, req.creases, req.options);
+    let stencils = if !smooth || req.stencils { Some(stencils(m, &ls, req)?) } else { None };
+    let pos = match (&stencils, smooth) {
+        (Some(s), false) => s.apply_points(&m.pos)?,
+        _ => smooth_positions(m)?,
+    };
+    let (mesh, sides) = primal_host_sides(m, &fl, &face_point, pos, req.creases.is_some())?;
+    let creases = match (req.creases, &sides) {
+        (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
+        _ => None,
+    };
+    let origins = req.origins.then(|| {
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)));
+        o.vertex.extend((0..nv as u32).chain(0..ne as u32));
+        for f in 0..nf {
+            let k = if m.f_hole[f] { 1 } else { 4 };
+            o.face_kind.extend(std::iter::repeat(FACE).take(k));
+            o.face.extend(std::iter::repeat(f as u32).take(k));
+        }
+        primal_edge_origins(&mesh, &mut o);
+        o
+    });
+    Ok(Level { mesh, stencils, origins, creases })
+}
+
+/// Rows `[vertex points | edge points]` over the input vertices.
+fn stencils(m: &Mesh, ls: &LevelSharpness, req: &Request) -> Result<Stencils> {
+    let (nv, ne) = (m.n_vertices(), m.n_edges());
+    let (_, vert, _) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let head = |h: u32| vert[(h ^ 1) as usize];
+    let mask = |v: usize, rule: Rule, ends: [u32; 2], w: f64, row: &mut Row| match rule {
+        Rule::Smooth | Rule::Dart => {
+            let ring: Vec<u32> = super::creases::ring(m, m.v_out[v]).collect();
+            let beta = loop_beta(ring.len());
+            row.add(v as u32, w * (1.0 - ring.len() as f64 * beta));
+            for h in ring {
+                row.add(head(h), w * beta);
+            }
+        }
+        Rule::Crease => {
+            row.add(v as u32, 0.75 * w);
+            row.add(head(ends[0]), 0.125 * w);
+            row.add(head(ends[1]), 0.125 * w);
+        }
+        Rule::Corner => row.add(v as u32, w),
+    };
+    Stencils::build(nv + ne, nv, |i, row| {
+        if i < nv {
+            let r = ls.vertex_rule(m, i, req.options.crease_method);
+            match r.child {
+                None => mask(i, r.parent, r.parent_ends, 1.0, row),
+                Some((crule, cends, pw)) => {
+                    mask(i, r.parent, r.parent_ends, pw, row);
+                    mask(i, crule, cends, 1.0 - pw, row);
+                }
+            }
+        } else {
+            let e = i - nv;
+            let (a, b) = (2 * e, 2 * e + 1);
+            let (wv, wo) = match ls.edge_rule(e) {
+                EdgeRule::Smooth => (0.375, 0.125),
+                EdgeRule::Crease => (0.5, 0.0),
+                EdgeRule::Blend(s) => (0.5 * s + 0.375 * (1.0 - s), 0.125 * (1.0 - s)),
+            };
+            row.add(vert[a], wv);
+            row.add(vert[b], wv);
+            if wo != 0.0 {
+                row.add(vert[prev[a] as usize], wo);
+                row.add(vert[prev[b] as usize], wo);
+            }
+        }
+    })
 }
 
 #[cfg(test)]
@@ -110,6 +310,55 @@ mod tests {
         check_on_corpus(loop_subdivision, counts, |name, _, r| {
             assert!(all_faces_but_one_gons_have(r, 3), "{name} triangles");
         });
+    }
+
+    #[test]
+    fn level_stencils_equal_the_direct_masks_on_corpus() {
+        let full = Request { stencils: true, origins: true, ..Default::default() };
+        for (name, m) in corpus() {
+            let lv = loop_level(&m, &full).unwrap();
+            check_level(name, &m, &lv);
+            let plain = loop_subdivision(&m).unwrap();
+            assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
+            for (a, b) in lv.mesh.positions().iter().zip(plain.positions()) {
+                assert!((*a - *b).length() < 1e-12, "{name}");
+            }
+            // every input face is the origin of 4 triangles per fanned triangle
+            let o = lv.origins.unwrap();
+            for f in m.faces() {
+                if m.point_sphere_face(m.face_vertices(f).next().unwrap()) == Some(f) {
+                    continue;
+                }
+                let n = m.face_degree(f);
+                let want = if n == 3 { 4 } else { 4 * n };
+                assert_eq!(o.face.iter().zip(&o.face_kind).filter(|&(&i, &k)| k == FACE && i == f.0).count(), want, "{name} face {f:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn open_meshes_keep_their_holes_with_boundary_rules() {
+        let full = Request { stencils: true, origins: true, ..Default::default() };
+        for (name, m) in [("grid", open_grid(3)), ("tube", open_tube(6, 2)), ("cube_with_hole", cube_with_hole())] {
+            let lv = loop_level(&m, &full).unwrap();
+            check_level(name, &m, &lv);
+            assert_eq!(lv.mesh.n_holes(), m.n_holes(), "{name}");
+            assert_eq!(open_euler(&lv.mesh), open_euler(&m), "{name}");
+            // a second level on the all-triangle output: V' = V + E, F' = 4 F_r
+            let r = &lv.mesh;
+            let lv2 = loop_level(r, &full).unwrap();
+            check_level(name, r, &lv2);
+            assert_eq!(lv2.mesh.n_vertices(), r.n_vertices() + r.n_edges(), "{name}");
+            assert_eq!(lv2.mesh.n_faces() - lv2.mesh.n_holes(), 4 * (r.n_faces() - r.n_holes()), "{name}");
+            // boundary edge points are midpoints
+            let p = r.positions();
+            for e in 0..r.n_edges() {
+                if r.f_hole[r.he_face[2 * e] as usize] || r.f_hole[r.he_face[2 * e + 1] as usize] {
+                    let mid = (p[r.he_vert[2 * e] as usize] + p[r.he_vert[2 * e + 1] as usize]) * 0.5;
+                    assert!((lv2.mesh.positions()[r.n_vertices() + e] - mid).length() < 1e-12);
+                }
+            }
+        }
     }
 
     #[test]
