@@ -27,7 +27,7 @@
 //! keep the direct computation above (the same weights, tested equal).
 
 use super::creases::{EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, face_centroids, primal_host, primal_host_sides, with_point_spheres, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids, primal_host, primal_host_sides, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -35,9 +35,10 @@ use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// One level of Catmull-Clark subdivision. See the module docs.
+/// One level of Catmull-Clark subdivision, open meshes with OpenSubdiv's
+/// default boundary rule (edge and corner). See the module docs.
 pub fn catmull_clark(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres("catmull_clark", m, step)
+    catmull_clark_level(m, &Request::plain()).map(|l| l.mesh)
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {

@@ -30,7 +30,7 @@
 //! stencils and origins are the composition of the two.
 
 use super::creases::{Creases, EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, fan_triangulate, primal_host, primal_host_sides, with_point_spheres, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, fan_triangulate, primal_host, primal_host_sides, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -40,11 +40,9 @@ use rayon::prelude::*;
 
 /// One level of Loop subdivision; non-triangles are fanned around their
 /// centroid first. See the module docs.
+/// Open meshes follow OpenSubdiv's default boundary rule (edge and corner).
 pub fn loop_subdivision(m: &Mesh) -> Result<Mesh> {
-    with_point_spheres("loop", m, |m| match fan_triangulate(m)? {
-        Some(t) => step(&t),
-        None => step(m),
-    })
+    loop_level(m, &Request::plain()).map(|l| l.mesh)
 }
 
 /// Loop's original β for valence `n`.
