@@ -30,8 +30,10 @@ from topomesh.printing import PrintReport, printable  # noqa: E402
 from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
+from topomesh.correspondence import Correspondence  # noqa: E402
 
 __all__ = [
+    "Correspondence",
     "GeometryWarning",
     "Mesh",
     "MeshError",

@@ -87,9 +87,15 @@ def _suffix(path: PathLike, formats: tuple) -> str:
     return s
 
 
-def _from_state(vertices, face_sizes, face_indices, corner_twins) -> Mesh:
-    """Unpickling: the exact rebuild of :meth:`Mesh.from_flat` with twins."""
-    return Mesh.from_flat(vertices, face_sizes, face_indices, twins=corner_twins)
+def _from_state(vertices, face_sizes, face_indices, corner_twins, data=None) -> Mesh:
+    """Unpickling: the exact rebuild of :meth:`Mesh.from_flat` with twins, and its creases and attributes."""
+    m = Mesh.from_flat(vertices, face_sizes, face_indices, twins=corner_twins)
+    if data is not None:
+        corner_sharpness, vertex_sharpness, vertex, face = data
+        if corner_sharpness is not None:
+            m = m._with_corner_sharpness(corner_sharpness, vertex_sharpness)
+        m = m.with_attributes(vertex=vertex, face=face)
+    return m
 
 
 def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool = False, repair: bool = False) -> Mesh:

@@ -20,6 +20,8 @@ use std::sync::OnceLock;
 #[pyclass(name = "Mesh", module = "topomesh", frozen)]
 pub struct PyMesh {
     pub inner: Mesh,
+    /// Creases and attributes (`super::data`).
+    pub data: super::data::MeshData,
     cache: Cache,
 }
 
@@ -45,7 +47,11 @@ fn view_1d<'py>(owner: &Bound<'py, PyMesh>, data: &[i64]) -> PyResult<Bound<'py,
 
 impl PyMesh {
     pub fn wrap(inner: Mesh) -> Self {
-        PyMesh { inner, cache: Cache::default() }
+        PyMesh { inner, data: Default::default(), cache: Cache::default() }
+    }
+
+    pub fn with_data(inner: Mesh, data: super::data::MeshData) -> Self {
+        PyMesh { inner, data, cache: Cache::default() }
     }
 
     /// `(face_sizes, face_indices)` as int64, computed once.
@@ -230,7 +236,8 @@ impl PyMesh {
         py.detach(|| self.inner.polygons_are_lossless())
     }
 
-    /// ``pickle`` support: rebuilt exactly from the lossless flat arrays.
+    /// ``pickle`` support: rebuilt exactly from the lossless flat arrays,
+    /// with creases and attributes.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let py = slf.py();
         let f = py.import("topomesh.io")?.getattr("_from_state")?;
@@ -239,6 +246,7 @@ impl PyMesh {
             Self::face_sizes(slf)?.call_method0("copy")?,
             Self::face_indices(slf)?.call_method0("copy")?,
             Self::corner_twins(slf)?.call_method0("copy")?,
+            slf.get()._data_state(py)?,
         );
         Ok((f, args.into_pyobject(py)?.into_any()))
     }
@@ -458,7 +466,7 @@ impl PyMesh {
         }
         let mut m = self.inner.clone();
         m.positions_mut().copy_from_slice(&pos);
-        Ok(PyMesh::wrap(m))
+        Ok(PyMesh::with_data(m, self.data.clone_ref(py)))
     }
 
     // -------------------------------------------- interop (pure Python side)

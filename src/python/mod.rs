@@ -6,6 +6,8 @@
 use pyo3::prelude::*;
 
 mod alloc;
+mod data;
+mod levels;
 mod display;
 pub(crate) mod convert;
 pub(crate) mod ifs;
@@ -170,6 +172,24 @@ pub(crate) fn iterate(
     predict: crate::budget::Predictor,
     step: impl Fn(&crate::Mesh) -> crate::Result<crate::Mesh> + Sync,
 ) -> PyResult<mesh::PyMesh> {
+    let (out, ()) = iterate_with(py, mesh, iterations, progress, name, predict, (), |m, _| step(m))?;
+    Ok(mesh::PyMesh::wrap(out.unwrap_or_else(|| mesh.clone())))
+}
+
+/// [`iterate`] with a state carried from level to level (attributes,
+/// stencils, origins); returns the last level's mesh (None for 0 levels)
+/// and the state.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn iterate_with<S: Send>(
+    py: Python<'_>,
+    mesh: &crate::Mesh,
+    iterations: i128,
+    progress: bool,
+    name: &str,
+    predict: crate::budget::Predictor,
+    mut state: S,
+    step: impl Fn(&crate::Mesh, &mut S) -> crate::Result<crate::Mesh> + Sync,
+) -> PyResult<(Option<crate::Mesh>, S)> {
     use crate::budget::{self, Counts};
     use std::sync::atomic::{AtomicU64, Ordering};
     let n = int_in(name, "iterations", iterations, 0, i64::MAX)? as u64;
@@ -204,10 +224,10 @@ pub(crate) fn iterate(
                 crate::cancel::check()?;
                 let src = cur.as_ref().unwrap_or(mesh);
                 budget::check_level(name, k, n, &Counts::of(src), predict)?;
-                cur = Some(step(src)?);
+                cur = Some(step(src, &mut state)?);
                 done.store(k, Ordering::Relaxed);
             }
-            Ok(cur)
+            Ok((cur, state))
         },
         &mut update,
     );
@@ -217,7 +237,7 @@ pub(crate) fn iterate(
     if let Some(b) = &bar {
         b.call_method0("close")?;
     }
-    Ok(mesh::PyMesh::wrap(out?.unwrap_or_else(|| mesh.clone())))
+    out
 }
 
 /// Sets the memory budget of every topomesh call, in bytes.

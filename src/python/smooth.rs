@@ -1,18 +1,26 @@
 //! Smoothing and refinement schemes as `Mesh` methods (`crate::schemes`).
 
 use super::mesh::PyMesh;
-use super::{iterate, big_int};
+use super::{iterate, big_int, levels};
 use crate::budget::predict;
 use crate::schemes;
 use pyo3::prelude::*;
 
 #[pymethods]
 impl PyMesh {
-    /// Catmull-Clark subdivision (Catmull & Clark 1978), original masks.
+    /// Catmull-Clark subdivision (Catmull & Clark 1978), original masks, with
+    /// OpenSubdiv's boundary and crease rules.
     ///
     /// Every face (any size) becomes one quad per corner. Face point =
     /// centroid, edge point = (a + b + f1 + f2)/4, vertex point =
-    /// (Q + 2R + (n-3)S)/n. Per level: V' = V + E + F, E' = 4E, F' = 2E.
+    /// (Q + 2R + (n-3)S)/n. Per level: V' = V + E + F, E' = 4E, F' = 2E
+    /// (on open meshes F counts the faces and 2E the face corners; holes
+    /// stay open). Boundary edges and creases (:meth:`with_creases`) follow
+    /// the B-spline curve rule: edge point = midpoint, crease vertex =
+    /// (a + 6v + b)/8; a semi-sharp crease of sharpness s blends into
+    /// the smooth rule over s levels (DeRose, Kass & Truong 1998). The
+    /// output carries the creases (decayed) and the attributes
+    /// (:meth:`with_attributes`).
     ///
     /// Parameters
     /// ----------
@@ -20,18 +28,37 @@ impl PyMesh {
     ///     Number of levels (0 returns an equal mesh).
     /// progress : bool, default False
     ///     Show a tqdm progress bar, one step per level.
+    /// boundary : {"edge_and_corner", "edge_only"}, default "edge_and_corner"
+    ///     OpenSubdiv's boundary interpolation: with "edge_and_corner" a
+    ///     boundary vertex with one face is a corner and stays put.
+    /// crease_method : {"uniform", "chaikin"}, default "uniform"
+    ///     How semi-sharp creases decay (OpenSubdiv's creasing methods).
+    /// correspondence : bool, default False
+    ///     Also return a :class:`topomesh.Correspondence` (parent faces,
+    ///     vertex origins, the subdivision matrix ``S``).
     ///
     /// Returns
     /// -------
-    /// Mesh
+    /// Mesh or tuple of (Mesh, Correspondence)
     ///
     /// Raises
     /// ------
     /// MeshError
-    ///     If ``iterations`` is negative or the output would exceed 31-bit ids.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn catmull_clark(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "catmull_clark", predict::catmull_clark, schemes::catmull_clark::catmull_clark)
+    ///     If ``iterations`` is negative, an option is unknown, or the output
+    ///     would exceed 31-bit ids or the memory budget.
+    #[pyo3(signature = (iterations = 1, progress = false, *, boundary = "edge_and_corner", crease_method = "uniform", correspondence = false))]
+    fn catmull_clark<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = big_int)] iterations: i128,
+        progress: bool,
+        boundary: &str,
+        crease_method: &str,
+        correspondence: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let options = levels::options("catmull_clark", boundary, crease_method)?;
+        let spec = levels::Spec { name: "catmull_clark", predict: predict::catmull_clark, options, uses_creases: true };
+        levels::run(py, self, iterations, progress, spec, correspondence, schemes::catmull_clark::catmull_clark_level)
     }
 
     /// Doo-Sabin subdivision (Doo & Sabin 1978) with Doo & Sabin's weights
@@ -46,15 +73,26 @@ impl PyMesh {
     }
 
     /// Loop subdivision (Loop 1987) with Loop's original
-    /// beta = (5/8 - (3/8 + cos(2 pi/n)/4)^2)/n (as trimesh, VTK, pymeshlab).
+    /// beta = (5/8 - (3/8 + cos(2 pi/n)/4)^2)/n (as trimesh, VTK, pymeshlab,
+    /// OpenSubdiv), and OpenSubdiv's boundary and crease rules.
     ///
     /// Non-triangles (n != 3) are first fanned into n triangles around their
     /// centroid ("extended Loop"). Per level on triangles: V' = V + E,
-    /// E' = 2E + 3F, F' = 4F. Parameters, return and errors as
-    /// :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn r#loop(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "loop", predict::loop_subdivision, schemes::loop_subdivision::loop_subdivision)
+    /// E' = 2E + 3F, F' = 4F; holes stay open. Boundaries, creases,
+    /// parameters, return and errors as :meth:`catmull_clark`.
+    #[pyo3(signature = (iterations = 1, progress = false, *, boundary = "edge_and_corner", crease_method = "uniform", correspondence = false))]
+    fn r#loop<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = big_int)] iterations: i128,
+        progress: bool,
+        boundary: &str,
+        crease_method: &str,
+        correspondence: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let options = levels::options("loop", boundary, crease_method)?;
+        let spec = levels::Spec { name: "loop", predict: predict::loop_subdivision, options, uses_creases: true };
+        levels::run(py, self, iterations, progress, spec, correspondence, schemes::loop_subdivision::loop_level)
     }
 
     /// sqrt3 subdivision (Kobbelt 2000): a centroid per face, old edges

@@ -1,0 +1,352 @@
+//! Data a `Mesh` carries beside its geometry: crease sharpness (per edge and
+//! per vertex) and named vertex and face attributes. The schemes carry them
+//! to their output (`super::levels`); the topological operators return
+//! meshes without them.
+
+use super::mesh::PyMesh;
+use super::arg_err;
+use crate::schemes::creases::{edges_sharper_than, Creases, INFINITE};
+use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+
+/// Crease sharpness and attributes of a mesh.
+#[derive(Default)]
+pub struct MeshData {
+    pub creases: Option<Creases>,
+    /// `(name, array)`: float64 arrays of shape (V,) or (V, k), read-only.
+    pub vertex: Vec<(String, Py<PyAny>)>,
+    /// `(name, array)`: arrays of any dtype whose first axis runs over the
+    /// exported faces, read-only.
+    pub face: Vec<(String, Py<PyAny>)>,
+}
+
+impl MeshData {
+    pub fn is_empty(&self) -> bool {
+        self.creases.is_none() && self.vertex.is_empty() && self.face.is_empty()
+    }
+    pub fn clone_ref(&self, py: Python<'_>) -> MeshData {
+        let c = |v: &Vec<(String, Py<PyAny>)>| v.iter().map(|(n, a)| (n.clone(), a.clone_ref(py))).collect();
+        MeshData { creases: self.creases.clone(), vertex: c(&self.vertex), face: c(&self.face) }
+    }
+}
+
+/// A read-only copy of `a` as a NumPy array (of `dtype` if given).
+fn frozen_copy<'py>(py: Python<'py>, a: &Bound<'py, PyAny>, dtype: Option<&str>) -> PyResult<Bound<'py, PyAny>> {
+    let np = py.import("numpy")?;
+    let kw = PyDict::new(py);
+    kw.set_item("copy", true)?;
+    if let Some(d) = dtype {
+        kw.set_item("dtype", d)?;
+    }
+    let c = np.call_method("array", (a,), Some(&kw))?;
+    c.getattr("flags")?.setattr("writeable", false)?;
+    Ok(c)
+}
+
+/// Sharpness values: finite and >= 0, or +inf (stored as OpenSubdiv's 10).
+fn sharpness_value(call: &str, what: &str, s: f64) -> PyResult<f64> {
+    if s.is_nan() || s < 0.0 {
+        return Err(arg_err(format!("{call}: {what} has sharpness {s}; sharpness must be >= 0 (inf or >= 10: infinitely sharp)")));
+    }
+    Ok(if s >= INFINITE { INFINITE } else { s })
+}
+
+/// Reads per-element sharpness: an array of `n` numbers, or a mapping from
+/// keys to numbers resolved by `key`.
+fn read_sharpness(
+    py: Python<'_>,
+    call: &str,
+    what: &str,
+    obj: &Bound<'_, PyAny>,
+    n: usize,
+    key: impl Fn(&Bound<'_, PyAny>) -> PyResult<Vec<usize>>,
+) -> PyResult<Vec<f64>> {
+    let mut out = vec![0.0; n];
+    if let Ok(d) = obj.cast::<PyDict>() {
+        for (k, v) in d.iter() {
+            let s: f64 = v.extract().map_err(|_| arg_err(format!("{call}: the sharpness of {what} {k} is not a number")))?;
+            let s = sharpness_value(call, &format!("{what} {k}"), s)?;
+            for i in key(&k)? {
+                out[i] = s;
+            }
+        }
+        return Ok(out);
+    }
+    let a = py.import("numpy")?.call_method1("asarray", (obj, "float64")).map_err(|e| arg_err(format!("{call}: {what} sharpness cannot be read as numbers ({e})")))?;
+    let a = a.cast_into::<PyArray1<f64>>().map_err(|_| arg_err(format!("{call}: {what} sharpness must be a 1-D array of {n} numbers or a mapping")))?;
+    if a.len() != n {
+        return Err(arg_err(format!("{call}: {} {what} sharpness values for {n} {what}s", a.len())));
+    }
+    let ro = a.readonly();
+    for (i, (&s, o)) in ro.as_array().iter().zip(out.iter_mut()).enumerate() {
+        *o = sharpness_value(call, &format!("{what} {i}"), s)?;
+    }
+    Ok(out)
+}
+
+#[pymethods]
+impl PyMesh {
+    /// A copy with crease sharpness (DeRose, Kass & Truong 1998, as in
+    /// OpenSubdiv), used by :meth:`catmull_clark` and :meth:`loop` and
+    /// carried to their output.
+    ///
+    /// Parameters
+    /// ----------
+    /// edge_sharpness : array of shape (E,) or dict, optional
+    ///     Per edge, aligned with :attr:`edges`; or a mapping from vertex
+    ///     pairs ``(a, b)`` (either order; every edge between them) to
+    ///     sharpness. 0 is smooth, ``inf`` (or anything >= 10) infinitely
+    ///     sharp; a semi-sharp crease of sharpness s stays sharp for s
+    ///     levels.
+    /// vertex_sharpness : array of shape (V,) or dict, optional
+    ///     Per vertex corner sharpness, or a mapping from vertex to it.
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///     The same mesh and attributes with these creases (replacing any).
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     A negative or NaN sharpness, a wrong length, or a pair that is no edge.
+    #[pyo3(signature = (edge_sharpness = None, vertex_sharpness = None))]
+    fn with_creases(&self, py: Python<'_>, edge_sharpness: Option<&Bound<'_, PyAny>>, vertex_sharpness: Option<&Bound<'_, PyAny>>) -> PyResult<PyMesh> {
+        let m = &self.inner;
+        let call = "with_creases";
+        let edge = match edge_sharpness {
+            None => vec![0.0; m.n_edges()],
+            Some(o) => {
+                let mut by_pair: std::collections::HashMap<(u32, u32), Vec<usize>> = std::collections::HashMap::new();
+                if o.is_instance_of::<PyDict>() {
+                    for e in 0..m.n_edges() {
+                        let (a, b) = (m.he_vert[2 * e], m.he_vert[2 * e + 1]);
+                        by_pair.entry((a.min(b), a.max(b))).or_default().push(e);
+                    }
+                }
+                read_sharpness(py, call, "edge", o, m.n_edges(), |k| {
+                    let (a, b): (i64, i64) = k.extract().map_err(|_| arg_err(format!("{call}: edge key {k} is not a vertex pair (a, b)")))?;
+                    let key = (a.min(b), a.max(b));
+                    if key.0 < 0 {
+                        return Err(arg_err(format!("{call}: ({a}, {b}) is not an edge of the mesh")));
+                    }
+                    by_pair.get(&(key.0 as u32, key.1 as u32)).cloned().ok_or_else(|| arg_err(format!("{call}: ({a}, {b}) is not an edge of the mesh")))
+                })?
+            }
+        };
+        let vertex = match vertex_sharpness {
+            None => vec![0.0; m.n_vertices()],
+            Some(o) => read_sharpness(py, call, "vertex", o, m.n_vertices(), |k| {
+                let v: i64 = k.extract().map_err(|_| arg_err(format!("{call}: vertex key {k} is not an integer")))?;
+                if v < 0 || v as usize >= m.n_vertices() {
+                    return Err(arg_err(format!("{call}: vertex {v} out of range (mesh has {} vertices)", m.n_vertices())));
+                }
+                Ok(vec![v as usize])
+            })?,
+        };
+        let mut data = self.data.clone_ref(py);
+        data.creases = Some(Creases { edge, vertex });
+        Ok(PyMesh::with_data(m.clone(), data))
+    }
+
+    /// A copy whose edges with a dihedral angle above ``angle`` degrees
+    /// (between the normals of their two faces) get crease ``sharpness``
+    /// (kept where the edge is already sharper); boundary edges are sharp
+    /// already. Other creases and attributes are kept.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     ``angle`` outside [0, 180] or a negative/NaN ``sharpness``.
+    #[pyo3(signature = (angle = 30.0, sharpness = f64::INFINITY))]
+    fn mark_creases(&self, py: Python<'_>, angle: f64, sharpness: f64) -> PyResult<PyMesh> {
+        let angle = super::finite_in("mark_creases", "angle", angle, 0.0, 180.0)?;
+        let s = sharpness_value("mark_creases", "the given edges", sharpness)?;
+        let m = &self.inner;
+        let edges = py.detach(|| edges_sharper_than(m, angle.to_radians()));
+        let mut data = self.data.clone_ref(py);
+        let c = data.creases.get_or_insert_with(|| Creases { edge: vec![0.0; m.n_edges()], vertex: vec![0.0; m.n_vertices()] });
+        for e in edges {
+            let x = &mut c.edge[e as usize];
+            *x = x.max(s);
+        }
+        Ok(PyMesh::with_data(m.clone(), data))
+    }
+
+    /// Crease sharpness per edge (aligned with :attr:`edges`), float64;
+    /// ``inf`` for infinitely sharp, zeros without creases.
+    #[getter]
+    fn edge_sharpness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let n = self.inner.n_edges();
+        let v: Vec<f64> = (0..n).map(|e| self.data.creases.as_ref().map_or(0.0, |c| c.edge(e))).map(shown).collect();
+        PyArray1::from_vec(py, v)
+    }
+
+    /// Corner sharpness per vertex, float64 (``inf`` for infinite).
+    #[getter]
+    fn vertex_sharpness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let n = self.inner.n_vertices();
+        let v: Vec<f64> = (0..n).map(|i| self.data.creases.as_ref().map_or(0.0, |c| c.vertex(i))).map(shown).collect();
+        PyArray1::from_vec(py, v)
+    }
+
+    /// A copy with named attributes (added to, or replacing, those of the
+    /// same name), carried through every scheme.
+    ///
+    /// Parameters
+    /// ----------
+    /// vertex : dict of str to array, optional
+    ///     Arrays of shape (V,) or (V, k) of finite numbers (colours,
+    ///     scalars, another pose's positions); the schemes interpolate them
+    ///     with their own vertex weights (``S @ a``), so they come out as
+    ///     float64.
+    /// face : dict of str to array, optional
+    ///     Arrays whose first axis has one entry per face (as
+    ///     :attr:`face_sizes`), any dtype (material or group ids); every
+    ///     child face inherits its parent's entry.
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     A wrong length, a non-numeric or non-finite vertex attribute.
+    #[pyo3(signature = (vertex = None, face = None))]
+    fn with_attributes(&self, py: Python<'_>, vertex: Option<&Bound<'_, PyDict>>, face: Option<&Bound<'_, PyDict>>) -> PyResult<PyMesh> {
+        let m = &self.inner;
+        let mut data = self.data.clone_ref(py);
+        let n_faces = m.n_faces() - m.n_holes();
+        let np = py.import("numpy")?;
+        if let Some(d) = vertex {
+            for (k, a) in d.iter() {
+                let name: String = k.extract().map_err(|_| arg_err(format!("with_attributes: vertex attribute name {k} is not a string")))?;
+                let raw = np.call_method1("asarray", (&a,))?;
+                let kind: String = raw.getattr("dtype")?.getattr("kind")?.extract()?;
+                if !matches!(kind.as_str(), "f" | "i" | "u" | "b") {
+                    return Err(arg_err(format!("with_attributes: vertex attribute {name:?} has dtype {} (numbers expected: vertex attributes are interpolated)", raw.getattr("dtype")?.str()?)));
+                }
+                let arr = frozen_copy(py, &raw, Some("float64"))?;
+                let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
+                if shape.is_empty() || shape.len() > 2 || shape[0] != m.n_vertices() {
+                    return Err(arg_err(format!("with_attributes: vertex attribute {name:?} has shape {shape:?}, expected ({}, k) or ({},)", m.n_vertices(), m.n_vertices())));
+                }
+                let finite: bool = np.call_method1("isfinite", (&arr,))?.call_method0("all")?.extract()?;
+                if !finite {
+                    let bad: usize = np.call_method1("argmin", (np.call_method1("isfinite", (&arr,))?.call_method1("reshape", (shape[0], -1i64))?.call_method1("all", (1,))?,))?.extract()?;
+                    return Err(arg_err(format!("with_attributes: vertex attribute {name:?} is not finite at vertex {bad}")));
+                }
+                data.vertex.retain(|(n, _)| *n != name);
+                data.vertex.push((name, arr.unbind()));
+            }
+        }
+        if let Some(d) = face {
+            for (k, a) in d.iter() {
+                let name: String = k.extract().map_err(|_| arg_err(format!("with_attributes: face attribute name {k} is not a string")))?;
+                let arr = frozen_copy(py, &a, None)?;
+                let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
+                if shape.is_empty() || shape[0] != n_faces {
+                    return Err(arg_err(format!("with_attributes: face attribute {name:?} has shape {shape:?}, expected first axis {n_faces} (one per face)")));
+                }
+                data.face.retain(|(n, _)| *n != name);
+                data.face.push((name, arr.unbind()));
+            }
+        }
+        Ok(PyMesh::with_data(m.clone(), data))
+    }
+
+    /// The vertex attributes: a new dict of read-only float64 arrays.
+    #[getter]
+    fn vertex_attributes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (n, a) in &self.data.vertex {
+            d.set_item(n, a.bind(py))?;
+        }
+        Ok(d)
+    }
+
+    /// The face attributes: a new dict of read-only arrays (one entry per face).
+    #[getter]
+    fn face_attributes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (n, a) in &self.data.face {
+            d.set_item(n, a.bind(py))?;
+        }
+        Ok(d)
+    }
+
+    /// A copy without creases and attributes.
+    fn without_data(&self) -> PyMesh {
+        PyMesh::wrap(self.inner.clone())
+    }
+
+    /// Sharpness of the edge leaving every exported corner (aligned with
+    /// :attr:`face_indices`).
+    fn _corner_sharpness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let m = &self.inner;
+        let mut v = Vec::with_capacity(m.n_halfedges());
+        for f in m.faces() {
+            if m.is_hole(f) {
+                continue;
+            }
+            if m.face_halfedge(f).is_none() {
+                v.push(0.0); // a point-sphere's lone corner
+            }
+            for h in m.face_halfedges(f) {
+                v.push(shown(self.data.creases.as_ref().map_or(0.0, |c| c.edge(h.edge().idx()))));
+            }
+        }
+        PyArray1::from_vec(py, v)
+    }
+
+    /// A copy with edge sharpness given per exported corner (as
+    /// :meth:`_corner_sharpness`) and vertex sharpness; for unpickling.
+    fn _with_corner_sharpness(&self, py: Python<'_>, corner: &Bound<'_, PyAny>, vertex: &Bound<'_, PyAny>) -> PyResult<PyMesh> {
+        let m = &self.inner;
+        let n_corners = m.faces().filter(|&f| !m.is_hole(f)).map(|f| m.face_degree(f)).sum();
+        let cs = read_sharpness(py, "_with_corner_sharpness", "corner", corner, n_corners, |_| Ok(vec![]))?;
+        let mut edge = vec![0.0; m.n_edges()];
+        let mut c = 0;
+        for f in m.faces() {
+            if m.is_hole(f) {
+                continue;
+            }
+            if m.face_halfedge(f).is_none() {
+                c += 1;
+            }
+            for h in m.face_halfedges(f) {
+                edge[h.edge().idx()] = cs[c];
+                c += 1;
+            }
+        }
+        let vs = read_sharpness(py, "_with_corner_sharpness", "vertex", vertex, m.n_vertices(), |_| Ok(vec![]))?;
+        let mut data = self.data.clone_ref(py);
+        data.creases = Some(Creases { edge, vertex: vs });
+        Ok(PyMesh::with_data(m.clone(), data))
+    }
+
+    /// `(corner sharpness, vertex_sharpness, vertex attributes, face
+    /// attributes)` for pickling, or None.
+    pub(crate) fn _data_state<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyTuple>>> {
+        if self.data.is_empty() {
+            return Ok(None);
+        }
+        let creases = self.data.creases.is_some();
+        // per exported corner: edge ids are renumbered by a rebuild, corners are not
+        let es = if creases { Some(self._corner_sharpness(py)) } else { None };
+        let vs = if creases { Some(self.vertex_sharpness(py)) } else { None };
+        Ok(Some(PyTuple::new(py, [es.into_pyobject(py)?.into_any(), vs.into_pyobject(py)?.into_any(), self.vertex_attributes(py)?.into_any(), self.face_attributes(py)?.into_any()])?))
+    }
+}
+
+/// Stored sharpness as users see it (10 = infinite).
+fn shown(s: f64) -> f64 {
+    if s >= INFINITE {
+        f64::INFINITY
+    } else {
+        s
+    }
+}
+

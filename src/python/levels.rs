@@ -1,0 +1,248 @@
+//! Schemes with their data: levels of `crate::schemes::level` run one after
+//! another, carrying crease sharpness and attributes to the output and, on
+//! request, returning the correspondence (origins and the subdivision
+//! matrix `S`, composed over the levels).
+//!
+//! Vertex attributes are interpolated per level with that level's stencils
+//! (`A ← S_k A`), never through the composed matrix, so they cost one
+//! sparse product per level and column. Face attributes are gathered
+//! through the composed face origins once at the end.
+
+use super::mesh::PyMesh;
+use crate::mesh::Mesh;
+use crate::schemes::creases::{ring, Creases, SubdivOptions};
+use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
+use crate::schemes::stencil::Stencils;
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// What a scheme binding passes on.
+pub(crate) struct Spec {
+    /// The scheme's name in messages and the progress bar.
+    pub name: &'static str,
+    /// Its count formulas, for the memory budget.
+    pub predict: crate::budget::Predictor,
+    pub options: SubdivOptions,
+    /// The scheme reads and carries crease sharpness (Catmull-Clark, Loop).
+    pub uses_creases: bool,
+}
+
+struct State<'a> {
+    options: SubdivOptions,
+    want_matrix: bool,
+    want_origins: bool,
+    creases: Option<Creases>,
+    attrs: Vec<(Vec<f64>, usize)>,
+    matrix: Option<Stencils>,
+    origins: Option<Origins>,
+    name: &'a str,
+}
+
+/// Runs `level` `iterations` times on `slf` with its data; returns a `Mesh`,
+/// or `(Mesh, Correspondence)` when `correspondence` is true.
+pub(crate) fn run<'py>(
+    py: Python<'py>,
+    slf: &PyMesh,
+    iterations: i128,
+    progress: bool,
+    spec: Spec,
+    correspondence: bool,
+    level: impl Fn(&Mesh, &Request) -> crate::Result<Level> + Sync,
+) -> PyResult<Bound<'py, PyAny>> {
+    let input = &slf.inner;
+    let options = spec.options;
+    if !correspondence && slf.data.is_empty() {
+        let (out, ()) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, (), |m, _| {
+            level(m, &Request { options, ..Default::default() }).map(|l| l.mesh)
+        })?;
+        return Ok(Bound::new(py, PyMesh::wrap(out.unwrap_or_else(|| input.clone())))?.into_any());
+    }
+    // vertex attributes as flat float64 rows
+    let mut attrs = Vec::with_capacity(slf.data.vertex.len());
+    let mut shapes = Vec::with_capacity(slf.data.vertex.len());
+    for (_, a) in &slf.data.vertex {
+        let a = a.bind(py).cast::<PyArrayDyn<f64>>()?.readonly();
+        let shape = a.shape().to_vec();
+        let k = if shape.len() == 2 { shape[1] } else { 1 };
+        attrs.push((a.as_slice()?.to_vec(), k));
+        shapes.push(shape.len());
+    }
+    let need_origins = correspondence || !slf.data.face.is_empty();
+    let state = State {
+        options,
+        want_matrix: correspondence,
+        want_origins: need_origins,
+        creases: if spec.uses_creases { slf.data.creases.clone() } else { None },
+        attrs,
+        matrix: None,
+        origins: None,
+        name: spec.name,
+    };
+    let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |m, st| {
+        let req = Request {
+            stencils: st.want_matrix || !st.attrs.is_empty(),
+            origins: st.want_origins,
+            creases: st.creases.as_ref(),
+            options: st.options,
+        };
+        let lv = level(m, &req)?;
+        if req.stencils && lv.stencils.is_none() {
+            return Err(crate::MeshError::Precondition(format!(
+                "{}: its positions are not linear in the input's, so it has no subdivision matrix and cannot interpolate vertex attributes",
+                st.name
+            )));
+        }
+        if let Some(s) = &lv.stencils {
+            for (a, k) in &mut st.attrs {
+                *a = s.apply(a, *k)?;
+            }
+            if st.want_matrix {
+                st.matrix = Some(match &st.matrix {
+                    None => s.clone(),
+                    Some(prev) => s.compose(prev)?,
+                });
+            }
+        }
+        if let Some(o) = lv.origins {
+            st.origins = Some(match &st.origins {
+                None => o,
+                Some(prev) => o.compose(prev),
+            });
+        }
+        st.creases = if spec.uses_creases { lv.creases } else { None };
+        Ok(lv.mesh)
+    })?;
+    let zero_levels = out.is_none();
+    let out = out.unwrap_or_else(|| input.clone());
+    let origins = if need_origins { Some(st.origins.unwrap_or_else(|| identity_origins(input))) } else { None };
+    let (face_kinds, face_origins, face_parents) = match &origins {
+        Some(o) => exported_face_origins(input, &out, o),
+        None => (vec![], vec![], vec![]),
+    };
+    // the output's data
+    let mut data = super::data::MeshData { creases: if zero_levels && spec.uses_creases { slf.data.creases.clone() } else { st.creases }, ..Default::default() };
+    for (((name, _), (a, k)), nd) in slf.data.vertex.iter().zip(st.attrs).zip(shapes) {
+        let arr = PyArray1::from_vec(py, a);
+        let arr = if nd == 2 { arr.reshape([out.n_vertices(), k])?.into_any() } else { arr.into_any() };
+        arr.getattr("flags")?.setattr("writeable", false)?;
+        data.vertex.push((name.clone(), arr.unbind()));
+    }
+    if !slf.data.face.is_empty() {
+        let idx = PyArray1::from_vec(py, face_parents.clone());
+        for (name, a) in &slf.data.face {
+            let arr = a.bind(py).call_method1("take", (&idx, 0))?;
+            arr.getattr("flags")?.setattr("writeable", false)?;
+            data.face.push((name.clone(), arr.unbind()));
+        }
+    }
+    let mesh = Bound::new(py, PyMesh::with_data(out, data))?;
+    if !correspondence {
+        return Ok(mesh.into_any());
+    }
+    let out = &mesh.get().inner;
+    let o = origins.expect("requested");
+    let (vertex_kinds, vertex_origins) = exported_vertex_origins(input, &o);
+    let matrix = st.matrix.unwrap_or_else(|| Stencils::identity(input.n_vertices()));
+    let kw = PyDict::new(py);
+    kw.set_item("face_parents", PyArray1::from_vec(py, face_parents))?;
+    kw.set_item("face_kinds", PyArray1::from_vec(py, face_kinds))?;
+    kw.set_item("face_origins", PyArray1::from_vec(py, face_origins))?;
+    kw.set_item("vertex_kinds", PyArray1::from_vec(py, vertex_kinds))?;
+    kw.set_item("vertex_origins", PyArray1::from_vec(py, vertex_origins))?;
+    kw.set_item("indptr", PyArray1::from_vec(py, matrix.off.iter().map(|&x| x as i64).collect()))?;
+    kw.set_item("indices", PyArray1::from_vec(py, matrix.col.iter().map(|&x| x as i64).collect()))?;
+    kw.set_item("weights", PyArray1::from_vec(py, matrix.w))?;
+    kw.set_item("shape", (out.n_vertices(), input.n_vertices()))?;
+    let c = py.import("topomesh.correspondence")?.getattr("Correspondence")?.call((), Some(&kw))?;
+    Ok(pyo3::types::PyTuple::new(py, [mesh.into_any(), c])?.into_any())
+}
+
+/// Zero levels: every element is its own origin.
+fn identity_origins(m: &Mesh) -> Origins {
+    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
+    Origins {
+        vertex_kind: vec![VERTEX; nv],
+        vertex: (0..nv as u32).collect(),
+        edge_kind: vec![EDGE; ne],
+        edge: (0..ne as u32).collect(),
+        face_kind: vec![FACE; nf],
+        face: (0..nf as u32).collect(),
+    }
+}
+
+/// Exported index of every internal face (-1 for holes).
+fn face_export(m: &Mesh) -> Vec<i64> {
+    let mut k = 0i64;
+    m.f_hole
+        .iter()
+        .map(|&h| {
+            if h {
+                -1
+            } else {
+                k += 1;
+                k - 1
+            }
+        })
+        .collect()
+}
+
+/// Per exported output face: origin kind, origin index (exported ids) and
+/// the parent face: the origin face, or for a face born from an edge or a
+/// vertex the first real face of that edge (its first side) or around that
+/// vertex (from its first outgoing half-edge).
+fn exported_face_origins(input: &Mesh, out: &Mesh, o: &Origins) -> (Vec<i8>, Vec<i64>, Vec<i64>) {
+    let fe = face_export(input);
+    let (_, _, face) = input.halfedge_columns();
+    let real = |h: u32| -> Option<i64> { (!input.f_hole[face[h as usize] as usize]).then(|| fe[face[h as usize] as usize]) };
+    let n = out.n_faces() - out.n_holes();
+    let (mut kinds, mut idx, mut parents) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+    for f in 0..out.n_faces() {
+        if out.f_hole[f] {
+            continue;
+        }
+        let (k, i) = (o.face_kind[f], o.face[f]);
+        kinds.push(k as i8);
+        let parent = match k {
+            FACE => fe[i as usize],
+            EDGE => real(2 * i).or_else(|| real(2 * i + 1)).unwrap_or(-1),
+            _ => {
+                let v = input.v_out[i as usize];
+                if v & crate::mesh::POINT != 0 {
+                    fe[(v & !crate::mesh::POINT) as usize]
+                } else {
+                    ring(input, v).find_map(real).unwrap_or(-1)
+                }
+            }
+        };
+        idx.push(if k == FACE { fe[i as usize] } else { i as i64 });
+        parents.push(parent);
+    }
+    (kinds, idx, parents)
+}
+
+fn exported_vertex_origins(input: &Mesh, o: &Origins) -> (Vec<i8>, Vec<i64>) {
+    let fe = face_export(input);
+    o.vertex_kind
+        .iter()
+        .zip(&o.vertex)
+        .map(|(&k, &i)| (k as i8, if k == FACE { fe[i as usize] } else { i as i64 }))
+        .unzip()
+}
+
+
+/// Parses the ``boundary`` and ``crease_method`` keywords.
+pub(crate) fn options(call: &str, boundary: &str, crease_method: &str) -> PyResult<SubdivOptions> {
+    use crate::schemes::creases::{Boundary, CreaseMethod};
+    let boundary = match boundary {
+        "edge_and_corner" => Boundary::EdgeAndCorner,
+        "edge_only" => Boundary::EdgeOnly,
+        _ => return Err(super::arg_err(format!("{call}: boundary = {boundary:?}; expected \"edge_and_corner\" (OpenSubdiv's default) or \"edge_only\""))),
+    };
+    let crease_method = match crease_method {
+        "uniform" => CreaseMethod::Uniform,
+        "chaikin" => CreaseMethod::Chaikin,
+        _ => return Err(super::arg_err(format!("{call}: crease_method = {crease_method:?}; expected \"uniform\" or \"chaikin\""))),
+    };
+    Ok(SubdivOptions { boundary, crease_method })
+}
