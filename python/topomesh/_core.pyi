@@ -10,6 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from topomesh.printing import PrintReport
+from topomesh.correspondence import Correspondence
 
 __all__ = [
     "_read_obj",
@@ -189,10 +190,70 @@ class Mesh:
     ) -> Mesh: ...
     def self_intersections(self) -> npt.NDArray[np.int64]: ...
     def rind(self, thickness: float) -> Rind: ...
+    # --- creases and attributes ---
+    def with_creases(
+        self,
+        edge_sharpness: npt.ArrayLike | dict[tuple[int, int], float] | None = None,
+        vertex_sharpness: npt.ArrayLike | dict[int, float] | None = None,
+    ) -> Mesh: ...
+    def mark_creases(self, angle: float = 30.0, sharpness: float = ...) -> Mesh: ...
+    @property
+    def edge_sharpness(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def vertex_sharpness(self) -> npt.NDArray[np.float64]: ...
+    def with_attributes(
+        self, vertex: dict[str, npt.ArrayLike] | None = None, face: dict[str, npt.ArrayLike] | None = None
+    ) -> Mesh: ...
+    @property
+    def vertex_attributes(self) -> dict[str, npt.NDArray[np.float64]]: ...
+    @property
+    def face_attributes(self) -> dict[str, npt.NDArray[Any]]: ...
+    def without_data(self) -> Mesh: ...
+    def _corner_sharpness(self) -> npt.NDArray[np.float64]: ...
+    def _with_corner_sharpness(self, corner: npt.ArrayLike, vertex: npt.ArrayLike) -> Mesh: ...
+    def _data_state(self) -> tuple[Any, Any, Any, Any] | None: ...
     # --- smooth ---
-    def catmull_clark(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
+    @overload
+    def catmull_clark(
+        self,
+        iterations: int = 1,
+        progress: bool = False,
+        *,
+        boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
+        crease_method: Literal["uniform", "chaikin"] = "uniform",
+        correspondence: Literal[False] = False,
+    ) -> Mesh: ...
+    @overload
+    def catmull_clark(
+        self,
+        iterations: int = 1,
+        progress: bool = False,
+        *,
+        boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
+        crease_method: Literal["uniform", "chaikin"] = "uniform",
+        correspondence: Literal[True],
+    ) -> tuple[Mesh, Correspondence]: ...
     def doo_sabin(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
-    def loop(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
+    @overload
+    def loop(
+        self,
+        iterations: int = 1,
+        progress: bool = False,
+        *,
+        boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
+        crease_method: Literal["uniform", "chaikin"] = "uniform",
+        correspondence: Literal[False] = False,
+    ) -> Mesh: ...
+    @overload
+    def loop(
+        self,
+        iterations: int = 1,
+        progress: bool = False,
+        *,
+        boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
+        crease_method: Literal["uniform", "chaikin"] = "uniform",
+        correspondence: Literal[True],
+    ) -> tuple[Mesh, Correspondence]: ...
     def sqrt3(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
     def simplest(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
     def midpoint(self, iterations: int = 1, progress: bool = False) -> Mesh: ...

@@ -65,7 +65,7 @@ class Correspondence:
             import scipy.sparse as sp
         except ImportError as e:  # pragma: no cover - scipy is in the test extras
             raise ImportError("Correspondence.matrix needs SciPy: pip install scipy") from e
-        s = sp.csr_array((self.weights, self.indices, self.indptr), shape=self.shape)
+        s = sp.csr_array((self.weights.copy(), self.indices.copy(), self.indptr.copy()), shape=self.shape)
         s.sum_duplicates()
         return s
 

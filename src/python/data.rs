@@ -231,7 +231,7 @@ impl PyMesh {
                 let arr = frozen_copy(py, &raw, Some("float64"))?;
                 let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
                 if shape.is_empty() || shape.len() > 2 || shape[0] != m.n_vertices() {
-                    return Err(arg_err(format!("with_attributes: vertex attribute {name:?} has shape {shape:?}, expected ({}, k) or ({},)", m.n_vertices(), m.n_vertices())));
+                    return Err(arg_err(format!("with_attributes: vertex attribute {name:?} has shape {}, expected ({}, k) or ({},)", shape_str(&shape), m.n_vertices(), m.n_vertices())));
                 }
                 let finite: bool = np.call_method1("isfinite", (&arr,))?.call_method0("all")?.extract()?;
                 if !finite {
@@ -248,7 +248,7 @@ impl PyMesh {
                 let arr = frozen_copy(py, &a, None)?;
                 let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
                 if shape.is_empty() || shape[0] != n_faces {
-                    return Err(arg_err(format!("with_attributes: face attribute {name:?} has shape {shape:?}, expected first axis {n_faces} (one per face)")));
+                    return Err(arg_err(format!("with_attributes: face attribute {name:?} has shape {}, expected first axis {n_faces} (one per face)", shape_str(&shape))));
                 }
                 data.face.retain(|(n, _)| *n != name);
                 data.face.push((name, arr.unbind()));
@@ -338,6 +338,14 @@ impl PyMesh {
         let es = if creases { Some(self._corner_sharpness(py)) } else { None };
         let vs = if creases { Some(self.vertex_sharpness(py)) } else { None };
         Ok(Some(PyTuple::new(py, [es.into_pyobject(py)?.into_any(), vs.into_pyobject(py)?.into_any(), self.vertex_attributes(py)?.into_any(), self.face_attributes(py)?.into_any()])?))
+    }
+}
+
+/// A NumPy-style shape: `(7, 3)`, `(5,)`.
+fn shape_str(s: &[usize]) -> String {
+    match s {
+        [a] => format!("({a},)"),
+        _ => format!("({})", s.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ")),
     }
 }
 

@@ -27,7 +27,11 @@
 //! corner). Hole faces are not fanned and stay one hole of 2n corners; on
 //! triangles with b boundary edges: V' = V + E, E' = 2E + 3F_r, F' = 4F_r.
 //! With n-gons the level is the fan followed by the Loop step, and its
-//! stencils and origins are the composition of the two.
+//! stencils and origins are the composition of the two. Corners (for the
+//! edge-and-corner boundary) are those of the fanned triangles, as if the
+//! mesh were triangulated before OpenSubdiv's Loop: a quad's boundary
+//! corner has two triangles there and follows the crease rule; give it
+//! vertex sharpness to pin it.
 
 use super::creases::{Creases, EdgeRule, LevelSharpness, Rule};
 use super::hosts::{check_output_size, fan_triangulate, primal_host, primal_host_sides, FaceLayout, HOLE, MIN_LEN};
