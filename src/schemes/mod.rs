@@ -5,6 +5,7 @@ pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
 pub mod creases;
+pub mod face_varying;
 pub mod level;
 pub mod stencil;
 pub mod catmull_clark;
