@@ -91,10 +91,10 @@ def _from_state(vertices, face_sizes, face_indices, corner_twins, data=None) -> 
     """Unpickling: the exact rebuild of :meth:`Mesh.from_flat` with twins, and its creases and attributes."""
     m = Mesh.from_flat(vertices, face_sizes, face_indices, twins=corner_twins)
     if data is not None:
-        corner_sharpness, vertex_sharpness, vertex, face = data
+        corner_sharpness, vertex_sharpness, vertex, face, corner = data
         if corner_sharpness is not None:
             m = m._with_corner_sharpness(corner_sharpness, vertex_sharpness)
-        m = m.with_attributes(vertex=vertex, face=face)
+        m = m.with_attributes(vertex=vertex, face=face, corner=corner)
     return m
 
 

@@ -19,15 +19,18 @@ pub struct MeshData {
     /// `(name, array)`: arrays of any dtype whose first axis runs over the
     /// exported faces, read-only.
     pub face: Vec<(String, Py<PyAny>)>,
+    /// `(name, array)`: float64 arrays of shape (C,) or (C, k), one row per
+    /// exported corner (aligned with `face_indices`), read-only.
+    pub corner: Vec<(String, Py<PyAny>)>,
 }
 
 impl MeshData {
     pub fn is_empty(&self) -> bool {
-        self.creases.is_none() && self.vertex.is_empty() && self.face.is_empty()
+        self.creases.is_none() && self.vertex.is_empty() && self.face.is_empty() && self.corner.is_empty()
     }
     pub fn clone_ref(&self, py: Python<'_>) -> MeshData {
         let c = |v: &Vec<(String, Py<PyAny>)>| v.iter().map(|(n, a)| (n.clone(), a.clone_ref(py))).collect();
-        MeshData { creases: self.creases.clone(), vertex: c(&self.vertex), face: c(&self.face) }
+        MeshData { creases: self.creases.clone(), vertex: c(&self.vertex), face: c(&self.face), corner: c(&self.corner) }
     }
 }
 
@@ -205,6 +208,13 @@ impl PyMesh {
     ///     Arrays whose first axis has one entry per face (as
     ///     :attr:`face_sizes`), any dtype (material or group ids); every
     ///     child face inherits its parent's entry.
+    /// corner : dict of str to array or (table, index), optional
+    ///     Face-varying data such as UVs with seams: per corner (aligned
+    ///     with :attr:`face_indices`) an array of shape (C,) or (C, k), or a
+    ///     value table (n, k) with an index per corner (as OBJ's ``vt``).
+    ///     An edge is a seam where its two sides' values differ.
+    ///     :meth:`catmull_clark` and :meth:`loop` subdivide them with
+    ///     OpenSubdiv's face-varying rules (``corner_interpolation``).
     ///
     /// Returns
     /// -------
@@ -214,8 +224,8 @@ impl PyMesh {
     /// ------
     /// MeshError
     ///     A wrong length, a non-numeric or non-finite vertex attribute.
-    #[pyo3(signature = (vertex = None, face = None))]
-    fn with_attributes(&self, py: Python<'_>, vertex: Option<&Bound<'_, PyDict>>, face: Option<&Bound<'_, PyDict>>) -> PyResult<PyMesh> {
+    #[pyo3(signature = (vertex = None, face = None, corner = None))]
+    fn with_attributes(&self, py: Python<'_>, vertex: Option<&Bound<'_, PyDict>>, face: Option<&Bound<'_, PyDict>>, corner: Option<&Bound<'_, PyDict>>) -> PyResult<PyMesh> {
         let m = &self.inner;
         let mut data = self.data.clone_ref(py);
         let n_faces = m.n_faces() - m.n_holes();
@@ -254,7 +264,64 @@ impl PyMesh {
                 data.face.push((name, arr.unbind()));
             }
         }
+        if let Some(d) = corner {
+            let n_corners: usize = m.faces().filter(|&f| !m.is_hole(f)).map(|f| m.face_degree(f)).sum();
+            if m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+                return Err(arg_err("with_attributes: corner attributes need a mesh without point-spheres (their lone corner has no neighbourhood)"));
+            }
+            for (k, a) in d.iter() {
+                let name: String = k.extract().map_err(|_| arg_err(format!("with_attributes: corner attribute name {k} is not a string")))?;
+                // (table, index) → per-corner rows
+                let a = match a.cast::<PyTuple>() {
+                    Ok(t) if t.len() == 2 => {
+                        let table = np.call_method1("asarray", (t.get_item(0)?, "float64"))?;
+                        let index = np.call_method1("asarray", (t.get_item(1)?,))?;
+                        let ikind: String = index.getattr("dtype")?.getattr("kind")?.extract()?;
+                        let n: usize = table.getattr("shape")?.get_item(0)?.extract()?;
+                        if !matches!(ikind.as_str(), "i" | "u") {
+                            return Err(arg_err(format!("with_attributes: corner attribute {name:?}: the index must be integers")));
+                        }
+                        let size: usize = index.getattr("size")?.extract()?;
+                        if size > 0 {
+                            let (lo, hi): (i64, i64) = (index.call_method0("min")?.extract()?, index.call_method0("max")?.extract()?);
+                            if lo < 0 || hi as usize >= n {
+                                return Err(arg_err(format!("with_attributes: corner attribute {name:?}: index values {lo}..{hi} outside the table's {n} rows")));
+                            }
+                        }
+                        table.call_method1("take", (index, 0))?
+                    }
+                    _ => a,
+                };
+                let raw = np.call_method1("asarray", (&a,))?;
+                let kind: String = raw.getattr("dtype")?.getattr("kind")?.extract()?;
+                if !matches!(kind.as_str(), "f" | "i" | "u" | "b") {
+                    return Err(arg_err(format!("with_attributes: corner attribute {name:?} has dtype {} (numbers expected)", raw.getattr("dtype")?.str()?)));
+                }
+                let arr = frozen_copy(py, &raw, Some("float64"))?;
+                let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
+                if shape.is_empty() || shape.len() > 2 || shape[0] != n_corners {
+                    return Err(arg_err(format!("with_attributes: corner attribute {name:?} has shape {}, expected ({n_corners}, k) or ({n_corners},) (one row per corner, as face_indices)", shape_str(&shape))));
+                }
+                let finite: bool = np.call_method1("isfinite", (&arr,))?.call_method0("all")?.extract()?;
+                if !finite {
+                    return Err(arg_err(format!("with_attributes: corner attribute {name:?} is not finite")));
+                }
+                data.corner.retain(|(n, _)| *n != name);
+                data.corner.push((name, arr.unbind()));
+            }
+        }
         Ok(PyMesh::with_data(m.clone(), data))
+    }
+
+    /// The corner (face-varying) attributes: a new dict of read-only
+    /// float64 arrays, one row per corner (as :attr:`face_indices`).
+    #[getter]
+    fn corner_attributes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (n, a) in &self.data.corner {
+            d.set_item(n, a.bind(py))?;
+        }
+        Ok(d)
     }
 
     /// The vertex attributes: a new dict of read-only float64 arrays.
@@ -337,7 +404,16 @@ impl PyMesh {
         // per exported corner: edge ids are renumbered by a rebuild, corners are not
         let es = if creases { Some(self._corner_sharpness(py)) } else { None };
         let vs = if creases { Some(self.vertex_sharpness(py)) } else { None };
-        Ok(Some(PyTuple::new(py, [es.into_pyobject(py)?.into_any(), vs.into_pyobject(py)?.into_any(), self.vertex_attributes(py)?.into_any(), self.face_attributes(py)?.into_any()])?))
+        Ok(Some(PyTuple::new(
+            py,
+            [
+                es.into_pyobject(py)?.into_any(),
+                vs.into_pyobject(py)?.into_any(),
+                self.vertex_attributes(py)?.into_any(),
+                self.face_attributes(py)?.into_any(),
+                self.corner_attributes(py)?.into_any(),
+            ],
+        )?))
     }
 }
 

@@ -11,6 +11,7 @@
 use super::mesh::PyMesh;
 use crate::mesh::Mesh;
 use crate::schemes::creases::{ring, Creases, SubdivOptions};
+use crate::schemes::face_varying::{FaceVarying, Interpolation};
 use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use crate::schemes::stencil::Stencils;
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
@@ -26,6 +27,9 @@ pub(crate) struct Spec {
     pub options: SubdivOptions,
     /// The scheme reads and carries crease sharpness (Catmull-Clark, Loop).
     pub uses_creases: bool,
+    /// How corner (face-varying) attributes are interpolated; None: the
+    /// scheme has no face-varying rules and refuses them.
+    pub face_varying: Option<Interpolation>,
 }
 
 struct State<'a> {
@@ -34,6 +38,7 @@ struct State<'a> {
     want_origins: bool,
     creases: Option<Creases>,
     attrs: Vec<(Vec<f64>, usize)>,
+    corners: Vec<FaceVarying>,
     matrix: Option<Stencils>,
     origins: Option<Origins>,
     name: &'a str,
@@ -68,6 +73,28 @@ pub(crate) fn run<'py>(
         attrs.push((a.as_slice()?.to_vec(), k));
         shapes.push(shape.len());
     }
+    // corner attributes: value ids by exact equality of rows, then their face-varying meshes
+    let mut corners = Vec::with_capacity(slf.data.corner.len());
+    let mut corner_shapes = Vec::with_capacity(slf.data.corner.len());
+    if !slf.data.corner.is_empty() {
+        let Some(interp) = spec.face_varying else {
+            return Err(super::arg_err(format!(
+                "{}: the mesh has corner attributes ({}), which only catmull_clark and loop can subdivide (face-varying rules); drop them with without_data() or with_attributes",
+                spec.name,
+                slf.data.corner.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+            )));
+        };
+        let _ = interp;
+        for (_, a) in &slf.data.corner {
+            let a = a.bind(py).cast::<PyArrayDyn<f64>>()?.readonly();
+            let shape = a.shape().to_vec();
+            let k = if shape.len() == 2 { shape[1] } else { 1 };
+            let (ids, table) = dedupe(a.as_slice()?, k);
+            let cr = if spec.uses_creases { slf.data.creases.as_ref() } else { None };
+            corners.push(py.detach(|| FaceVarying::new(input, &ids, &table, k, cr)).map_err(super::err)?);
+            corner_shapes.push(shape.len());
+        }
+    }
     let need_origins = correspondence || !slf.data.face.is_empty();
     let state = State {
         options,
@@ -75,6 +102,7 @@ pub(crate) fn run<'py>(
         want_origins: need_origins,
         creases: if spec.uses_creases { slf.data.creases.clone() } else { None },
         attrs,
+        corners,
         matrix: None,
         origins: None,
         name: spec.name,
@@ -104,6 +132,14 @@ pub(crate) fn run<'py>(
                 });
             }
         }
+        if !st.corners.is_empty() {
+            let interp = spec.face_varying.unwrap_or_default();
+            let geometry_creases = st.creases.clone();
+            for fv in &mut st.corners {
+                let cur = std::mem::replace(fv, FaceVarying { mesh: Mesh::new(), values: vec![], k: 0, creases: None });
+                *fv = cur.with_creases(m, geometry_creases.as_ref())?.level(&level, interp, st.options)?;
+            }
+        }
         if let Some(o) = lv.origins {
             st.origins = Some(match &st.origins {
                 None => o,
@@ -127,6 +163,19 @@ pub(crate) fn run<'py>(
         let arr = if nd == 2 { arr.reshape([out.n_vertices(), k])?.into_any() } else { arr.into_any() };
         arr.getattr("flags")?.setattr("writeable", false)?;
         data.vertex.push((name.clone(), arr.unbind()));
+    }
+    for (((name, _), fv), nd) in slf.data.corner.iter().zip(&st.corners).zip(corner_shapes) {
+        let rows = py.detach(|| fv.corner_rows()).map_err(super::err)?;
+        let k = fv.k;
+        let mut v = Vec::with_capacity(rows.len() * k);
+        for r in rows {
+            v.extend_from_slice(&fv.values[r as usize * k..(r as usize + 1) * k]);
+        }
+        let n = v.len() / k.max(1);
+        let arr = PyArray1::from_vec(py, v);
+        let arr = if nd == 2 { arr.reshape([n, k])?.into_any() } else { arr.into_any() };
+        arr.getattr("flags")?.setattr("writeable", false)?;
+        data.corner.push((name.clone(), arr.unbind()));
     }
     if !slf.data.face.is_empty() {
         let idx = PyArray1::from_vec(py, face_parents.clone());
@@ -156,6 +205,24 @@ pub(crate) fn run<'py>(
     kw.set_item("shape", (out.n_vertices(), input.n_vertices()))?;
     let c = py.import("topomesh.correspondence")?.getattr("Correspondence")?.call((), Some(&kw))?;
     Ok(pyo3::types::PyTuple::new(py, [mesh.into_any(), c])?.into_any())
+}
+
+/// Value ids of rows of `k` numbers by exact equality (bit patterns, with
+/// -0.0 equal to 0.0), and the table of distinct rows in first-seen order.
+fn dedupe(a: &[f64], k: usize) -> (Vec<u32>, Vec<f64>) {
+    let mut seen: std::collections::HashMap<Vec<u64>, u32> = std::collections::HashMap::new();
+    let mut ids = Vec::with_capacity(a.len() / k.max(1));
+    let mut table = Vec::new();
+    for row in a.chunks_exact(k.max(1)) {
+        let key: Vec<u64> = row.iter().map(|&x| if x == 0.0 { 0 } else { x.to_bits() }).collect();
+        let n = seen.len() as u32;
+        let id = *seen.entry(key).or_insert_with(|| {
+            table.extend_from_slice(row);
+            n
+        });
+        ids.push(id);
+    }
+    (ids, table)
 }
 
 /// Zero levels: every element is its own origin.
@@ -232,6 +299,16 @@ fn exported_vertex_origins(input: &Mesh, o: &Origins) -> (Vec<i8>, Vec<i64>) {
 
 
 /// Parses the ``boundary`` and ``crease_method`` keywords.
+pub(crate) fn corner_interpolation(call: &str, s: &str) -> PyResult<Interpolation> {
+    Ok(match s {
+        "all" => Interpolation::All,
+        "boundaries" => Interpolation::Boundaries,
+        "corners_only" => Interpolation::CornersOnly,
+        "smooth" => Interpolation::Smooth,
+        _ => return Err(super::arg_err(format!("{call}: corner_interpolation = {s:?}; expected \"all\" (linear, OpenSubdiv's default), \"boundaries\", \"corners_only\" or \"smooth\""))),
+    })
+}
+
 pub(crate) fn options(call: &str, boundary: &str, crease_method: &str) -> PyResult<SubdivOptions> {
     use crate::schemes::creases::{Boundary, CreaseMethod};
     let boundary = match boundary {

@@ -33,6 +33,10 @@ impl PyMesh {
     ///     boundary vertex with one face is a corner and stays put.
     /// crease_method : {"uniform", "chaikin"}, default "uniform"
     ///     How semi-sharp creases decay (OpenSubdiv's creasing methods).
+    /// corner_interpolation : {"all", "boundaries", "corners_only", "smooth"}, default "all"
+    ///     Corner attributes (UVs): OpenSubdiv's face-varying choices,
+    ///     linear everywhere ("all", its default), linear along seams and
+    ///     boundaries, smooth with seam corners pinned, or smooth.
     /// correspondence : bool, default False
     ///     Also return a :class:`topomesh.Correspondence` (parent faces,
     ///     vertex origins, the subdivision matrix ``S``).
@@ -46,7 +50,8 @@ impl PyMesh {
     /// MeshError
     ///     If ``iterations`` is negative, an option is unknown, or the output
     ///     would exceed 31-bit ids or the memory budget.
-    #[pyo3(signature = (iterations = 1, progress = false, *, boundary = "edge_and_corner", crease_method = "uniform", correspondence = false))]
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (iterations = 1, progress = false, *, boundary = "edge_and_corner", crease_method = "uniform", corner_interpolation = "all", correspondence = false))]
     fn catmull_clark<'py>(
         &self,
         py: Python<'py>,
@@ -54,10 +59,12 @@ impl PyMesh {
         progress: bool,
         boundary: &str,
         crease_method: &str,
+        corner_interpolation: &str,
         correspondence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let options = levels::options("catmull_clark", boundary, crease_method)?;
-        let spec = levels::Spec { name: "catmull_clark", predict: predict::catmull_clark, options, uses_creases: true };
+        let fv = levels::corner_interpolation("catmull_clark", corner_interpolation)?;
+        let spec = levels::Spec { name: "catmull_clark", predict: predict::catmull_clark, options, uses_creases: true, face_varying: Some(fv) };
         levels::run(py, self, iterations, progress, spec, correspondence, schemes::catmull_clark::catmull_clark_level)
     }
 
@@ -80,7 +87,8 @@ impl PyMesh {
     /// centroid ("extended Loop"). Per level on triangles: V' = V + E,
     /// E' = 2E + 3F, F' = 4F; holes stay open. Boundaries, creases,
     /// parameters, return and errors as :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false, *, boundary = "edge_and_corner", crease_method = "uniform", correspondence = false))]
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (iterations = 1, progress = false, *, boundary = "edge_and_corner", crease_method = "uniform", corner_interpolation = "all", correspondence = false))]
     fn r#loop<'py>(
         &self,
         py: Python<'py>,
@@ -88,10 +96,12 @@ impl PyMesh {
         progress: bool,
         boundary: &str,
         crease_method: &str,
+        corner_interpolation: &str,
         correspondence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let options = levels::options("loop", boundary, crease_method)?;
-        let spec = levels::Spec { name: "loop", predict: predict::loop_subdivision, options, uses_creases: true };
+        let fv = levels::corner_interpolation("loop", corner_interpolation)?;
+        let spec = levels::Spec { name: "loop", predict: predict::loop_subdivision, options, uses_creases: true, face_varying: Some(fv) };
         levels::run(py, self, iterations, progress, spec, correspondence, schemes::loop_subdivision::loop_level)
     }
 
