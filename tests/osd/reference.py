@@ -26,7 +26,8 @@ Fixed by Blender, not options: the crease method is uniform (``Sdc::Options::CRE
 hard-coded in Blender's ``intern/opensubdiv``; there is no Chaikin), triangles use the Catmark
 rule (TRI_SUB_CATMARK), and a vertex with exactly two edges gets the smaller of their two
 sharpnesses added to its own (Blender's converter, so that a creased plane keeps its corners);
-OpenSubdiv alone does not do that.
+OpenSubdiv alone does not do that: :func:`request` sends such meshes to petite (``backend="auto"``)
+or refuses them (``backend="blender"``).
 """
 
 from __future__ import annotations
@@ -144,10 +145,14 @@ def request(
         "vertices": v, "face_sizes": sizes, "face_indices": idx, "levels": np.int64(levels),
         "scheme": np.str_(scheme), "boundary": np.str_(boundary), "crease_method": np.str_(crease_method),
     }
+    quirk = _blender_valence_two_quirk(sizes, idx, edge_sharpness)
     if backend == "auto":
-        backend = "petite" if scheme == "loop" or crease_method == "chaikin" else "blender"
+        backend = "petite" if scheme == "loop" or crease_method == "chaikin" or quirk is not None else "blender"
     elif backend == "blender" and (scheme == "loop" or crease_method == "chaikin"):
         raise ValueError("Blender has neither the Loop scheme nor Chaikin creases: use backend='petite'")
+    elif backend == "blender" and quirk is not None:
+        raise ValueError(f"vertex {quirk} has two edges, both sharp: Blender would add their sharpness "
+                         "to the vertex's, which OpenSubdiv does not; use backend='petite'")
     r["backend"] = np.str_(backend)
     if edge_sharpness:
         pairs = np.array([tuple(map(int, k)) for k in edge_sharpness], dtype=np.int64).reshape(-1, 2)
@@ -163,6 +168,26 @@ def request(
         r["uvs"] = uv
         r["uv_interpolation"] = np.str_(uv_interpolation)
     return r
+
+
+def _blender_valence_two_quirk(sizes: np.ndarray, idx: np.ndarray,
+                               edge_sharpness: Mapping[tuple[int, int], float] | None) -> int | None:
+    """A vertex with exactly two edges, both of positive sharpness, or None (see module docstring)."""
+    if not edge_sharpness:
+        return None
+    sharp = {(min(a, b), max(a, b)) for (a, b), s in edge_sharpness.items() if s > 0}
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]]).astype(int)
+    edges: dict[int, set[tuple[int, int]]] = {}
+    for s, n in zip(starts, sizes):
+        f = idx[s : s + n].tolist()
+        for a, b in zip(f, f[1:] + f[:1]):
+            e = (min(a, b), max(a, b))
+            edges.setdefault(a, set()).add(e)
+            edges.setdefault(b, set()).add(e)
+    for v, es in edges.items():
+        if len(es) == 2 and es <= sharp:
+            return v
+    return None
 
 
 def _run(py: Path, script: Path, reqs: Sequence[dict[str, np.ndarray]], extra: Sequence[str] = ()) -> list[Refined]:
