@@ -16,11 +16,12 @@ import numpy as np
 import pytest
 
 import topomesh
-from tests.osd import available, fixtures as F, match_faces, match_points, refine_many, request, rules as Ru
+from tests.osd import assert_same_mesh, available, fixtures as F, match_faces, match_points, refine_many, request
+from tests.osd import rules as Ru
 from tests.osd import petite_ref
 
+# Blender's tests skip through the `ref` fixture, so that petite's run without bpy
 REASON = available()
-pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
 
 RTOL = 1e-6
 
@@ -55,12 +56,19 @@ def _requests() -> dict[tuple, dict]:
     uv = F.uv_cube()
     for mode in ("all", "corners_only", "none"):
         reqs[("uv_cube", mode)] = request(uv.vertices, uv.faces, 1, uvs=uv.options["uvs"], uv_interpolation=mode)
+    grid = F.uv_grid()
+    for mode, boundary in (("all", "edge_and_corner"), ("boundaries", "edge_and_corner"),
+                           ("none", "edge_and_corner"), ("none", "edge_only")):
+        reqs[("uv_grid", mode, boundary)] = request(grid.vertices, grid.faces, 1, boundary=boundary,
+                                                    uvs=grid.options["uvs"], uv_interpolation=mode)
     return reqs
 
 
 @pytest.fixture(scope="module")
 def ref():
     """Every Blender request of this module, run in one subprocess."""
+    if REASON is not None:
+        pytest.skip(REASON)
     reqs = _requests()
     return dict(zip(reqs, refine_many(list(reqs.values()))))
 
@@ -79,6 +87,31 @@ def test_closed_catmull_clark_equals_opensubdiv(ref, name, level):
     # same connectivity too: every face of ours has a reference face on the same vertices
     fmap = match_faces((ours.face_sizes, ours.face_indices), (theirs.face_sizes, theirs.face_indices), vmap)
     assert len(np.unique(fmap)) == ours.n_faces
+
+
+def test_matching_helpers_catch_differences(ref):
+    """The comparison fails when it should: a moved vertex, a wrong UV, another level."""
+    mesh = topomesh.cube()
+    ours, theirs = mesh.catmull_clark(1), ref[("closed", "cube", 1)]
+    faces = (ours.face_sizes, ours.face_indices)
+    assert_same_mesh(ours.vertices, faces, theirs)
+    moved = ours.vertices.copy()
+    moved[5] += 1e-4
+    with pytest.raises(AssertionError, match="our point 5"):
+        assert_same_mesh(moved, faces, theirs)
+    with pytest.raises(AssertionError, match="point counts differ"):
+        match_points(mesh.catmull_clark(2).vertices, theirs.positions)
+    uv = F.uv_cube()
+    out = ref[("uv_cube", "all")]
+    assert_same_mesh(out.positions, (out.face_sizes, out.face_indices), out, out.uvs)  # itself, any order
+    perm = np.random.default_rng(1).permutation(len(out.positions))
+    inv = np.argsort(perm)
+    assert_same_mesh(out.positions[perm], (out.face_sizes, inv[out.face_indices]), out, out.uvs)
+    wrong = out.uvs.copy()
+    wrong[7] += [0.01, 0]
+    with pytest.raises(AssertionError, match="our corner 7"):
+        assert_same_mesh(out.positions, (out.face_sizes, out.face_indices), out, wrong)
+    assert uv.corner_count == len(uv.options["uvs"])
 
 
 # --------------------------------------------------------------------------- the reference itself
@@ -232,6 +265,35 @@ def test_reference_uv_corners_only_and_smooth(ref):
     assert checked == 16
 
 
+@pytest.mark.parametrize(("mode", "boundary"), [("all", "edge_and_corner"), ("boundaries", "edge_and_corner"),
+                                              ("none", "edge_and_corner"), ("none", "edge_only")])
+def test_reference_uv_grid_interpolation(ref, mode, boundary):
+    """One UV chart u = x^2, v = y on the open grid (level 1, vertex-point corners): 'all' keeps
+    every UV; 'boundaries' keeps the boundary UVs and smooths the interior ones with the
+    Catmull-Clark vertex rule (applied to the UVs); 'none' smooths both, the boundary ones along
+    the UV boundary curve (a + 6 v + b) / 8, except at the mesh's corners when the vertex
+    boundary interpolation pins them (edge_and_corner): face-varying data is smooth only where
+    the mesh is."""
+    fx = F.uv_grid()
+    table = np.column_stack([fx.vertices[:, 0] ** 2, fx.vertices[:, 1]])
+    bnd = set(Ru.boundary_edges(fx.faces))
+    on_boundary = {w for e in bnd for w in e}
+    pinned = set(F.grid_corners()) if boundary == "edge_and_corner" else set()
+    rows = _uv_corner_table(fx, ref[("uv_grid", mode, boundary)])
+    assert len(rows) == 4 * len(fx.faces)
+    moved = 0
+    for f, v, uv_v, _ in rows:
+        if v in on_boundary:
+            a, b = [u for u in Ru.neighbours(fx.faces, v) if (min(u, v), max(u, v)) in bnd]
+            curve = mode == "none" and v not in pinned
+            expected = Ru.crease_vertex_point(table, a, v, b) if curve else table[v]
+        else:
+            expected = table[v] if mode == "all" else Ru.smooth_vertex_point(table, fx.faces, v)
+        assert np.allclose(uv_v, expected, atol=1e-6), (mode, f, v)
+        moved += not np.allclose(expected, table[v], atol=1e-4)
+    assert (moved > 0) == (mode != "all")
+
+
 # --------------------------------------------------------------------------- opensubdiv-petite
 
 PETITE = petite_ref.available()
@@ -276,3 +338,60 @@ def test_petite_chaikin_differs_from_uniform_only_where_sharpness_varies():
                         for s in (varying, uniform) for c in ("uniform", "chaikin")])
     assert not np.allclose(outs[0].positions, outs[1].positions, atol=1e-5)
     match_points(outs[2].positions, outs[3].positions, RTOL)
+
+
+@pytest.fixture(scope="module")
+def loop_ref():
+    """The Loop requests of this module (petite), in one subprocess."""
+    grid, creased, corner = (F.triangulated(F.ALL[n]) for n in ("quad_grid", "creased_cube", "corner_cube"))
+    reqs = {(grid.name, m): request(grid.vertices, grid.faces, 1, scheme="loop", boundary=m)
+            for m in ("edge_only", "edge_and_corner")}
+    reqs[(creased.name, 1)] = request(creased.vertices, creased.faces, 1, scheme="loop", **creased.options)
+    for lv in LEVELS:
+        reqs[(corner.name, lv)] = request(corner.vertices, corner.faces, lv, scheme="loop", **corner.options)
+    return dict(zip(reqs, refine_many(list(reqs.values()))))
+
+
+@needs_petite
+@pytest.mark.parametrize("mode", ["edge_only", "edge_and_corner"])
+def test_petite_loop_open_grid_boundary(loop_ref, mode):
+    """Loop on the triangulated open grid, level 1: boundary edges get midpoints, interior edges
+    3/8 3/8 1/8 1/8, interior vertices Loop's beta rule, boundary vertices the curve rule, except
+    that edge_and_corner pins the two corners that lie in a single triangle."""
+    fx = F.triangulated(F.quad_grid())
+    out = loop_ref[(fx.name, mode)]
+    p, v = out.positions, fx.vertices
+    tol = RTOL * Ru.scale(p)
+    assert len(out.face_sizes) == 4 * len(fx.faces) and set(out.face_sizes.tolist()) == {3}
+    bnd = set(Ru.boundary_edges(fx.faces))
+    for a, b in Ru.edge_faces(fx.faces):
+        expected = (v[a] + v[b]) / 2 if (a, b) in bnd else Ru.loop_edge_point(v, fx.faces, a, b)
+        assert Ru.nearest(p, expected)[1] < tol, (a, b)
+    on_boundary = {w for e in bnd for w in e}
+    single = {w for w in on_boundary if sum(w in f for f in fx.faces) == 1}
+    assert single == {4, 20}
+    for w in range(len(v)):
+        if w in on_boundary:
+            a, b = [u for u in Ru.neighbours(fx.faces, w) if (min(u, w), max(u, w)) in bnd]
+            pinned = w in single and mode == "edge_and_corner"
+            expected = v[w] if pinned else Ru.crease_vertex_point(v, a, w, b)
+        else:
+            expected = Ru.loop_vertex_point(v, fx.faces, w)
+        assert Ru.nearest(p, expected)[1] < tol, w
+
+
+@needs_petite
+def test_petite_loop_creases_and_corner(loop_ref):
+    """Loop on the triangulated creased cube (level 1): the inf and 1.5 edges get midpoints, the
+    0.4 edge 0.4 of the way from Loop's edge point; on the corner cube the sharpness-2 vertex
+    stays for two levels and moves at the third."""
+    fx = F.triangulated(F.creased_cube())
+    p = loop_ref[(fx.name, 1)].positions
+    tol = RTOL * Ru.scale(p)
+    for edge, s in ((F.SHARP_EDGE, 1.0), (F.SEMI_EDGE, 1.0), (F.FRACTIONAL_EDGE, 0.4)):
+        assert Ru.nearest(p, Ru.loop_edge_point(fx.vertices, fx.faces, *edge, s))[1] < tol, edge
+        assert Ru.nearest(p, Ru.loop_edge_point(fx.vertices, fx.faces, *edge, 0.0))[1] > 100 * tol
+    corner = F.triangulated(F.corner_cube())
+    v = corner.vertices[F.CORNER_VERTEX]
+    d = [Ru.nearest(loop_ref[(corner.name, lv)].positions, v)[1] for lv in LEVELS]
+    assert d[0] == 0.0 and d[1] == 0.0 and d[2] > 0.05

@@ -113,6 +113,15 @@ def uv_cube() -> Fixture:
     return Fixture("uv_cube", v, faces, {"uvs": uvs}, f"cross-unfolded cube: {len(g)} UVs, seams")
 
 
+def uv_grid(n: int = 4) -> Fixture:
+    """:func:`quad_grid` with one UV chart and no seams, u = x^2, v = y per corner: the UV map is
+    not affine, so a smooth face-varying rule moves interior UVs and linear rules do not."""
+    fx = quad_grid(n)
+    table = np.column_stack([fx.vertices[:, 0] ** 2, fx.vertices[:, 1]])
+    uvs = table[[i for f in fx.faces for i in f]]
+    return Fixture("uv_grid", fx.vertices, fx.faces, {"uvs": uvs}, "open grid, one UV chart u = x^2, v = y")
+
+
 def mixed_closed() -> Fixture:
     """A closed pentagonal prism whose first side quad is split into two triangles: pentagons,
     quads and triangles in one closed mesh (an irregular vertex of each valence 3 and 4)."""
@@ -128,4 +137,28 @@ def mixed_closed() -> Fixture:
     return Fixture("mixed_closed", np.array(v), faces, {}, "closed: triangles, quads, pentagons")
 
 
-ALL = {f.name: f for f in (quad_grid(), cylinder(), creased_cube(), corner_cube(), uv_cube(), mixed_closed())}
+ALL = {f.name: f for f in (quad_grid(), cylinder(), creased_cube(), corner_cube(), uv_cube(), uv_grid(), mixed_closed())}
+
+
+def triangulated(fx: Fixture) -> Fixture:
+    """``fx`` with each quad split along its first diagonal (corners 0-2) into two triangles, for
+    Loop; edge and vertex sharpness stay on the same vertex pairs, UVs follow their corners.
+
+    On :func:`quad_grid` this leaves two grid corners (``n`` and ``n (n + 1)``) in one triangle
+    each, which are OpenSubdiv's corners for edge_and_corner, while the other two are in two
+    triangles and follow the boundary curve rule in both boundary modes."""
+    faces, corners = [], []
+    c = 0
+    for f in fx.faces:
+        ids = list(range(c, c + len(f)))
+        c += len(f)
+        if len(f) == 4:
+            faces += [[f[0], f[1], f[2]], [f[0], f[2], f[3]]]
+            corners += [ids[0], ids[1], ids[2], ids[0], ids[2], ids[3]]
+        else:
+            faces.append(list(f))
+            corners += ids
+    options = dict(fx.options)
+    if "uvs" in options:
+        options["uvs"] = np.asarray(options["uvs"])[corners]
+    return Fixture(fx.name + "_tri", fx.vertices.copy(), faces, options, fx.about + " (triangulated)")

@@ -98,3 +98,21 @@ def match_corners(ours_positions: Any, ours_faces: Any, ref: Any, rtol: float = 
             out[c] = rs + rverts.index(int(vmap[v]))
             c += 1
     return out
+
+
+def assert_same_mesh(ours_positions: Any, ours_faces: Any, ref: Any, ours_uvs: Any = None, rtol: float = RTOL,
+                     uv_atol: float = 1e-6) -> None:
+    """Our refined mesh equals OpenSubdiv's ``ref`` (a :class:`tests.osd.reference.Refined`) up to
+    the order of vertices, faces and corners: the same points (``rtol`` x bbox diagonal), the
+    same faces on them, and, when ``ours_uvs`` (C, 2) is given, the same UV at every corner
+    (``uv_atol``: UVs live in [0, 1], the reference's are float32)."""
+    cmap = match_corners(ours_positions, ours_faces, ref, rtol)
+    if ours_uvs is not None:
+        if ref.uvs is None:
+            raise AssertionError("the reference has no UVs: pass uvs= to refine()")
+        uv = np.asarray(ours_uvs, dtype=np.float64)
+        err = np.abs(uv - ref.uvs[cmap]).max(axis=1)
+        worst = int(np.argmax(err))
+        if err[worst] > uv_atol:
+            raise AssertionError(f"our corner {worst} has UV {uv[worst].tolist()}, the reference "
+                                 f"{ref.uvs[cmap[worst]].tolist()} (atol {uv_atol})")

@@ -80,3 +80,32 @@ def nearest(points: np.ndarray, p: np.ndarray) -> tuple[int, float]:
 
 def scale(points: np.ndarray) -> float:
     return float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
+
+
+# Loop (Loop 1987; OpenSubdiv's Sdc "Loop" scheme: Loop's original beta, the same sharp rules)
+
+
+def opposite_vertices(faces: Any, a: int, b: int) -> list[int]:
+    """The third vertex of each triangle on edge (a, b)."""
+    fl = face_lists(faces)
+    return [next(w for w in fl[f] if w not in (a, b)) for f in edge_faces(faces)[(min(a, b), max(a, b))]]
+
+
+def loop_edge_point(positions: np.ndarray, faces: Any, a: int, b: int, sharpness: float = 0.0) -> np.ndarray:
+    """Loop edge point of interior edge (a, b): 3/8 (a + b) + 1/8 (c + d), blended towards the
+    midpoint by the sharpness as in Catmull-Clark."""
+    mid = (positions[a] + positions[b]) / 2
+    if sharpness >= 1:
+        return mid
+    c, d = opposite_vertices(faces, a, b)
+    smooth = 3 / 8 * (positions[a] + positions[b]) + 1 / 8 * (positions[c] + positions[d])
+    return (1 - sharpness) * smooth + sharpness * mid if sharpness > 0 else smooth
+
+
+def loop_vertex_point(positions: np.ndarray, faces: Any, v: int) -> np.ndarray:
+    """Loop vertex point of an interior vertex: (1 - n beta) v + beta sum(neighbours), with
+    Loop's beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2) / n."""
+    nb = neighbours(faces, v)
+    n = len(nb)
+    beta = (5 / 8 - (3 / 8 + np.cos(2 * np.pi / n) / 4) ** 2) / n
+    return (1 - n * beta) * positions[v] + beta * positions[nb].sum(axis=0)
