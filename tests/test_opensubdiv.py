@@ -22,6 +22,8 @@ from tests.osd import petite_ref
 
 # Blender's tests skip through the `ref` fixture, so that petite's run without bpy
 REASON = available()
+PETITE = petite_ref.available()
+needs_petite = pytest.mark.skipif(PETITE is not None, reason=PETITE or "")
 
 RTOL = 1e-6
 
@@ -37,6 +39,7 @@ def closed_meshes() -> dict[str, topomesh.Mesh]:
 
 
 LEVELS = (1, 2, 3)
+QUIRK_EDGES = {(0, 1): 2.0, (0, 5): 2.0}  # both edges of the open grid's corner 0
 
 
 def _requests() -> dict[tuple, dict]:
@@ -56,6 +59,10 @@ def _requests() -> dict[tuple, dict]:
     uv = F.uv_cube()
     for mode in ("all", "corners_only", "none"):
         reqs[("uv_cube", mode)] = request(uv.vertices, uv.faces, 1, uvs=uv.options["uvs"], uv_interpolation=mode)
+    # Blender's valence-2 quirk, sent to Blender on purpose (request() would route it to petite)
+    quirk = request(F.quad_grid().vertices, F.quad_grid().faces, 1, boundary="edge_only",
+                    edge_sharpness=QUIRK_EDGES, backend="petite")
+    reqs[("quirk",)] = {**quirk, "backend": np.str_("blender")}
     grid = F.uv_grid()
     for mode, boundary in (("all", "edge_and_corner"), ("boundaries", "edge_and_corner"),
                            ("none", "edge_and_corner"), ("none", "edge_only")):
@@ -294,10 +301,23 @@ def test_reference_uv_grid_interpolation(ref, mode, boundary):
     assert (moved > 0) == (mode != "all")
 
 
+def test_blender_valence_two_quirk_is_avoided(ref):
+    """Blender adds the smaller sharpness of a two-edge vertex's edges to the vertex (so corner 0
+    of the grid stays put with both its edges creased, even with edge_only); OpenSubdiv does not.
+    request() therefore refuses such a mesh for Blender and routes it to petite by default."""
+    g = F.quad_grid()
+    assert Ru.nearest(ref[("quirk",)].positions, g.vertices[0])[1] == 0.0
+    with pytest.raises(ValueError, match="vertex 0 has two edges"):
+        request(g.vertices, g.faces, 1, edge_sharpness=QUIRK_EDGES, backend="blender")
+    assert str(request(g.vertices, g.faces, 1, edge_sharpness=QUIRK_EDGES)["backend"]) == "petite"
+    if PETITE is None:
+        (pure,) = refine_many([request(g.vertices, g.faces, 1, boundary="edge_only", edge_sharpness=QUIRK_EDGES)])
+        a, b = 1, 5
+        assert Ru.nearest(pure.positions, Ru.crease_vertex_point(g.vertices, a, 0, b))[1] < RTOL * Ru.scale(g.vertices)
+
+
 # --------------------------------------------------------------------------- opensubdiv-petite
 
-PETITE = petite_ref.available()
-needs_petite = pytest.mark.skipif(PETITE is not None, reason=PETITE or "")
 
 
 @needs_petite

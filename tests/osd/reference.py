@@ -12,22 +12,26 @@ What the options mean (OpenSubdiv Sdc names; Blender's modifier settings in work
 - ``boundary``: ``"edge_only"`` or ``"edge_and_corner"`` (VtxBoundaryInterpolation; OpenSubdiv's
   default is edge_and_corner, Blender's UI default is edge_only).
 - ``edge_sharpness``: ``{(a, b): s}``, OpenSubdiv sharpness per edge given by its two vertices;
-  ``s >= 10`` (or ``math.inf``) is infinitely sharp. Blender holds a crease ``c`` in [0, 1] with
-  ``s = 10 c^2`` in float32, so ``s`` reaches OpenSubdiv within one float32 ulp.
+  ``s >= 10`` (or ``math.inf``) is infinitely sharp. Blender holds a crease ``c`` in [0, 1] and
+  hands OpenSubdiv ``s = c * c * 10.0f`` (``crease_to_sharpness`` in Blender's
+  source/blender/blenkernel/intern/subdiv_inline.hh); worker.py inverts it, so ``s`` arrives
+  exactly or one float32 ulp above (2.0 -> 2.0000002).
 - ``vertex_sharpness``: ``{v: s}``, corner sharpness, same units.
 - ``uvs``: (C, 2) per corner, aligned with the flattened faces; ``uv_interpolation`` is the
   FVarLinearInterpolation: ``"all"`` (FVAR_LINEAR_ALL, bilinear), ``"corners_only"``,
   ``"corners_plus1"``, ``"corners_plus2"``, ``"boundaries"``, ``"none"`` (smooth everywhere).
-  UV seams come from the values: corners with equal UVs at a vertex share one face-varying value.
+  Seams come from the values: corners with equal UVs at a vertex share one face-varying value
+  (Blender merges UVs closer than a small limit).
 - ``crease_method``: ``"uniform"`` or ``"chaikin"`` (Sdc CreasingMethod); Chaikin needs petite.
 - ``backend``: ``"auto"`` (Blender, except Loop and Chaikin: petite), ``"blender"``, ``"petite"``.
 
 Fixed by Blender, not options: the crease method is uniform (``Sdc::Options::CREASE_UNIFORM`` is
-hard-coded in Blender's ``intern/opensubdiv``; there is no Chaikin), triangles use the Catmark
-rule (TRI_SUB_CATMARK), and a vertex with exactly two edges gets the smaller of their two
-sharpnesses added to its own (Blender's converter, so that a creased plane keeps its corners);
-OpenSubdiv alone does not do that: :func:`request` sends such meshes to petite (``backend="auto"``)
-or refuses them (``backend="blender"``).
+hard-coded in Blender's intern/opensubdiv/internal/topology/topology_refiner_factory.cc; the
+modifier has no Chaikin setting); triangles use the Catmark rule (TRI_SUB_CATMARK); and a vertex
+with exactly two edges gets the smaller of their two sharpnesses added to its own (same file,
+assignComponentTags, so that a creased plane keeps its corners). OpenSubdiv alone does not do
+the last: :func:`request` sends such meshes to petite (``backend="auto"``) or refuses them
+(``backend="blender"``).
 """
 
 from __future__ import annotations
