@@ -118,7 +118,8 @@ def test_matching_helpers_catch_differences(ref):
     wrong[7] += [0.01, 0]
     with pytest.raises(AssertionError, match="our corner 7"):
         assert_same_mesh(out.positions, (out.face_sizes, out.face_indices), out, wrong)
-    assert uv.corner_count == len(uv.options["uvs"])
+    assert uv.corner_count == len(uv.options["uvs"]) == len(uv.uv_index) and len(uv.uv_table) == 14
+    assert np.array_equal(uv.uv_table[uv.uv_index], uv.options["uvs"])
 
 
 # --------------------------------------------------------------------------- the reference itself

@@ -21,6 +21,10 @@ class Fixture:
     faces: list[list[int]]
     options: dict[str, Any] = field(default_factory=dict)
     about: str = ""
+    #: indexed form of ``options["uvs"]`` (as in OBJ's vt / f v/vt): distinct UVs (U, 2) and the
+    #: UV index of each corner (C,), so that ``uv_table[uv_index] == options["uvs"]``
+    uv_table: np.ndarray | None = None
+    uv_index: np.ndarray | None = None
 
     @property
     def corner_count(self) -> int:
@@ -107,10 +111,11 @@ def uv_cube() -> Fixture:
     table = np.zeros((len(g), 2))
     for (i, j), k in g.items():
         table[k] = (i / 4.0, j / 4.0)
-    uvs = table[corner_uv]
+    uvs = table[np.array(corner_uv)]
     # each grid point is one cube vertex: a UV value never spans two vertices
     assert len({(fv[k], p) for fv, fg in (front, top, back, bottom, left, right) for k, p in enumerate(fg)}) == len(g)
-    return Fixture("uv_cube", v, faces, {"uvs": uvs}, f"cross-unfolded cube: {len(g)} UVs, seams")
+    return Fixture("uv_cube", v, faces, {"uvs": uvs}, f"cross-unfolded cube: {len(g)} UVs, seams",
+                   table, np.array(corner_uv))
 
 
 def uv_grid(n: int = 4) -> Fixture:
@@ -118,8 +123,9 @@ def uv_grid(n: int = 4) -> Fixture:
     not affine, so a smooth face-varying rule moves interior UVs and linear rules do not."""
     fx = quad_grid(n)
     table = np.column_stack([fx.vertices[:, 0] ** 2, fx.vertices[:, 1]])
-    uvs = table[[i for f in fx.faces for i in f]]
-    return Fixture("uv_grid", fx.vertices, fx.faces, {"uvs": uvs}, "open grid, one UV chart u = x^2, v = y")
+    index = np.array([i for f in fx.faces for i in f])
+    return Fixture("uv_grid", fx.vertices, fx.faces, {"uvs": table[index]}, "open grid, one UV chart u = x^2, v = y",
+                   table, index)
 
 
 def mixed_closed() -> Fixture:
@@ -161,4 +167,6 @@ def triangulated(fx: Fixture) -> Fixture:
     options = dict(fx.options)
     if "uvs" in options:
         options["uvs"] = np.asarray(options["uvs"])[corners]
-    return Fixture(fx.name + "_tri", fx.vertices.copy(), faces, options, fx.about + " (triangulated)")
+    index = None if fx.uv_index is None else fx.uv_index[corners]
+    return Fixture(fx.name + "_tri", fx.vertices.copy(), faces, options, fx.about + " (triangulated)",
+                   fx.uv_table, index)

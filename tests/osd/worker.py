@@ -21,9 +21,9 @@ import sys
 import bpy
 import numpy as np
 
-# Blender's mesh modifier -> OpenSubdiv Sdc options (Blender 5.0: blenkernel/intern/subdiv.cc,
-# BKE_subdiv_fvar_interpolation_from_uv_smooth and ..._vtx_boundary_interpolation_from_subsurf): boundary_smooth 'ALL' = VTX_BOUNDARY_EDGE_ONLY,
-# 'PRESERVE_CORNERS' = VTX_BOUNDARY_EDGE_AND_CORNER; uv_smooth -> FVarLinearInterpolation.
+# Blender's modifier settings -> OpenSubdiv Sdc options (Blender 5.0, blenkernel/intern/subdiv.cc:
+# BKE_subdiv_vtx_boundary_interpolation_from_subsurf, BKE_subdiv_fvar_interpolation_from_uv_smooth).
+# boundary_smooth 'ALL' = VTX_BOUNDARY_EDGE_ONLY, 'PRESERVE_CORNERS' = VTX_BOUNDARY_EDGE_AND_CORNER.
 BOUNDARY = {"edge_only": "ALL", "edge_and_corner": "PRESERVE_CORNERS"}
 UV_SMOOTH = {
     "all": "NONE",  # FVAR_LINEAR_ALL: UVs bilinear everywhere
@@ -41,9 +41,10 @@ def crease_for(sharpness):
     """Blender crease c in [0, 1] for an OpenSubdiv sharpness (infinite from 10 on).
 
     Blender maps crease to sharpness as ``c * c * 10.0f`` in float32 (``crease_to_sharpness`` in
-    source/blender/blenkernel/intern/subdiv_inline.hh; edges and vertices alike). Of the float32 neighbours of sqrt(s / 10) this takes the smallest whose
-    image is >= float32(s): exact where one exists (1.0, 1.5, 3.0), else one ulp above (2.0 gives
-    2.0000002), so a sharpness that reaches 0 or 1 at some level does not fall short of it.
+    source/blender/blenkernel/intern/subdiv_inline.hh; edges and vertices alike). Of the float32
+    neighbours of sqrt(s / 10) this takes the smallest whose image is >= float32(s): exact where
+    one exists (1.0, 1.5, 3.0), else one ulp above (2.0 gives 2.0000002), so a sharpness that
+    reaches 0 or 1 at some level does not fall short of it.
     """
     s = np.float32(min(float(sharpness), INFINITE))
     if s <= 0:
@@ -66,7 +67,7 @@ def build(req, i):
     me = bpy.data.meshes.new(f"req{i}")
     me.from_pydata(verts.tolist(), [], faces)
     me.update()
-    if me.vertices.__len__() != len(verts) or len(me.polygons) != len(faces) or len(me.loops) != len(idx):
+    if len(me.vertices) != len(verts) or len(me.polygons) != len(faces) or len(me.loops) != len(idx):
         raise ValueError(f"request {i}: Blender changed the mesh ({len(me.polygons)} faces)")
 
     out = {}
