@@ -10,13 +10,12 @@ on the right side (the harness's option mapping is part of what they test).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
 import topomesh
-from tests.osd import assert_same_mesh, available, fixtures as F, match_faces, match_points, refine_many, request
+from tests.osd import assert_same_mesh, available, match_faces, match_points, refine_many, request
+from tests.osd import fixtures as F
 from tests.osd import rules as Ru
 from tests.osd import petite_ref
 
