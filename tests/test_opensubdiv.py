@@ -415,3 +415,94 @@ def test_petite_loop_creases_and_corner(loop_ref):
     v = corner.vertices[F.CORNER_VERTEX]
     d = [Ru.nearest(loop_ref[(corner.name, lv)].positions, v)[1] for lv in LEVELS]
     assert d[0] == 0.0 and d[1] == 0.0 and d[2] > 0.05
+
+
+# --------------------------------------------------------------------------- topomesh's open meshes,
+# creases and face-varying data == OpenSubdiv
+
+
+def ours(fx, **extra) -> topomesh.Mesh:
+    """The fixture as a topomesh Mesh with its sharpness and UVs (OpenSubdiv units)."""
+    m = topomesh.Mesh.from_polygons(fx.vertices, fx.faces, close_boundaries=True)
+    o = {**fx.options, **extra}
+    if "edge_sharpness" in o or "vertex_sharpness" in o:
+        m = m.with_creases(o.get("edge_sharpness"), o.get("vertex_sharpness"))
+    if "uvs" in o:
+        m = m.with_attributes(corner={"uv": o["uvs"]})
+    return m
+
+
+@pytest.mark.parametrize("level", LEVELS)
+@pytest.mark.parametrize("name", ["creased_cube", "corner_cube"])
+def test_creases_equal_opensubdiv(ref, name, level):
+    out = ours(F.ALL[name]).catmull_clark(level)
+    assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), ref[(name, level)])
+
+
+@pytest.mark.parametrize("level", (1, 2))
+@pytest.mark.parametrize("mode", ["edge_only", "edge_and_corner"])
+@pytest.mark.parametrize("name", ["quad_grid", "cylinder"])
+def test_open_meshes_equal_opensubdiv(ref, name, mode, level):
+    out = ours(F.ALL[name]).catmull_clark(level, boundary=mode)
+    assert out.n_boundary_loops == (1 if name == "quad_grid" else 2) if hasattr(out, "n_boundary_loops") else out.n_holes
+    assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), ref[(name, mode, level)])
+
+
+# OpenSubdiv's face-varying choices as topomesh names them (Blender's 'none' is FVAR_LINEAR_NONE)
+FVAR = {"all": "all", "corners_only": "corners_only", "none": "smooth", "boundaries": "boundaries"}
+
+
+@pytest.mark.parametrize("mode", ["all", "corners_only", "none"])
+def test_uv_cube_seams_equal_opensubdiv(ref, mode):
+    fx = F.uv_cube()
+    out = ours(fx).catmull_clark(1, corner_interpolation=FVAR[mode])
+    assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), ref[("uv_cube", mode)], out.corner_attributes["uv"])
+
+
+@pytest.mark.parametrize(("mode", "boundary"), [("all", "edge_and_corner"), ("boundaries", "edge_and_corner"),
+                                              ("none", "edge_and_corner"), ("none", "edge_only")])
+def test_uv_grid_equals_opensubdiv(ref, mode, boundary):
+    fx = F.uv_grid()
+    out = ours(fx).catmull_clark(1, boundary=boundary, corner_interpolation=FVAR[mode])
+    assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), ref[("uv_grid", mode, boundary)], out.corner_attributes["uv"])
+
+
+def test_uv_table_and_index_equal_per_corner_uvs():
+    fx = F.uv_cube()
+    m = topomesh.Mesh.from_polygons(fx.vertices, fx.faces)
+    a = m.with_attributes(corner={"uv": (fx.uv_table, fx.uv_index)}).catmull_clark(2, corner_interpolation="smooth")
+    b = m.with_attributes(corner={"uv": fx.options["uvs"]}).catmull_clark(2, corner_interpolation="smooth")
+    np.testing.assert_array_equal(a.corner_attributes["uv"], b.corner_attributes["uv"])
+
+
+@needs_petite
+@pytest.mark.parametrize("mode", ["edge_only", "edge_and_corner"])
+def test_loop_open_grid_equals_opensubdiv(loop_ref, mode):
+    fx = F.triangulated(F.quad_grid())
+    out = ours(fx).loop(1, boundary=mode)
+    assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), loop_ref[(fx.name, mode)])
+
+
+@needs_petite
+def test_loop_creases_equal_opensubdiv(loop_ref):
+    creased, corner = F.triangulated(F.creased_cube()), F.triangulated(F.corner_cube())
+    out = ours(creased).loop(1)
+    assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), loop_ref[(creased.name, 1)])
+    for lv in LEVELS:
+        out = ours(corner).loop(lv)
+        assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), loop_ref[(corner.name, lv)])
+
+
+@needs_petite
+@pytest.mark.parametrize("method", ["uniform", "chaikin"])
+@pytest.mark.parametrize("scheme", ["catmull_clark", "loop"])
+def test_chaikin_equals_opensubdiv(scheme, method):
+    """Sharp edges of different sharpness meeting (Chaikin averages them), levels 1-3."""
+    fx = F.creased_cube() if scheme == "catmull_clark" else F.triangulated(F.creased_cube())
+    loop_edges = [(4, 5), (5, 7), (7, 6), (6, 4)]
+    s = dict(zip(loop_edges, (1.0, 2.5, 3.0, 0.5)))
+    m = topomesh.Mesh.from_polygons(fx.vertices, fx.faces).with_creases(s)
+    got = refine_many([request(fx.vertices, fx.faces, lv, scheme=scheme, edge_sharpness=s, crease_method=method, backend="petite") for lv in LEVELS])
+    for lv, theirs in zip(LEVELS, got):
+        out = getattr(m, scheme)(lv, crease_method=method)
+        assert_same_mesh(out.vertices, (out.face_sizes, out.face_indices), theirs)

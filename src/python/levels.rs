@@ -137,7 +137,7 @@ pub(crate) fn run<'py>(
             let geometry_creases = st.creases.clone();
             for fv in &mut st.corners {
                 let cur = std::mem::replace(fv, FaceVarying { mesh: Mesh::new(), values: vec![], k: 0, creases: None });
-                *fv = cur.with_creases(m, geometry_creases.as_ref())?.level(&level, interp, st.options)?;
+                *fv = cur.with_creases(m, geometry_creases.as_ref(), st.options)?.level(&level, interp, st.options)?;
             }
         }
         if let Some(o) = lv.origins {

@@ -174,24 +174,23 @@ impl FaceVarying {
     }
 
     /// Replaces the crease sharpness the data sees by the geometry's
-    /// (`geometry` has the same real faces, corner for corner).
-    pub fn with_creases(mut self, geometry: &Mesh, creases: Option<&Creases>) -> Result<FaceVarying> {
-        self.creases = match creases {
-            None => None,
-            Some(cr) => {
-                let gfl = FaceLayout::new(geometry)?;
-                let grc = real_corners(geometry, &gfl);
-                let ffl = FaceLayout::new(&self.mesh)?;
-                let frc = real_corners(&self.mesh, &ffl);
-                let mut edge = vec![0.0; self.mesh.n_edges()];
-                let mut vertex = vec![0.0; self.mesh.n_vertices()];
-                for (c, &fh) in frc.iter().enumerate() {
-                    edge[(fh >> 1) as usize] = cr.edge((grc[c] >> 1) as usize);
-                    vertex[self.mesh.he_vert[fh as usize] as usize] = cr.vertex(geometry.he_vert[grc[c] as usize] as usize);
-                }
-                Some(Creases { edge, vertex })
-            }
-        };
+    /// (`geometry` has the same real faces, corner for corner), including
+    /// the corners the geometry's boundary rule sharpens: face-varying data
+    /// is smooth only where the surface is (OpenSubdiv).
+    pub fn with_creases(mut self, geometry: &Mesh, creases: Option<&Creases>, options: SubdivOptions) -> Result<FaceVarying> {
+        let eff = super::creases::LevelSharpness::new(geometry, creases, options);
+        let gfl = FaceLayout::new(geometry)?;
+        let grc = real_corners(geometry, &gfl);
+        let ffl = FaceLayout::new(&self.mesh)?;
+        let frc = real_corners(&self.mesh, &ffl);
+        let mut edge = vec![0.0; self.mesh.n_edges()];
+        let mut vertex = vec![0.0; self.mesh.n_vertices()];
+        for (c, &fh) in frc.iter().enumerate() {
+            let (ge, gv) = ((grc[c] >> 1) as usize, geometry.he_vert[grc[c] as usize] as usize);
+            edge[(fh >> 1) as usize] = eff.edge[ge];
+            vertex[self.mesh.he_vert[fh as usize] as usize] = eff.vertex[gv];
+        }
+        self.creases = Some(Creases { edge, vertex });
         Ok(self)
     }
 
