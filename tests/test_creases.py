@@ -308,3 +308,60 @@ def test_repose_through_the_matrix() -> None:
     ang = 0.4 * twist[:, 2]
     twist[:, 0], twist[:, 1] = np.cos(ang) * t.vertices[:, 0] - np.sin(ang) * t.vertices[:, 1], np.sin(ang) * t.vertices[:, 0] + np.cos(ang) * t.vertices[:, 1]
     np.testing.assert_allclose(corr.matrix @ twist, t.with_vertices(twist).catmull_clark(2).vertices, atol=1e-12)
+
+
+@pytest.mark.parametrize("scheme", SCHEMES)
+@pytest.mark.parametrize("name", ["cube", "torus", "grid"])
+def test_limit_points_do_not_move_under_refinement(scheme: str, name: str) -> None:
+    m = MESHES[name]()
+    p, n = m.limit_points(scheme)
+    q, k = getattr(m, scheme)(1).limit_points(scheme)
+    np.testing.assert_allclose(p, q[: m.n_vertices], atol=1e-12)
+    np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1.0, atol=1e-12)
+    # a deep refinement's vertex points converge to the limit points
+    deep = getattr(m, scheme)(6).vertices[: m.n_vertices]
+    assert np.abs(deep - p).max() < 2e-3 * np.abs(m.vertices).max()
+    assert np.abs(m.vertices - p).max() > 1e-2  # and the limit differs from the control points
+
+
+def test_limit_normals_agree_with_a_fine_mesh() -> None:
+    t = tm.torus(8, 6)
+    p, n = t.limit_points()
+    fine = t.catmull_clark(5)
+    fn = fine.vertex_normals[: t.n_vertices]
+    assert (np.einsum("ij,ij->i", n, fn / np.linalg.norm(fn, axis=1)[:, None]) > np.cos(np.radians(1.0))).all()
+
+
+def test_limit_points_respect_creases_and_corners() -> None:
+    c = tm.cube().with_creases(vertex_sharpness={0: np.inf})
+    p, _ = c.limit_points()
+    np.testing.assert_array_equal(p[0], c.vertices[0])
+    g = grid(3)
+    p, _ = g.limit_points()
+    np.testing.assert_array_equal(p[[0, 3, 12, 15]], g.vertices[[0, 3, 12, 15]])
+    p2, _ = g.limit_points(boundary="edge_only")
+    assert np.linalg.norm(p2[0] - g.vertices[0]) > 1e-3
+    with pytest.raises(MeshError, match="scheme"):
+        g.limit_points("doo_sabin")
+
+
+def test_corner_attributes_follow_seams_and_survive_pickle() -> None:
+    c = tm.cube()
+    uv = np.c_[np.arange(24) % 4, np.arange(24) // 4].astype(float)  # every face its own chart
+    m = c.with_attributes(corner={"uv": uv})
+    out = m.catmull_clark(1)
+    got = out.corner_attributes["uv"]
+    assert got.shape == (96, 2)
+    # 'all' is bilinear: each child quad's corner at the face point has its face's mean UV
+    means = uv.reshape(6, 4, 2).mean(axis=1)
+    np.testing.assert_allclose(got.reshape(24, 4, 2)[:, 2], np.repeat(means, 4, axis=0), atol=1e-12)
+    p = pickle.loads(pickle.dumps(m))
+    np.testing.assert_array_equal(p.corner_attributes["uv"], uv)
+    with pytest.raises(MeshError, match="corner attributes"):
+        m.doo_sabin()
+    with pytest.raises(MeshError, match=r"shape \(23, 2\)"):
+        c.with_attributes(corner={"uv": uv[:23]})
+    with pytest.raises(MeshError, match="outside the table"):
+        c.with_attributes(corner={"uv": (uv[:4], np.arange(24))})
+    with pytest.raises(MeshError, match="corner_interpolation"):
+        m.catmull_clark(corner_interpolation="bilinear")

@@ -202,8 +202,13 @@ class Mesh:
     @property
     def vertex_sharpness(self) -> npt.NDArray[np.float64]: ...
     def with_attributes(
-        self, vertex: dict[str, npt.ArrayLike] | None = None, face: dict[str, npt.ArrayLike] | None = None
+        self,
+        vertex: dict[str, npt.ArrayLike] | None = None,
+        face: dict[str, npt.ArrayLike] | None = None,
+        corner: dict[str, npt.ArrayLike | tuple[npt.ArrayLike, npt.ArrayLike]] | None = None,
     ) -> Mesh: ...
+    @property
+    def corner_attributes(self) -> dict[str, npt.NDArray[np.float64]]: ...
     @property
     def vertex_attributes(self) -> dict[str, npt.NDArray[np.float64]]: ...
     @property
@@ -221,6 +226,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
         correspondence: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -231,6 +237,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
         correspondence: Literal[True],
     ) -> tuple[Mesh, Correspondence]: ...
     def doo_sabin(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
@@ -242,6 +249,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
         correspondence: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -252,12 +260,20 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
         correspondence: Literal[True],
     ) -> tuple[Mesh, Correspondence]: ...
     def sqrt3(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
     def simplest(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
     def midpoint(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
     def dual(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
+    def limit_points(
+        self,
+        scheme: Literal["catmull_clark", "loop"] = "catmull_clark",
+        *,
+        boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
+        crease_method: Literal["uniform", "chaikin"] = "uniform",
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
     # --- fractal ---
     def sierpinski(self, iterations: int = 1, progress: bool = False) -> Mesh: ...
     def menger(

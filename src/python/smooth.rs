@@ -145,4 +145,42 @@ impl PyMesh {
     fn dual(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
         iterate(py, &self.inner, iterations, progress, "dual", predict::dual, schemes::dual::dual)
     }
+
+    /// Limit positions and unit normals of the Catmull-Clark or Loop surface
+    /// at every vertex (OpenSubdiv's limit masks), without subdividing
+    /// further: place points on the limit surface, or shade a coarse mesh.
+    ///
+    /// The creases and the boundary rule apply as in the schemes. Semi-sharp
+    /// creases are refined away first (1 + ceil(s) levels, internally).
+    ///
+    /// Parameters
+    /// ----------
+    /// scheme : {"catmull_clark", "loop"}, default "catmull_clark"
+    /// boundary, crease_method : str
+    ///     As in :meth:`catmull_clark`.
+    ///
+    /// Returns
+    /// -------
+    /// positions, normals : ndarray of float64, shape (V, 3)
+    ///     Normals are unit length and point like the faces around the
+    ///     vertex (zero for a point-sphere).
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     An unknown scheme or option.
+    #[pyo3(signature = (scheme = "catmull_clark", *, boundary = "edge_and_corner", crease_method = "uniform"))]
+    fn limit_points<'py>(&self, py: Python<'py>, scheme: &str, boundary: &str, crease_method: &str) -> PyResult<(Bound<'py, numpy::PyArray2<f64>>, Bound<'py, numpy::PyArray2<f64>>)> {
+        use crate::schemes::limit::{limit_points, LimitScheme};
+        let s = match scheme {
+            "catmull_clark" => LimitScheme::CatmullClark,
+            "loop" => LimitScheme::Loop,
+            _ => return Err(super::arg_err(format!("limit_points: scheme = {scheme:?}; expected \"catmull_clark\" or \"loop\""))),
+        };
+        let options = levels::options("limit_points", boundary, crease_method)?;
+        let creases = self.data.creases.clone();
+        let m = &self.inner;
+        let l = super::run_interruptible(py, || limit_points(m, s, creases.as_ref(), options))?;
+        Ok((super::convert::vec3_array(py, &l.positions), super::convert::vec3_array(py, &l.normals)))
+    }
 }

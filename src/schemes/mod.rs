@@ -7,6 +7,7 @@ pub(crate) mod hosts;
 pub mod creases;
 pub mod face_varying;
 pub mod level;
+pub mod limit;
 pub mod stencil;
 pub mod catmull_clark;
 pub mod doo_sabin;
