@@ -30,7 +30,13 @@ pub(crate) struct Spec {
     /// How corner (face-varying) attributes are interpolated; None: the
     /// scheme has no face-varying rules and refuses them.
     pub face_varying: Option<Interpolation>,
+    /// The level with vertex data interpolated by the scheme's direct
+    /// masks (no stencils built), when it has one.
+    pub with_data: Option<DataLevel>,
 }
+
+/// A level function that also interpolates vertex data.
+pub(crate) type DataLevel = fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)>;
 
 struct State<'a> {
     options: SubdivOptions,
@@ -108,13 +114,23 @@ pub(crate) fn run<'py>(
         name: spec.name,
     };
     let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |m, st| {
+        let direct = spec.with_data.filter(|_| !st.attrs.is_empty());
         let req = Request {
-            stencils: st.want_matrix || !st.attrs.is_empty(),
+            stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()),
             origins: st.want_origins,
             creases: st.creases.as_ref(),
             options: st.options,
         };
-        let lv = level(m, &req)?;
+        let lv = match direct {
+            Some(f) => {
+                let (lv, data) = f(m, &req, &st.attrs)?;
+                for ((a, _), d) in st.attrs.iter_mut().zip(data) {
+                    *a = d;
+                }
+                lv
+            }
+            None => level(m, &req)?,
+        };
         if req.stencils && lv.stencils.is_none() {
             return Err(crate::MeshError::Precondition(format!(
                 "{}: its positions are not linear in the input's, so it has no subdivision matrix and cannot interpolate vertex attributes",
@@ -122,8 +138,10 @@ pub(crate) fn run<'py>(
             )));
         }
         if let Some(s) = &lv.stencils {
-            for (a, k) in &mut st.attrs {
-                *a = s.apply(a, *k)?;
+            if direct.is_none() {
+                for (a, k) in &mut st.attrs {
+                    *a = s.apply(a, *k)?;
+                }
             }
             if st.want_matrix {
                 st.matrix = Some(match &st.matrix {

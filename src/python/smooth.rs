@@ -64,7 +64,14 @@ impl PyMesh {
     ) -> PyResult<Bound<'py, PyAny>> {
         let options = levels::options("catmull_clark", boundary, crease_method)?;
         let fv = levels::corner_interpolation("catmull_clark", corner_interpolation)?;
-        let spec = levels::Spec { name: "catmull_clark", predict: predict::catmull_clark, options, uses_creases: true, face_varying: Some(fv) };
+        let spec = levels::Spec {
+            name: "catmull_clark",
+            predict: predict::catmull_clark,
+            options,
+            uses_creases: true,
+            face_varying: Some(fv),
+            with_data: Some(schemes::catmull_clark::catmull_clark_level_with),
+        };
         levels::run(py, self, iterations, progress, spec, correspondence, schemes::catmull_clark::catmull_clark_level)
     }
 
@@ -101,7 +108,14 @@ impl PyMesh {
     ) -> PyResult<Bound<'py, PyAny>> {
         let options = levels::options("loop", boundary, crease_method)?;
         let fv = levels::corner_interpolation("loop", corner_interpolation)?;
-        let spec = levels::Spec { name: "loop", predict: predict::loop_subdivision, options, uses_creases: true, face_varying: Some(fv) };
+        let spec = levels::Spec {
+            name: "loop",
+            predict: predict::loop_subdivision,
+            options,
+            uses_creases: true,
+            face_varying: Some(fv),
+            with_data: Some(schemes::loop_subdivision::loop_level_with),
+        };
         levels::run(py, self, iterations, progress, spec, correspondence, schemes::loop_subdivision::loop_level)
     }
 

@@ -146,6 +146,82 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     Ok(Level { mesh, stencils, origins, creases })
 }
 
+/// [`catmull_clark_level`] that also interpolates vertex data (`(rows,
+/// k)` row-major arrays) with the level's weights: by the direct masks on a
+/// smooth closed mesh (no stencils built), else through the stencils.
+pub fn catmull_clark_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth()) && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0);
+    if data.is_empty() || (smooth && !req.stencils) {
+        let lv = catmull_clark_level(m, req)?;
+        if data.is_empty() {
+            return Ok((lv, vec![]));
+        }
+        let fl = FaceLayout::new(m)?;
+        let out = data.iter().map(|(a, k)| smooth_apply(m, &fl, a, *k)).collect::<Result<_>>()?;
+        return Ok((lv, out));
+    }
+    let mut lv = catmull_clark_level(m, &Request { stencils: true, ..*req })?;
+    let st = lv.stencils.as_ref().expect("requested");
+    let out = data.iter().map(|(a, k)| st.apply(a, *k)).collect::<Result<_>>()?;
+    if !req.stencils {
+        lv.stencils = None;
+    }
+    Ok((lv, out))
+}
+
+/// The closed-surface masks on rows of `k` numbers (vertex data).
+fn smooth_apply(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f64>> {
+    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
+    let (_, vert, face) = m.halfedge_columns();
+    let mut out = vec![0.0; (nv + ne + nf) * k];
+    if k == 0 {
+        return Ok(out);
+    }
+    let (vp, rest) = out.split_at_mut(nv * k);
+    let (ep, fp) = rest.split_at_mut(ne * k);
+    let row = |i: u32| &a[i as usize * k..(i as usize + 1) * k];
+    fp.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
+        let hs = fl.corners(f);
+        for &h in hs {
+            o.iter_mut().zip(row(vert[h as usize])).for_each(|(o, x)| *o += x);
+        }
+        let w = 1.0 / hs.len() as f64;
+        o.iter_mut().for_each(|o| *o *= w);
+    });
+    crate::cancel::check()?;
+    let fp = &*fp;
+    let frow = |f: u32| &fp[f as usize * k..(f as usize + 1) * k];
+    rayon::join(
+        || {
+            ep.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
+                let (x, y, f1, f2) = (row(vert[2 * e]), row(vert[2 * e + 1]), frow(face[2 * e]), frow(face[2 * e + 1]));
+                for j in 0..k {
+                    o[j] = (x[j] + y[j] + f1[j] + f2[j]) * 0.25;
+                }
+            })
+        },
+        || {
+            vp.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
+                let mut n = 0usize;
+                for h in super::creases::ring(m, m.v_out[v]) {
+                    let (e, f) = (row(vert[(h ^ 1) as usize]), frow(face[h as usize]));
+                    for j in 0..k {
+                        o[j] += e[j] + f[j];
+                    }
+                    n += 1;
+                }
+                let n = n as f64;
+                let s = row(v as u32);
+                for j in 0..k {
+                    o[j] = s[j] * ((n - 2.0) / n) + o[j] / (n * n);
+                }
+            })
+        },
+    );
+    crate::cancel::check()?;
+    Ok(out)
+}
+
 /// The level's stencils: rows `[vertex points | edge points | face points
 /// of the real faces]` over the input vertices.
 fn stencils(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real: &[u32]) -> Result<Stencils> {
@@ -231,6 +307,20 @@ mod tests {
             assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
             for (a, b) in lv.mesh.positions().iter().zip(plain.positions()) {
                 assert!((*a - *b).length() < 1e-12, "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn direct_data_masks_equal_the_stencils() {
+        for (name, m) in corpus() {
+            let a: Vec<f64> = (0..m.n_vertices() * 2).map(|i| ((i * 7919) % 101) as f64 / 7.0).collect();
+            let data = vec![(a.clone(), 2)];
+            let (_, fast) = catmull_clark_level_with(&m, &Request::plain(), &data).unwrap();
+            let lv = catmull_clark_level(&m, &full()).unwrap();
+            let want = lv.stencils.unwrap().apply(&a, 2).unwrap();
+            for (x, y) in fast[0].iter().zip(&want) {
+                assert!((x - y).abs() < 1e-11, "{name}");
             }
         }
     }

@@ -130,6 +130,97 @@ pub fn loop_level(m: &Mesh, req: &Request) -> Result<Level> {
     })
 }
 
+/// [`loop_level`] that also interpolates vertex data (row-major `(rows,
+/// k)` arrays): by the direct masks on a smooth closed mesh (through the
+/// fan's centroids), else through the stencils.
+pub fn loop_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth()) && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0);
+    if data.is_empty() || (smooth && !req.stencils) {
+        let lv = loop_level(m, req)?;
+        if data.is_empty() {
+            return Ok((lv, vec![]));
+        }
+        let fan = fan_triangulate(m)?;
+        let out = data
+            .iter()
+            .map(|(a, k)| match &fan {
+                None => smooth_apply(m, a, *k),
+                Some(t) => {
+                    // the fan's centroids follow the input vertices, in face order
+                    let fl = FaceLayout::new(m)?;
+                    let (_, vert, _) = m.halfedge_columns();
+                    let mut b = a.clone();
+                    for f in 0..m.n_faces() {
+                        let hs = fl.corners(f);
+                        if hs.len() == 3 {
+                            continue;
+                        }
+                        let start = b.len();
+                        b.resize(start + k, 0.0);
+                        for &h in hs {
+                            for j in 0..*k {
+                                b[start + j] += a[vert[h as usize] as usize * k + j] / hs.len() as f64;
+                            }
+                        }
+                    }
+                    smooth_apply(t, &b, *k)
+                }
+            })
+            .collect::<Result<_>>()?;
+        return Ok((lv, out));
+    }
+    let mut lv = loop_level(m, &Request { stencils: true, ..*req })?;
+    let st = lv.stencils.as_ref().expect("requested");
+    let out = data.iter().map(|(a, k)| st.apply(a, *k)).collect::<Result<_>>()?;
+    if !req.stencils {
+        lv.stencils = None;
+    }
+    Ok((lv, out))
+}
+
+/// Loop's closed-surface masks on rows of `k` numbers, on triangles.
+fn smooth_apply(m: &Mesh, a: &[f64], k: usize) -> Result<Vec<f64>> {
+    let (nv, ne) = (m.n_vertices(), m.n_edges());
+    let (_, vert, _) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let mut out = vec![0.0; (nv + ne) * k];
+    if k == 0 {
+        return Ok(out);
+    }
+    let (vp, ep) = out.split_at_mut(nv * k);
+    let row = |i: u32| &a[i as usize * k..(i as usize + 1) * k];
+    rayon::join(
+        || {
+            ep.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
+                let (x, y) = (row(vert[2 * e]), row(vert[2 * e + 1]));
+                let (c, d) = (row(vert[prev[2 * e] as usize]), row(vert[prev[2 * e + 1] as usize]));
+                for j in 0..k {
+                    o[j] = (x[j] + y[j]) * 0.375 + (c[j] + d[j]) * 0.125;
+                }
+            })
+        },
+        || {
+            vp.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
+                let mut n = 0usize;
+                for h in super::creases::ring(m, m.v_out[v]) {
+                    let e = row(vert[(h ^ 1) as usize]);
+                    for j in 0..k {
+                        o[j] += e[j];
+                    }
+                    n += 1;
+                }
+                let beta = loop_beta(n);
+                let s = row(v as u32);
+                for j in 0..k {
+                    o[j] = s[j] * (1.0 - n as f64 * beta) + o[j] * beta;
+                }
+            })
+        },
+    );
+    crate::cancel::check()?;
+    Ok(out)
+}
+
 /// The fan's own stencils, origins and creases (spokes and centroids are smooth).
 fn fan_level(m: &Mesh, fan: &Mesh, req: &Request) -> Result<Level> {
     let fl = FaceLayout::new(m)?;
@@ -334,6 +425,20 @@ mod tests {
                 let n = m.face_degree(f);
                 let want = if n == 3 { 4 } else { 4 * n };
                 assert_eq!(o.face.iter().zip(&o.face_kind).filter(|&(&i, &k)| k == FACE && i == f.0).count(), want, "{name} face {f:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn direct_data_masks_equal_the_stencils() {
+        let full = Request { stencils: true, ..Default::default() };
+        for (name, m) in corpus() {
+            let a: Vec<f64> = (0..m.n_vertices() * 3).map(|i| ((i * 7919) % 101) as f64 / 7.0).collect();
+            let (_, fast) = loop_level_with(&m, &Request::plain(), &[(a.clone(), 3)]).unwrap();
+            let want = loop_level(&m, &full).unwrap().stencils.unwrap().apply(&a, 3).unwrap();
+            assert_eq!(fast[0].len(), want.len(), "{name}");
+            for (x, y) in fast[0].iter().zip(&want) {
+                assert!((x - y).abs() < 1e-11, "{name}");
             }
         }
     }
