@@ -46,9 +46,11 @@ impl Rind {
         if !(thickness.is_finite() && thickness > 0.0) {
             return Err(MeshError::InvalidArgument(format!("rind: thickness {thickness} must be finite and positive")));
         }
-        if let Some(f) = source.faces().find(|&f| source.is_hole(f)) {
-            return Err(MeshError::Precondition(format!("rind: face {} is a hole face; the rind needs a closed surface", f.0)));
-        }
+        source.refuse_open(
+            "rind",
+            "the rind (ch. V.3) is the shell between a closed surface and its inward offset, and an open surface has \
+             no inside to offset into; close the holes with faces first",
+        )?;
         if let Some(f) = source.faces().find(|&f| source.face_halfedge(f).is_none()) {
             return Err(MeshError::Precondition(format!("rind: face {} is a point-sphere; it has no rind", f.0)));
         }

@@ -6,6 +6,7 @@
 use pyo3::prelude::*;
 
 mod alloc;
+mod boundary;
 mod display;
 pub(crate) mod convert;
 pub(crate) mod ifs;

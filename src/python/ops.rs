@@ -252,7 +252,8 @@ impl PyMesh {
     /// ------
     /// MeshError
     ///     A thickness that is not positive, or one that flips an inner face
-    ///     (named); a mesh with hole faces or point-spheres.
+    ///     (named); an open mesh (boundary loops: the rind is the shell of a
+    ///     closed surface) or one with point-spheres.
     fn rind(&self, py: Python<'_>, thickness: f64) -> PyResult<PyRind> {
         let r = py.detach(|| self.inner.rind(thickness)).map_err(err)?;
         Ok(PyRind { inner: r })
