@@ -369,3 +369,16 @@ def test_fixtures_render_sensibly():
         with warnings.catch_warnings():
             warnings.simplefilter("error")
             Mesh.from_polygons(*BUILDERS[name]())  # no inside-out warning
+
+
+def test_readme_open_meshes_example_runs(tmp_path, monkeypatch):
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).parent.parent / "README.md").read_text()
+    section = text[text.index("## Open meshes") :]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    scope: dict = {}
+    exec(compile(code, "README.md", "exec"), scope)
+    assert [len(lp) for lp in scope["loops"]] == [12, 12] and scope["rims"].shape == (24, 2)
