@@ -327,8 +327,28 @@ def test_vertex_truncation_keeps_holes(name):
     assert np.linalg.norm(new[:, None] - cuts[None], axis=2).min(axis=1).max() < 1e-12
 
 
+@pytest.mark.parametrize("name", FOUR + ("mixed",))
+def test_rind_of_an_open_surface_is_its_closed_shell(name):
+    m = mesh(name)
+    r = m.rind(0.05)
+    s = r.mesh
+    s.validate()
+    g, b = m.genus, m.n_boundary_loops
+    assert s.is_closed and (s.n_components, s.euler_characteristic, s.genus) == (1, 2 * m.euler_characteristic, 2 * g + b - 1)
+    assert r.punched == sorted(range(m.n_faces - b, m.n_faces)) and r.n_outer_faces == m.n_faces
+    # each loop of n edges became a strip of n quads; the real faces' twins are still there to punch
+    assert s.n_faces == 2 * real_faces(m) + m.boundary_edges().shape[0]
+    assert r.face_pair(0) is not None and r.face_pair(m.n_faces - 1) is None
+    tm = s.to_trimesh()
+    assert tm.is_watertight and tm.is_winding_consistent and tm.volume > 0
+    pytest.importorskip("manifold3d")
+    assert s.to_manifold().genus() == s.genus
+    # the rim: outer boundary vertices keep their place, inner ones moved along the averaged normal
+    np.testing.assert_array_equal(s.vertices[: m.n_vertices], m.vertices)
+
+
 @pytest.mark.parametrize("name", FOUR)
-def test_sierpinski_menger_and_rind_refuse_open_meshes(name):
+def test_sierpinski_and_menger_refuse_open_meshes(name):
     m = mesh(name)
     b = m.n_boundary_loops
     loops = rf"the mesh has {b} boundary loops? \(it is open: boundary edge \(\d+, \d+\), \.\.\.\)"
@@ -336,8 +356,6 @@ def test_sierpinski_menger_and_rind_refuse_open_meshes(name):
         m.sierpinski()
     with pytest.raises(MeshError, match=rf"^menger: {loops}; the generalized sponge .* no rule for the rim"):
         m.menger()
-    with pytest.raises(MeshError, match=rf"^rind: {loops}; the rind .* open surface has no inside"):
-        m.rind(0.05)
     # zero iterations is the identity, open or not
     assert m.sierpinski(iterations=0) == m
 
@@ -382,3 +400,13 @@ def test_readme_open_meshes_example_runs(tmp_path, monkeypatch):
     scope: dict = {}
     exec(compile(code, "README.md", "exec"), scope)
     assert [len(lp) for lp in scope["loops"]] == [12, 12] and scope["rims"].shape == (24, 2)
+
+
+def test_vertex_normals_ignore_holes():
+    # a flat grid: every vertex normal is +z, boundary ones too (the hole would turn them over)
+    m = mesh("quad_grid", 3)
+    np.testing.assert_allclose(m.vertex_normals, np.tile([0.0, 0.0, 1.0], (m.n_vertices, 1)), atol=1e-15)
+    # the open tube: normals point away from the axis on the rims as in the middle
+    t = mesh("cylinder")
+    radial = np.array(t.vertices) * [1.0, 1.0, 0.0]
+    np.testing.assert_allclose(t.vertex_normals, radial / np.linalg.norm(radial, axis=1, keepdims=True), atol=1e-12)

@@ -116,9 +116,14 @@ impl Mesh {
     }
 
     /// Area-weighted vertex normals: the sum of the Newell vectors of the
-    /// corners' faces, one term per corner, normalized.
+    /// corners' faces, one term per corner, normalized. Hole faces are no
+    /// faces of the surface and add nothing (a flat open patch's hole would
+    /// otherwise turn its boundary normals over).
     pub fn vertex_normals(&self) -> Vec<DVec3> {
-        let fnv: Vec<DVec3> = (0..self.n_faces() as u32).into_par_iter().map(|f| self.face_newell(super::FaceId(f))).collect();
+        let fnv: Vec<DVec3> = (0..self.n_faces() as u32)
+            .into_par_iter()
+            .map(|f| if self.f_hole[f as usize] { DVec3::ZERO } else { self.face_newell(super::FaceId(f)) })
+            .collect();
         let mut vn = vec![DVec3::ZERO; self.n_vertices()];
         for (h, &v) in self.he_vert.iter().enumerate() {
             vn[v as usize] += fnv[self.he_face[h] as usize];

@@ -86,8 +86,9 @@
 //! boundary edge there is no face on the other side to join, and the
 //! chapter gives no rule for the rim that would close the wall there;
 //! treating the hole as a face would fill it. [`menger`] refuses open
-//! meshes with a `Precondition` error that says so (as [`crate::ops::rind`]
-//! does, whose shell has the same missing rim).
+//! meshes with a `Precondition` error that says so. (The rind,
+//! [`crate::ops::rind`], is one wall for the whole surface, which it closes
+//! along each boundary loop by peeling the hole.)
 //!
 //! # Counts
 //!
