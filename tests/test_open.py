@@ -206,6 +206,10 @@ def test_trimesh_and_pyvista_see_the_same_open_mesh(name):
     assert trimesh_boundary_edges(tm) == sorted_edges(m.boundary_edges())
     assert n_edge_loops(trimesh_boundary_edges(tm)) == m.n_boundary_loops
     assert tm.euler_number == m.euler_characteristic
+    from topomesh.gallery import peer_summary  # `topomesh info` and the gallery table
+
+    row = peer_summary(m)
+    assert (row["trimesh_watertight"], row["trimesh_genus"]) == (False, m.genus)
     pv = pytest.importorskip("pyvista")
     poly = m.to_pyvista()
     assert isinstance(poly, pv.PolyData) and poly.n_cells == real_faces(m)
