@@ -16,6 +16,7 @@ pub(crate) mod mesh;
 mod refine;
 mod repair;
 mod ops;
+mod primitives;
 mod printing;
 mod smooth;
 
