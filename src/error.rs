@@ -17,7 +17,7 @@ pub enum MeshError {
     InconsistentOrientation { a: usize, b: usize, face1: usize, face2: usize },
     /// The faces around a vertex do not form one disk (a pinch or a fan of several umbrellas).
     NonManifoldVertex { vertex: usize },
-    /// An edge with a face on one side only, and boundaries were not to be closed.
+    /// An edge with a face on one side only, and open meshes were refused.
     Boundary { a: usize, b: usize, face: usize },
     /// A coordinate is NaN or infinite.
     NonFinite { vertex: usize },
@@ -61,7 +61,8 @@ impl fmt::Display for MeshError {
             ),
             Boundary { a, b, face } => write!(
                 f,
-                "edge ({a}, {b}) of face {face} is a boundary edge (no face on its other side); pass close_boundaries=True to cap holes"
+                "edge ({a}, {b}) of face {face} is a boundary edge (no face on its other side) and open meshes were refused \
+                 (boundaries=\"refuse\" or close_boundaries=False); the default boundaries=\"keep\" keeps the mesh open"
             ),
             NonFinite { vertex } => write!(f, "vertex {vertex} has a NaN or infinite coordinate"),
             InvalidArgument(m) | Precondition(m) | Invariant(m) | Io(m) | Memory(m) => f.write_str(m),

@@ -128,7 +128,7 @@ def test_no_traceback_ever(tmp_path, case):
     args = {
         "missing-file": ["info", str(tmp_path / "nope.obj")],
         "bad-scheme": ["subdivide", str(cube), str(tmp_path / "o.obj"), "--scheme", "bogus"],
-        "open-mesh": ["info", str(_open_triangle(tmp_path))],
+        "open-mesh": ["info", "--boundaries", "refuse", str(_open_triangle(tmp_path))],
         "negative-n": ["subdivide", str(cube), str(tmp_path / "o.obj"), "--scheme", "loop", "-n", "-3"],
         "garbage-file": ["convert", str(garbage), str(tmp_path / "o.ply")],
         "unknown-flag": ["info", "--frobnicate", str(cube)],
@@ -146,23 +146,27 @@ def test_no_traceback_ever(tmp_path, case):
 
 def test_messages_name_cli_flags(tmp_path, capsys):
     src = _open_triangle(tmp_path)
-    assert cli.main(["info", str(src)]) == 2
+    assert cli.main(["info", "--boundaries", "refuse", str(src)]) == 2
     err = capsys.readouterr().err
-    assert "--close-boundaries" in err and "close_boundaries" not in err
+    assert "(--boundaries refuse); the default --boundaries keep keeps the mesh open" in err, err
+    assert "close_boundaries" not in err and "boundaries=" not in err
     assert cli.main(["subdivide", str(src), str(tmp_path / "o.obj"), "--scheme", "loop", "-n", "-1", "--close-boundaries"]) == 2
     assert "loop: -n = -1 must be >= 0" in capsys.readouterr().err
 
 
 def test_construction_flags_reach_load(tmp_path, capsys):
     src = _open_triangle(tmp_path)
-    assert cli.main(["info", "--close-boundaries", str(src)]) == 0
-    assert "V=3, E=3, F=2" in capsys.readouterr().out  # the cap is a hole face
+    for legacy in ([], ["--close-boundaries"], ["--boundaries", "keep"]):
+        assert cli.main(["info", *legacy, str(src)]) == 0
+        out = capsys.readouterr().out
+        assert "V=3, E=3, F=2" in out and "boundary_loops=1" in out  # the boundary loop is a hole face
+        assert "boundary loops        1 (per component [1])" in out and "Euler characteristic  1" in out
     out = tmp_path / "o.ply"
-    assert cli.main(["convert", "--close-boundaries", str(src), str(out)]) == 0
-    assert topomesh.load(out, close_boundaries=True).n_holes == 1
+    assert cli.main(["convert", str(src), str(out)]) == 0
+    assert topomesh.load(out).n_holes == 1
     for cmd in ("info", "convert", "subdivide", "sierpinski", "menger"):
         help_text = cli.parser()._subparsers._group_actions[0].choices[cmd].format_help()
-        for flag in ("--close-boundaries", "--allow-multi-edges", "--repair"):
+        for flag in ("--boundaries", "--close-boundaries", "--allow-multi-edges", "--repair"):
             assert flag in help_text, (cmd, flag)
 
 
@@ -189,9 +193,9 @@ def test_repair_flag_welds_a_soup(tmp_path, capsys):
     soup = tmp_path / "soup.obj"
     soup.write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in verts[tris.reshape(-1)].tolist())
                     + "".join(f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}\n" for k in range(len(tris))))
-    assert cli.main(["info", str(soup)]) == 2
+    assert cli.main(["info", "--boundaries", "refuse", str(soup)]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "--close-boundaries" in err and "close_boundaries" not in err.replace("--close-boundaries", "")
+    assert err.count("\n") == 1 and "--boundaries keep" in err and "close_boundaries" not in err
     out = tmp_path / "welded.npz"
     assert cli.main(["convert", "--repair", str(soup), str(out)]) == 0
     back = topomesh.load(out)

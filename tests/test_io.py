@@ -269,12 +269,14 @@ def test_polygon_formats_round_trip_or_refuse(tmp_path, name, ext):
         assert not p.exists()
 
 
-def test_open_mesh_in_obj_needs_close_boundaries(tmp_path):
+def test_open_mesh_in_obj_loads_open(tmp_path):
     m = CORPUS["open_cube"]
     m.save(tmp_path / "o.obj")
-    with pytest.raises(MeshError, match="boundary edge"):
-        T.load(tmp_path / "o.obj")
-    _same(m, T.load(tmp_path / "o.obj", close_boundaries=True))
+    for strict in (dict(close_boundaries=False), dict(boundaries="refuse")):
+        with pytest.raises(MeshError, match="boundary edge"):
+            T.load(tmp_path / "o.obj", **strict)
+    _same(m, T.load(tmp_path / "o.obj"))
+    _same(m, T.load(tmp_path / "o.obj", close_boundaries=True))  # the legacy spelling of the default
 
 
 def test_empty_mesh_in_every_format(tmp_path):
@@ -381,7 +383,7 @@ def test_io_errors_name_the_path(tmp_path):
     p = tmp_path / "bad.off"
     p.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
     with pytest.raises(MeshError, match=rf"{p}: edge \(\d, \d\) of face 0 is a boundary edge"):
-        T.load(p)
+        T.load(p, boundaries="refuse")
 
 
 # ------------------------------------------------------------- OBJ reader

@@ -47,7 +47,10 @@ def test_a_soup_welds_back_into_the_sphere(sphere):
     # the trimesh soup itself, through Mesh.from_trimesh
     tsoup = trimesh.Trimesh(v, f, process=False)
     with pytest.raises(MeshError, match="boundary"):
-        Mesh.from_trimesh(tsoup)
+        Mesh.from_trimesh(tsoup, boundaries="refuse")
+    # by default the soup is kept as it is: one open triangle per face
+    loose = Mesh.from_trimesh(tsoup)
+    assert (loose.n_components, loose.n_boundary_loops) == (len(f), len(f))
     same_surface(Mesh.from_trimesh(tsoup, repair=True), sphere)
 
 
@@ -86,8 +89,8 @@ def test_a_jittered_soup_needs_a_tolerance(sphere):
     rng = np.random.default_rng(11)
     v = v + rng.uniform(-1e-12, 1e-12, v.shape)
     with pytest.raises(MeshError, match="boundary"):
-        topomesh.repair(v, f, tolerance=0)
-    pieces, r0 = topomesh.repair(v, f, tolerance=0, close_boundaries=True)
+        topomesh.repair(v, f, tolerance=0, close_boundaries=False)
+    pieces, r0 = topomesh.repair(v, f, tolerance=0)
     assert pieces.n_components == len(sphere.faces) and r0.boundary_loops == len(sphere.faces)
     m, r = topomesh.repair(v, f, tolerance=1e-9)
     assert r.tolerance == 1e-9
@@ -168,9 +171,12 @@ def test_repair_rejects_bad_input_naming_it():
     with pytest.raises(MeshError, match="vertex 1 has a NaN"):
         topomesh.repair([[0.0, 0, 0], [np.nan, 0, 0], [0, 1, 0]], [[0, 1, 2]])
     with pytest.raises(MeshError, match=r"edge \(\d, \d\) of face 0 is a boundary"):
-        topomesh.repair(v, [[0, 1, 2]])
-    m, r = topomesh.repair(v, [[0, 1, 2]], close_boundaries=True)
+        topomesh.repair(v, [[0, 1, 2]], boundaries="refuse")
+    with pytest.raises(MeshError, match=r'repair: boundaries = "open" is not an option; allowed: "keep"'):
+        topomesh.repair(v, [[0, 1, 2]], boundaries="open")
+    m, r = topomesh.repair(v, [[0, 1, 2]])
     assert (m.n_holes, r.boundary_loops) == (1, 1)
+    assert m == topomesh.repair(v, [[0, 1, 2]], close_boundaries=True)[0]
     np.testing.assert_array_equal(v, before)
 
 

@@ -277,7 +277,7 @@ def _base_calls():
 # parameters that are not numbers (arrays, names, flags), or numbers only as a list
 NOT_NUMERIC = {
     "self", "control_points", "scheme", "stencils", "knots", "pieces", "name", "mode", "progress", "absolute",
-    "start", "vertices", "faces", "face_sizes", "face_indices", "close_boundaries", "allow_multi_edges", "path",
+    "start", "vertices", "faces", "face_sizes", "face_indices", "close_boundaries", "boundaries", "allow_multi_edges", "path",
     "points", "point", "weights", "corners", "keep", "other", "probabilities", "return_faces", "blocks",
     "matrices", "translations", "reference", "tm", "data", "repair", "twins", "options",
 }

@@ -1,4 +1,4 @@
-"""topomesh: connected, orientable 2-manifold polygon meshes of any genus.
+"""topomesh: orientable 2-manifold polygon meshes of any genus, closed or open.
 
 A Rust core (``topomesh._core``) with NumPy in and out. Start with a
 primitive or your own arrays::

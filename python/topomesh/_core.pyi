@@ -56,17 +56,19 @@ class Mesh:
     def from_polygons(
         vertices: npt.ArrayLike,
         faces: Sequence[Sequence[int]] | npt.ArrayLike,
-        close_boundaries: bool = False,
+        close_boundaries: bool | None = None,
         allow_multi_edges: bool = False,
+        boundaries: Literal["keep", "refuse"] = "keep",
     ) -> Mesh: ...
     @staticmethod
     def from_flat(
         vertices: npt.ArrayLike,
         face_sizes: npt.ArrayLike,
         face_indices: npt.ArrayLike,
-        close_boundaries: bool = False,
+        close_boundaries: bool | None = None,
         allow_multi_edges: bool = False,
         twins: npt.ArrayLike | None = None,
+        boundaries: Literal["keep", "refuse"] = "keep",
     ) -> Mesh: ...
     @property
     def vertices(self) -> npt.NDArray[np.float64]: ...
@@ -94,6 +96,17 @@ class Mesh:
     def genus(self) -> int: ...
     @property
     def component_genera(self) -> list[int]: ...
+    # --- boundaries (src/python/boundary.rs) ---
+    @property
+    def n_boundary_loops(self) -> int: ...
+    @property
+    def is_closed(self) -> bool: ...
+    def boundary_loops(self) -> list[npt.NDArray[np.int64]]: ...
+    def boundary_edges(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def component_euler_characteristics(self) -> list[int]: ...
+    @property
+    def component_boundary_loops(self) -> list[int]: ...
     @property
     def n_components(self) -> int: ...
     @property
@@ -136,7 +149,8 @@ class Mesh:
         vertices: npt.ArrayLike,
         faces: Sequence[Sequence[int]] | npt.ArrayLike,
         tolerance: float | None = None,
-        close_boundaries: bool = False,
+        close_boundaries: bool | None = None,
+        boundaries: Literal["keep", "refuse"] = "keep",
     ) -> tuple[Mesh, dict[str, Any]]: ...
     @staticmethod
     def _repair_flat(
@@ -144,7 +158,8 @@ class Mesh:
         face_sizes: npt.ArrayLike,
         face_indices: npt.ArrayLike,
         tolerance: float | None = None,
-        close_boundaries: bool = False,
+        close_boundaries: bool | None = None,
+        boundaries: Literal["keep", "refuse"] = "keep",
     ) -> tuple[Mesh, dict[str, Any]]: ...
     @staticmethod
     def _weld(
@@ -152,11 +167,19 @@ class Mesh:
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
     @staticmethod
     def from_trimesh(
-        tm: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None
+        tm: Any,
+        close_boundaries: bool | None = None,
+        repair: bool = False,
+        tolerance: float | None = None,
+        boundaries: Literal["keep", "refuse"] = "keep",
     ) -> Mesh: ...
     @staticmethod
     def from_pyvista(
-        data: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None
+        data: Any,
+        close_boundaries: bool | None = None,
+        repair: bool = False,
+        tolerance: float | None = None,
+        boundaries: Literal["keep", "refuse"] = "keep",
     ) -> Mesh: ...
     def __eq__(self, value: object, /) -> bool: ...
     def __copy__(self) -> Mesh: ...

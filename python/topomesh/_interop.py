@@ -59,7 +59,9 @@ def _warn_unrealized(mesh: Mesh) -> None:
 def to_trimesh(mesh: Mesh) -> Any:
     """``trimesh.Trimesh`` of ``mesh.triangulate()``: topomesh's vertices
     followed by the points the triangulation adds (``process=False``:
-    nothing merged or removed). Emits :class:`GeometryWarning` if the mesh
+    nothing merged or removed). An open mesh stays open: hole faces are not
+    triangulated, so trimesh sees the same boundary edges (``is_watertight``
+    False). Emits :class:`GeometryWarning` if the mesh
     has cells with no geometric realization (see :func:`unrealized_cells`)."""
     trimesh = _need("trimesh")
     _warn_unrealized(mesh)
@@ -69,7 +71,8 @@ def to_trimesh(mesh: Mesh) -> Any:
 
 def to_pyvista(mesh: Mesh) -> Any:
     """``pyvista.PolyData`` with the polygon faces as they are (self-loop
-    repeats and all); pyvista triangulates on its own when it renders."""
+    repeats and all; hole faces left out, so an open mesh stays open);
+    pyvista triangulates on its own when it renders."""
     pv = _need("pyvista")
     # a copy: VTK writes through NumPy views and ignores their read-only flag
     return pv.PolyData(np.array(mesh.vertices), mesh.padded_faces)
@@ -78,10 +81,17 @@ def to_pyvista(mesh: Mesh) -> Any:
 def to_manifold(mesh: Mesh) -> Any:
     """``manifold3d.Manifold`` of ``mesh.triangulate()`` (float32 positions, as
     manifold3d stores them). Emits :class:`GeometryWarning` if the mesh has
-    cells with no geometric realization; raises :class:`MeshError` if
-    manifold3d rejects the triangles (its status is in the message) or its
+    cells with no geometric realization; raises :class:`MeshError` for an
+    open mesh (manifold3d holds closed solids), if manifold3d rejects the triangles (its status is in the message) or its
     genus differs from ``mesh.genus - (mesh.n_components - 1)``."""
     m3d = _need("manifold3d")
+    if not mesh.is_closed:
+        a, b = (int(x) for x in mesh.boundary_edges()[0])
+        raise MeshError(
+            f"to_manifold: the mesh is open ({mesh.n_boundary_loops} boundary loop"
+            f"{'s' if mesh.n_boundary_loops != 1 else ''}, e.g. boundary edge ({a}, {b})); "
+            "manifold3d holds closed solids only"
+        )
     _warn_unrealized(mesh)
     verts, tris, _ = mesh.triangulate()
     m = m3d.Manifold(
@@ -100,7 +110,13 @@ def to_manifold(mesh: Mesh) -> Any:
 
 
 def _build(
-    points: Any, sizes: Any, indices: Any, close_boundaries: bool, repair: bool, tolerance: float | None
+    points: Any,
+    sizes: Any,
+    indices: Any,
+    close_boundaries: bool | None,
+    repair: bool,
+    tolerance: float | None,
+    boundaries: str = "keep",
 ) -> Mesh:
     """``Mesh.from_flat`` (or the repair path) on the points the faces use:
     points no face refers to (pyvista keeps them after clipping, trimesh
@@ -117,16 +133,25 @@ def _build(
     if repair:
         from topomesh._repair import repair_flat
 
-        return repair_flat(points, sizes, indices, tolerance=tolerance, close_boundaries=close_boundaries)[0]
-    return Mesh.from_flat(points, sizes, indices, close_boundaries=close_boundaries)
+        kw = dict(tolerance=tolerance, close_boundaries=close_boundaries, boundaries=boundaries)
+        return repair_flat(points, sizes, indices, **kw)[0]
+    return Mesh.from_flat(points, sizes, indices, close_boundaries=close_boundaries, boundaries=boundaries)
 
 
-def from_trimesh(tm: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None) -> Mesh:
+def from_trimesh(
+    tm: Any,
+    close_boundaries: bool | None = None,
+    repair: bool = False,
+    tolerance: float | None = None,
+    boundaries: str = "keep",
+) -> Mesh:
     """A :class:`Mesh` from a ``trimesh.Trimesh``: its vertices and triangles
     (vertices no triangle uses left out). ``repair=True`` passes them through
-    :func:`topomesh.repair` with ``tolerance`` (call it directly for the report)."""
+    :func:`topomesh.repair` with ``tolerance`` (call it directly for the report).
+    An open mesh stays open (``boundaries="keep"``); ``boundaries="refuse"``
+    (or the legacy ``close_boundaries=False``) raises at a boundary edge."""
     faces = np.asarray(tm.faces, dtype=np.int64).reshape(-1, 3)
-    return _build(tm.vertices, np.full(len(faces), 3), faces, close_boundaries, repair, tolerance)
+    return _build(tm.vertices, np.full(len(faces), 3), faces, close_boundaries, repair, tolerance, boundaries)
 
 
 def _cells(cells: Any) -> tuple[Any, Any]:
@@ -159,7 +184,11 @@ def _strip_triangles(sizes: Any, conn: Any) -> Any:
 
 
 def from_pyvista(
-    data: Any, close_boundaries: bool = False, repair: bool = False, tolerance: float | None = None
+    data: Any,
+    close_boundaries: bool | None = None,
+    repair: bool = False,
+    tolerance: float | None = None,
+    boundaries: str = "keep",
 ) -> Mesh:
     """A :class:`Mesh` from a pyvista dataset.
 
@@ -167,7 +196,8 @@ def from_pyvista(
     (vertex and line cells are not surface cells and are left out). Any
     other dataset (``UnstructuredGrid``, ``ImageData``, ...) goes through
     ``extract_surface()`` first. Points no face uses are left out.
-    ``repair=True`` passes the faces through :func:`topomesh.repair`."""
+    ``repair=True`` passes the faces through :func:`topomesh.repair`.
+    Boundaries as in :func:`from_trimesh`: open surfaces stay open."""
     pv = _need("pyvista")
     poly = data
     if not isinstance(poly, pv.PolyData):
@@ -182,4 +212,4 @@ def from_pyvista(
     if len(tri):
         sizes = np.concatenate([sizes, np.full(len(tri), 3, dtype=np.int64)])
         conn = np.concatenate([conn, tri.ravel()])
-    return _build(poly.points, sizes, conn, close_boundaries, repair, tolerance)
+    return _build(poly.points, sizes, conn, close_boundaries, repair, tolerance, boundaries)

@@ -55,7 +55,7 @@ class RepairReport:
     unreferenced_vertices_removed : int
         Vertices (after merging) that no remaining face uses.
     boundary_loops : int
-        Boundary loops in the result (capped as holes when ``close_boundaries``).
+        Boundary loops in the result (kept open, as hole faces).
     """
 
     tolerance: float
@@ -100,7 +100,8 @@ def repair(
     faces: Sequence[Sequence[int]] | npt.ArrayLike,
     *,
     tolerance: float | None = None,
-    close_boundaries: bool = False,
+    close_boundaries: bool | None = None,
+    boundaries: str = "keep",
 ) -> tuple[Mesh, RepairReport]:
     """Repair a polygon soup or a sloppy mesh and build it.
 
@@ -123,9 +124,13 @@ def repair(
         Merge distance (Euclidean). Default ``1e-9`` times the bounding-box
         diagonal; ``0`` merges exactly equal positions only. A face whose
         height is below it is degenerate.
-    close_boundaries : bool, default False
-        Cap the boundary loops left with hole faces; without it a remaining
-        boundary raises :class:`MeshError` naming an edge.
+    close_boundaries : bool or None, default None
+        Legacy spelling of ``boundaries``: ``True`` keeps (the default),
+        ``False`` refuses.
+    boundaries : {"keep", "refuse"}, default "keep"
+        ``"keep"``: boundary loops left after the repair stay open (stored as
+        hole faces, counted in ``report.boundary_loops``); ``"refuse"``: a
+        remaining boundary raises :class:`MeshError` naming an edge.
 
     Returns
     -------
@@ -139,9 +144,10 @@ def repair(
     ------
     MeshError
         Index out of range, empty face, non-finite coordinate, negative or
-        non-finite ``tolerance``, or (without ``close_boundaries``) a boundary left.
+        non-finite ``tolerance``, an unknown ``boundaries`` value, or (when
+        boundaries are refused) a boundary left.
     """
-    mesh, counts = Mesh._repair(vertices, faces, _tolerance(tolerance), close_boundaries)
+    mesh, counts = Mesh._repair(vertices, faces, _tolerance(tolerance), close_boundaries, boundaries)
     return mesh, _report(counts)
 
 
@@ -151,8 +157,10 @@ def repair_flat(
     face_indices: npt.ArrayLike,
     *,
     tolerance: float | None = None,
-    close_boundaries: bool = False,
+    close_boundaries: bool | None = None,
+    boundaries: str = "keep",
 ) -> tuple[Mesh, RepairReport]:
     """:func:`repair` on faces given as ``face_sizes`` (F,) and flat ``face_indices``."""
-    mesh, counts = Mesh._repair_flat(vertices, face_sizes, face_indices, _tolerance(tolerance), close_boundaries)
+    kw = (_tolerance(tolerance), close_boundaries, boundaries)
+    mesh, counts = Mesh._repair_flat(vertices, face_sizes, face_indices, *kw)
     return mesh, _report(counts)

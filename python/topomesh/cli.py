@@ -7,8 +7,9 @@
     topomesh sierpinski IN OUT -n K
     topomesh menger IN OUT -n K [--thickness D]
 
-Every command that reads a file takes ``--close-boundaries``, ``--allow-multi-edges`` and
-``--repair`` (passed to :func:`topomesh.load`). Errors are one line on stderr, never a
+Every command that reads a file takes ``--boundaries {keep,refuse}``, ``--allow-multi-edges``
+and ``--repair`` (passed to :func:`topomesh.load`): open meshes are read and kept open unless
+``--boundaries refuse``; ``--close-boundaries`` (keep, the default) is accepted for old scripts. Errors are one line on stderr, never a
 traceback: bad input (``MeshError``) exits with status 2, Ctrl-C with 130, a file or other
 failure with 1. Warnings (``GeometryWarning``, e.g. an STL that is not closed) are one line too.
 """
@@ -44,6 +45,7 @@ def _iterate(mesh: Mesh, method: str, n: int, **kw: object) -> Mesh:
 # core messages suggest Python keywords; the CLI names its own flags
 _HINTS = {
     "close_boundaries": "--close-boundaries",
+    "boundaries": "--boundaries",
     "allow_multi_edges": "--allow-multi-edges",
     "repair": "--repair",
     "iterations": "-n",
@@ -53,15 +55,20 @@ _HINTS = {
 
 def _cli_message(msg: str) -> str:
     """``pass close_boundaries=True`` → ``pass --close-boundaries``, and so on."""
+    msg = re.sub(r'(?<![-\w])boundaries\s*=\s*"(\w+)"', r"--boundaries \1", msg)
+    msg = re.sub(r"(?<![-\w])close_boundaries\s*=\s*False\b", "--boundaries refuse", msg)
     for kw, flag in _HINTS.items():
         msg = re.sub(rf"(?<![-\w]){kw}\s*=\s*True\b", flag, msg)
         msg = re.sub(rf"(?<![-\w]){kw}\b", flag, msg)
-    return msg
+    return msg.replace("(--boundaries refuse or --boundaries refuse)", "(--boundaries refuse)")
 
 
 def _load(a: argparse.Namespace, path: str) -> Mesh:
     """``topomesh.load`` with the construction flags of the command line."""
-    return topomesh.load(path, close_boundaries=a.close_boundaries, allow_multi_edges=a.allow_multi_edges, repair=a.repair)
+    return topomesh.load(
+        path, close_boundaries=a.close_boundaries, allow_multi_edges=a.allow_multi_edges, repair=a.repair,
+        boundaries=a.boundaries,
+    )
 
 
 def cmd_info(a: argparse.Namespace) -> int:
@@ -72,6 +79,7 @@ def cmd_info(a: argparse.Namespace) -> int:
     print(f"{a.file}: {m!r}")
     print(f"  Euler characteristic  {m.euler_characteristic}")
     print(f"  component genera      {m.component_genera}")
+    print(f"  boundary loops        {m.n_boundary_loops}" + ("" if m.is_closed else f" (per component {m.component_boundary_loops})"))
     print(f"  self-loops            {m.n_self_loops}")
     print(f"  face sizes            {m.face_size_histogram}")
     print(f"  valences              {m.valence_histogram}")
@@ -116,7 +124,14 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"topomesh {topomesh.__version__}")
     sub = p.add_subparsers(dest="command", required=True)
     reads = argparse.ArgumentParser(add_help=False)
-    reads.add_argument("--close-boundaries", action="store_true", help="cap boundary loops with hole faces instead of refusing open meshes")
+    reads.add_argument(
+        "--boundaries", choices=("keep", "refuse"), default="keep",
+        help="keep open meshes open (default) or refuse them with an error naming a boundary edge",
+    )
+    reads.add_argument(
+        "--close-boundaries", action="store_true", default=None,
+        help="old spelling of --boundaries keep (the default): accept open meshes",
+    )
     reads.add_argument("--allow-multi-edges", action="store_true", help="accept several edges between the same two vertices")
     reads.add_argument("--repair", action="store_true", help="repair sloppy input while loading (merge, orient, split pinches)")
     g = sub.add_parser("gallery", help="write every built-in mesh with a render and a summary table")

@@ -176,7 +176,12 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
 
         tm = trimesh.Trimesh(verts, tris, process=False)
         row["trimesh_watertight"] = bool(tm.is_watertight)
-        row["trimesh_genus"] = int(mesh.n_components - tm.euler_number // 2)
+        # trimesh's χ counts no boundary: the loops it sees (pieces of its
+        # once-used edges) give the genus of the capped surface, as topomesh's
+        pairs, count = np.unique(np.asarray(tm.edges_sorted), axis=0, return_counts=True)
+        rim = pairs[count == 1]
+        loops = len(trimesh.graph.connected_components(rim, min_len=1)) if len(rim) else 0
+        row["trimesh_genus"] = int(mesh.n_components - (tm.euler_number + loops) // 2)
     except Exception as e:  # pragma: no cover - reported, not raised
         row["trimesh_watertight"] = f"error: {type(e).__name__}"
         row["trimesh_genus"] = ""

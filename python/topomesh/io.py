@@ -18,8 +18,8 @@ Formats
     self-loops form an edge. :func:`save` writes a mesh only when reading the
     list back (with ``allow_multi_edges=True``) gives the same mesh, and
     otherwise raises :class:`MeshError` naming ``.npz``/``.ply``. Hole faces
-    are not written: the file holds the open mesh, which loads with
-    ``close_boundaries=True``. OBJ is read by the core's reader
+    are not written: the file holds the open mesh, which loads back open
+    (the default ``boundaries="keep"``). OBJ is read by the core's reader
     (``topomesh._core._read_obj``: negative indices, ``v/vt/vn`` with their
     own counts, groups, materials, continuations, CRLF; ``l`` and ``p``
     elements are skipped with a :class:`GeometryWarning` giving their count).
@@ -98,17 +98,32 @@ def _from_state(vertices, face_sizes, face_indices, corner_twins, data=None) -> 
     return m
 
 
-def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool = False, repair: bool = False) -> Mesh:
+def load(
+    path: PathLike,
+    close_boundaries: bool | None = None,
+    allow_multi_edges: bool = False,
+    repair: bool = False,
+    boundaries: str = "keep",
+) -> Mesh:
     """Read a mesh from a ``.npz``, ``.ply``, ``.obj``, ``.off``, ``.stl`` or ``.3mf`` file.
+
+    Open meshes (scans, terrain, a tube without caps) are read as they are
+    and stay open: each boundary loop becomes a hole face, never written
+    back, so saving gives the same open mesh.
 
     Parameters
     ----------
     path : str or os.PathLike
         The file; its extension selects the format.
-    close_boundaries, allow_multi_edges : bool
+    close_boundaries : bool or None, default None
+        Legacy spelling of ``boundaries`` (``True``: keep, ``False``: refuse).
+    allow_multi_edges : bool, default False
         As in :meth:`Mesh.from_polygons`, for files without ``corner_twins``
         (OBJ, OFF, STL, 3MF, foreign PLY); ``.npz`` and topomesh's PLY are
-        rebuilt exactly and need neither.
+        rebuilt exactly and do not need it.
+    boundaries : {"keep", "refuse"}, default "keep"
+        ``"refuse"`` raises :class:`MeshError` for an open mesh (naming a
+        boundary edge), in every format.
     repair : bool, default False
         Run the file's polygons through :func:`topomesh.repair`
         (merge coincident vertices, drop degenerate faces, orient) instead of
@@ -167,11 +182,12 @@ def load(path: PathLike, close_boundaries: bool = False, allow_multi_edges: bool
         if repair:
             from topomesh._repair import repair_flat
 
-            mesh, _report = repair_flat(verts, sizes, idx, close_boundaries=close_boundaries)
+            mesh, _report = repair_flat(verts, sizes, idx, close_boundaries=close_boundaries, boundaries=boundaries)
             return mesh
+        kw = dict(close_boundaries=close_boundaries, boundaries=boundaries)
         if twins is not None:
-            return Mesh.from_flat(verts, sizes, idx, twins=twins)
-        return Mesh.from_flat(verts, sizes, idx, close_boundaries=close_boundaries, allow_multi_edges=allow_multi_edges)
+            return Mesh.from_flat(verts, sizes, idx, twins=twins, **kw)
+        return Mesh.from_flat(verts, sizes, idx, allow_multi_edges=allow_multi_edges, **kw)
     except MeshError as e:
         raise MeshError(f"{name}: {e}") from None
 

@@ -16,6 +16,7 @@
 //! `crate::schemes` and build new meshes with [`Mesh::from_corner_twins`].
 
 pub mod build;
+mod boundary;
 mod euler;
 mod export;
 mod twins;

@@ -1,6 +1,7 @@
-//! Counts, topology (χ, components, genus) and per-face geometry.
+//! Counts, topology (components, genus) and per-face geometry; χ and
+//! boundaries are in `boundary.rs`.
 
-use super::{FaceStart, Mesh, POINT};
+use super::{FaceStart, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -9,11 +10,6 @@ use std::collections::BTreeMap;
 pub type Histogram = BTreeMap<usize, usize>;
 
 impl Mesh {
-    /// χ = V − E + F (hole faces count: the capped surface is what is closed).
-    pub fn euler_characteristic(&self) -> i64 {
-        self.n_vertices() as i64 - self.n_edges() as i64 + self.n_faces() as i64
-    }
-
     /// Component label per vertex (0..n_components), in order of first vertex.
     pub fn vertex_components(&self) -> (Vec<u32>, usize) {
         let nv = self.n_vertices();
@@ -40,33 +36,17 @@ impl Mesh {
         self.vertex_components().1
     }
 
-    /// χ of each component (in the order of [`Mesh::vertex_components`]).
-    pub fn component_euler_characteristics(&self) -> Vec<i64> {
-        let (label, n) = self.vertex_components();
-        let mut chi = vec![0i64; n];
-        for &l in &label {
-            chi[l as usize] += 1;
-        }
-        for e in 0..self.n_edges() {
-            chi[label[self.he_vert[2 * e] as usize] as usize] -= 1;
-        }
-        for &s in &self.f_start {
-            let v = if s & POINT != 0 { s & !POINT } else { self.he_vert[s as usize] };
-            chi[label[v as usize] as usize] += 1;
-        }
-        chi
-    }
-
     /// Genus of each component (in the order of [`Mesh::vertex_components`]).
     pub fn component_genera(&self) -> Vec<i64> {
-        // a closed orientable surface has χ = 2 − 2g
-        self.component_euler_characteristics().into_iter().map(|c| (2 - c) / 2).collect()
+        // the capped surface is closed and orientable: χ = 2 − 2g (the open
+        // one has the same genus, χ = 2 − 2g − b)
+        self.component_capped_euler_characteristics().into_iter().map(|c| (2 - c) / 2).collect()
     }
 
     /// Sum of the component genera: the genus of the 2-manifold (ch. II.1).
     pub fn genus(&self) -> i64 {
         // Σ (2 − χ_c)/2 = components − χ/2, no per-component pass needed
-        self.n_components() as i64 - self.euler_characteristic() / 2
+        self.n_components() as i64 - self.capped_euler_characteristic() / 2
     }
 
     pub fn n_self_loops(&self) -> usize {
@@ -136,9 +116,14 @@ impl Mesh {
     }
 
     /// Area-weighted vertex normals: the sum of the Newell vectors of the
-    /// corners' faces, one term per corner, normalized.
+    /// corners' faces, one term per corner, normalized. Hole faces are no
+    /// faces of the surface and add nothing (a flat open patch's hole would
+    /// otherwise turn its boundary normals over).
     pub fn vertex_normals(&self) -> Vec<DVec3> {
-        let fnv: Vec<DVec3> = (0..self.n_faces() as u32).into_par_iter().map(|f| self.face_newell(super::FaceId(f))).collect();
+        let fnv: Vec<DVec3> = (0..self.n_faces() as u32)
+            .into_par_iter()
+            .map(|f| if self.f_hole[f as usize] { DVec3::ZERO } else { self.face_newell(super::FaceId(f)) })
+            .collect();
         let mut vn = vec![DVec3::ZERO; self.n_vertices()];
         for (h, &v) in self.he_vert.iter().enumerate() {
             vn[v as usize] += fnv[self.he_face[h] as usize];

@@ -44,7 +44,7 @@ impl Mesh {
         self.check_vertex_umbrellas()
             .map_err(|e| MeshError::Invariant(format!("I8: {e}")))?;
         // I9 χ of every component is even (closed orientable surfaces)
-        if let Some(c) = self.component_euler_characteristics().iter().position(|c| c % 2 != 0) {
+        if let Some(c) = self.component_capped_euler_characteristics().iter().position(|c| c % 2 != 0) {
             return bad(format!("I9: component {c} has odd Euler characteristic"));
         }
         Ok(())

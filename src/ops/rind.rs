@@ -8,6 +8,15 @@
 //! [`Rind::peel`] also removes the infinitely thin walls left between
 //! neighbouring holes and the two-gons they leave (V.3.2).
 //!
+//! **Open meshes.** The rind of an open surface M is its solid shell: the
+//! rind of the capped surface with every hole face peeled at once, so each
+//! boundary loop becomes a strip of quads joining the outer and inner copies
+//! of its rim. The result is the double of M, closed: χ = 2χ(M), one
+//! component per component of M, genus 2g + b − 1 for a connected M of genus
+//! g with b ≥ 1 boundary loops (a disk gives a sphere, an annulus or an open
+//! tube a torus). The hole faces count among the outer faces `0..F` and are
+//! listed as peeled; vertex normals at the rim average the real faces only.
+//!
 //! Topology: the fresh rind of a genus-g connected mesh has two components
 //! of genus g. The first punch joins them (components −1, genus unchanged);
 //! every further punch adds a handle (genus +1). Peeling a face removes, per
@@ -39,15 +48,15 @@ pub struct Rind {
 impl Rind {
     /// The offset shell of `source` at `thickness` (V.3.1).
     ///
+    /// An open source (with hole faces) gives its closed solid shell, the
+    /// hole faces peeled (module docs).
+    ///
     /// Errors: a thickness that is not finite and positive; a source with
-    /// hole faces, point-spheres or a vertex whose averaged normal vanishes;
+    /// point-spheres or a vertex whose averaged normal vanishes;
     /// a thickness that flips an inner face against its outer twin (named).
     pub fn new(source: &Mesh, thickness: f64) -> Result<Rind> {
         if !(thickness.is_finite() && thickness > 0.0) {
             return Err(MeshError::InvalidArgument(format!("rind: thickness {thickness} must be finite and positive")));
-        }
-        if let Some(f) = source.faces().find(|&f| source.is_hole(f)) {
-            return Err(MeshError::Precondition(format!("rind: face {} is a hole face; the rind needs a closed surface", f.0)));
         }
         if let Some(f) = source.faces().find(|&f| source.face_halfedge(f).is_none()) {
             return Err(MeshError::Precondition(format!("rind: face {} is a point-sphere; it has no rind", f.0)));
@@ -97,7 +106,7 @@ impl Rind {
         let mesh = Mesh::from_corner_twins(pos, &sizes, &verts, &twin)?;
         // no inner face may turn over, nor any of its sides reverse
         let inner_pos = |v: VertexId| mesh.position(VertexId(v.0 + nv as u32));
-        for f in source.faces() {
+        for f in source.faces().filter(|&f| !source.is_hole(f)) {
             let n_out = source.face_newell(f);
             let mut n_in = DVec3::ZERO;
             let mut reversed = false;
@@ -122,7 +131,14 @@ impl Rind {
             outer.push(a);
             inner.push(b);
         }
-        Ok(Rind { mesh, outer, inner, punched: vec![false; nf] })
+        let mut rind = Rind { mesh, outer, inner, punched: vec![false; nf] };
+        // an open surface: its shell is closed along each boundary loop by
+        // peeling the hole faces (module docs)
+        let holes: Vec<usize> = source.faces().filter(|&f| source.is_hole(f)).map(|f| f.idx()).collect();
+        if !holes.is_empty() {
+            rind.peel(&holes)?;
+        }
+        Ok(rind)
     }
 
     pub fn mesh(&self) -> &Mesh {
@@ -296,6 +312,37 @@ mod tests {
         assert!(r.mesh().signed_volume() > 0.0);
         assert!(r.mesh().signed_volume() < m.signed_volume());
         assert_eq!(r.face_pair(0), Some((FaceId(0), FaceId(54))));
+    }
+
+    #[test]
+    fn open_surfaces_give_closed_shells() {
+        use crate::mesh::BuildOptions;
+        // an open box (a cube without its top), a flat 3 x 3 grid and an open tube
+        let c = primitives::cube();
+        let mut idx = Vec::new();
+        for f in c.faces().skip(1) {
+            idx.extend(c.face_vertices(f).map(|v| v.0 as i64));
+        }
+        let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+        let open_box = Mesh::from_polygons(c.positions().to_vec(), &[4; 5], &idx, opts).unwrap();
+        let n = 6;
+        let tube_pos: Vec<DVec3> = (0..2)
+            .flat_map(|z| (0..n).map(move |i| {
+                let t = std::f64::consts::TAU * i as f64 / n as f64;
+                DVec3::new(t.cos(), t.sin(), z as f64)
+            }))
+            .collect();
+        let tube_idx: Vec<i64> = (0..n as i64).flat_map(|i| [i, (i + 1) % 6, 6 + (i + 1) % 6, 6 + i]).collect();
+        let tube = Mesh::from_polygons(tube_pos, &[4; 6], &tube_idx, opts).unwrap();
+        for (m, genus) in [(open_box, 0), (tube, 1)] {
+            let r = m.rind(0.1).unwrap();
+            let s = r.mesh();
+            s.validate().unwrap();
+            assert!(s.is_closed());
+            assert_eq!((s.euler_characteristic(), s.n_components(), s.genus()), (2 * m.euler_characteristic(), 1, genus));
+            assert_eq!(r.punched_faces().len(), m.n_boundary_loops());
+            assert!(s.signed_volume() > 0.0);
+        }
     }
 
     #[test]

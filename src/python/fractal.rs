@@ -33,6 +33,14 @@ impl PyMesh {
     ///     no self-loops) and no self-loop-only faces, one iteration gives
     ///     ``V + N`` vertices, ``E + 4N`` edges, ``2N + K`` faces and
     ///     ``N`` more self-loops; the tetrahedron's genus is 3, 15, 63, ...
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     ``iterations`` out of range, or an open mesh (with boundary loops):
+    ///     the paper's rule has no boundary version, and its natural
+    ///     extension would make every boundary midpoint a pinch on two
+    ///     boundary loops; close the holes first.
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn sierpinski(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
         iterate(py, &self.inner, iterations, progress, "sierpinski", predict::sierpinski, sp::sierpinski)
@@ -63,6 +71,13 @@ impl PyMesh {
     /// Mesh
     ///     Per iteration on a connected mesh: genus ``2g + F - 1``. On the
     ///     cube the first iteration is the classic level-1 sponge.
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     Arguments out of range, or an open mesh (with boundary loops):
+    ///     every face becomes a wall joined to its inward offset, and the
+    ///     chapter has no rule for the rim such a wall needs at a boundary.
     ///
     /// Notes
     /// -----

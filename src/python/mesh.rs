@@ -5,18 +5,19 @@
 use super::convert::{faces, i64_array, indices_1d, positions, u32_rows, vec3_array};
 use super::{arg_err, err};
 use crate::mesh::{BuildOptions, Corner, EdgeId, FaceId, Mesh, VertexId};
-use crate::primitives;
 use glam::DVec3;
 use numpy::ndarray::{ArrayView1, ArrayView2};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use std::sync::OnceLock;
 
-/// A closed, orientable 2-manifold polygon mesh (immutable).
+/// An orientable 2-manifold polygon mesh, closed or open (immutable).
 ///
 /// Build one with :meth:`Mesh.from_polygons`, :meth:`Mesh.from_flat`,
 /// :func:`topomesh.load` or a primitive such as :func:`topomesh.cube`.
-/// Self-loops, multi-edges, two-gons and point-spheres are legal.
+/// Self-loops, multi-edges, two-gons and point-spheres are legal. Open
+/// meshes are accepted and kept open: each boundary loop is stored as a hole
+/// face, never exported (see :meth:`boundary_loops`, :attr:`is_closed`).
 #[pyclass(name = "Mesh", module = "topomesh", frozen)]
 pub struct PyMesh {
     pub inner: Mesh,
@@ -121,26 +122,43 @@ impl PyMesh {
     ///     Each face lists its vertex indices counter-clockwise seen from
     ///     outside. Faces may have any size; a size-1 face whose vertex is in
     ///     no other face is a point-sphere.
-    /// close_boundaries : bool, default False
-    ///     Cap every boundary loop with a hole face (topology only; holes are
-    ///     left out of every export) instead of raising.
+    /// close_boundaries : bool or None, default None
+    ///     Legacy spelling of ``boundaries``: ``True`` is the default
+    ///     behaviour (keep boundary loops), ``False`` refuses open meshes
+    ///     (``boundaries="refuse"``).
     /// allow_multi_edges : bool, default False
     ///     Accept more than two face sides on one vertex pair, pairing them in
     ///     order of appearance.
+    /// boundaries : {"keep", "refuse"}, default "keep"
+    ///     ``"keep"``: an open mesh is accepted and stays open; each boundary
+    ///     loop is stored as one hole face (topology only: never exported,
+    ///     not counted by :attr:`euler_characteristic`; see
+    ///     :meth:`boundary_loops`). ``"refuse"``: a boundary edge raises
+    ///     :class:`MeshError` naming it.
     ///
     /// Raises
     /// ------
     /// MeshError
     ///     Naming the face or vertex: index out of range, empty face, edge used
     ///     by more than two faces, inconsistent orientation, non-manifold
-    ///     vertex, non-finite coordinate, unreferenced vertex, wrong dtype or
-    ///     shape, boundary edge.
+    ///     vertex (e.g. two boundary loops touching at a vertex), non-finite
+    ///     coordinate, unreferenced vertex, wrong dtype or shape; a boundary
+    ///     edge when boundaries are refused; an unknown ``boundaries`` value or
+    ///     ``close_boundaries=True`` with ``boundaries="refuse"``.
     #[staticmethod]
-    #[pyo3(signature = (vertices, faces, close_boundaries = false, allow_multi_edges = false))]
-    fn from_polygons(py: Python<'_>, vertices: &Bound<'_, PyAny>, faces: &Bound<'_, PyAny>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+    #[pyo3(signature = (vertices, faces, close_boundaries = None, allow_multi_edges = false, boundaries = "keep"))]
+    fn from_polygons(
+        py: Python<'_>,
+        vertices: &Bound<'_, PyAny>,
+        faces: &Bound<'_, PyAny>,
+        close_boundaries: Option<bool>,
+        allow_multi_edges: bool,
+        boundaries: &str,
+    ) -> PyResult<PyMesh> {
+        let keep = super::boundary::keep_boundaries("from_polygons", close_boundaries, boundaries)?;
         let pos = positions(py, vertices)?;
         let (sizes, idx) = self::faces(py, faces)?;
-        build(py, pos, &sizes, idx.as_slice(), close_boundaries, allow_multi_edges)
+        build(py, pos, &sizes, idx.as_slice(), keep, allow_multi_edges)
     }
 
     /// Build a mesh from vertices, ``face_sizes`` (F,) and flat ``face_indices``,
@@ -153,8 +171,12 @@ impl PyMesh {
     /// the same corners are joined by edges and hole faces are re-created from
     /// the ``-1`` sides, so ``Mesh.from_flat(m.vertices, m.face_sizes,
     /// m.face_indices, twins=m.corner_twins) == m`` for every mesh;
-    /// ``close_boundaries`` and ``allow_multi_edges`` are then not needed and
-    /// ignored.
+    /// ``allow_multi_edges`` is then not needed and ignored, and an open mesh
+    /// (``-1`` twins) is refused only when boundaries are.
+    ///
+    /// Open meshes are accepted by default and stay open
+    /// (``boundaries="keep"``); ``boundaries="refuse"`` or the legacy
+    /// ``close_boundaries=False`` refuse them, as in :meth:`from_polygons`.
     ///
     /// Raises
     /// ------
@@ -163,25 +185,32 @@ impl PyMesh {
     ///     face of a twin out of range, asymmetric, or not running between the
     ///     same two vertices in the opposite direction.
     #[staticmethod]
-    #[pyo3(signature = (vertices, face_sizes, face_indices, close_boundaries = false, allow_multi_edges = false, twins = None))]
+    #[pyo3(signature = (vertices, face_sizes, face_indices, close_boundaries = None, allow_multi_edges = false, twins = None, boundaries = "keep"))]
+    #[allow(clippy::too_many_arguments)]
     fn from_flat(
         py: Python<'_>,
         vertices: &Bound<'_, PyAny>,
         face_sizes: &Bound<'_, PyAny>,
         face_indices: &Bound<'_, PyAny>,
-        close_boundaries: bool,
+        close_boundaries: Option<bool>,
         allow_multi_edges: bool,
         twins: Option<&Bound<'_, PyAny>>,
+        boundaries: &str,
     ) -> PyResult<PyMesh> {
+        let keep = super::boundary::keep_boundaries("from_flat", close_boundaries, boundaries)?;
         let pos = positions(py, vertices)?;
         let sizes = indices_1d(py, face_sizes, "face_sizes")?;
         let idx = indices_1d(py, face_indices, "face_indices")?;
         match twins {
             Some(t) if !t.is_none() => {
                 let t = indices_1d(py, t, "twins")?;
-                build_twins(py, pos, sizes.as_slice(), idx.as_slice(), t.as_slice())
+                let m = build_twins(py, pos, sizes.as_slice(), idx.as_slice(), t.as_slice())?;
+                if !keep {
+                    super::boundary::refuse_open("from_flat", &m.inner)?;
+                }
+                Ok(m)
             }
-            _ => build(py, pos, sizes.as_slice(), idx.as_slice(), close_boundaries, allow_multi_edges),
+            _ => build(py, pos, sizes.as_slice(), idx.as_slice(), keep, allow_multi_edges),
         }
     }
 
@@ -276,22 +305,28 @@ impl PyMesh {
     fn n_edges(&self) -> usize {
         self.inner.n_edges()
     }
-    /// Number of faces, hole faces included (see :attr:`n_holes`).
+    /// Number of faces, hole faces included (see :attr:`n_holes`): an open
+    /// mesh has ``n_faces - n_holes`` real faces (those of :attr:`face_sizes`).
     #[getter]
     fn n_faces(&self) -> usize {
         self.inner.n_faces()
     }
-    /// Faces added by ``close_boundaries=True``.
+    /// Hole faces: one per boundary loop of an open mesh (the same as
+    /// :attr:`n_boundary_loops`).
     #[getter]
     fn n_holes(&self) -> usize {
         self.inner.n_holes()
     }
-    /// V − E + F.
+    /// χ = V − E + F of the surface as it is: hole faces (boundary loops) are
+    /// not counted, so χ = 2c − 2g − b (c components, g :attr:`genus`, b
+    /// :attr:`n_boundary_loops`); on a closed mesh the usual 2c − 2g.
     #[getter]
     fn euler_characteristic(&self) -> i64 {
         self.inner.euler_characteristic()
     }
     /// Total genus: the sum of the genera of the components (computed once).
+    /// An open mesh has the genus of its surface with every boundary loop
+    /// capped by a disk.
     #[getter]
     fn genus(&self, py: Python<'_>) -> i64 {
         *self.cache.genus.get_or_init(|| py.detach(|| self.inner.genus()))
@@ -471,15 +506,18 @@ impl PyMesh {
 
     // -------------------------------------------- interop (pure Python side)
 
-    /// A ``trimesh.Trimesh`` of :meth:`triangles` (``process=False``).
+    /// A ``trimesh.Trimesh`` of :meth:`triangles` (``process=False``); an
+    /// open mesh stays open (``is_watertight`` False, the same boundary edges).
     fn to_trimesh<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         Self::delegate(slf, "topomesh._interop", "to_trimesh", &[])
     }
-    /// A ``pyvista.PolyData`` with the polygon faces (no triangulation).
+    /// A ``pyvista.PolyData`` with the polygon faces (no triangulation; hole
+    /// faces left out, so an open mesh stays open).
     fn to_pyvista<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         Self::delegate(slf, "topomesh._interop", "to_pyvista", &[])
     }
-    /// A ``manifold3d.Manifold`` of :meth:`triangles`.
+    /// A ``manifold3d.Manifold`` of :meth:`triangles`; raises
+    /// :class:`MeshError` for an open mesh (manifold3d holds closed solids).
     fn to_manifold<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         Self::delegate(slf, "topomesh._interop", "to_manifold", &[])
     }
@@ -512,8 +550,9 @@ impl PyMesh {
 
     fn __repr__(&self) -> String {
         let m = &self.inner;
+        let open = if m.is_closed() { String::new() } else { format!(", boundary_loops={}", m.n_boundary_loops()) };
         format!(
-            "Mesh(V={}, E={}, F={}, genus={}, components={})",
+            "Mesh(V={}, E={}, F={}, genus={}, components={}{open})",
             m.n_vertices(),
             m.n_edges(),
             m.n_faces(),
@@ -545,70 +584,7 @@ impl PyMesh {
     }
 }
 
-// ------------------------------------------------------------- primitives
-
-/// Regular tetrahedron at alternate corners of the cube [-1, 1]³.
-#[pyfunction]
-fn tetrahedron() -> PyMesh {
-    PyMesh::wrap(primitives::tetrahedron())
-}
-/// The cube [-1, 1]³ (8 vertices, 12 edges, 6 quads).
-#[pyfunction]
-fn cube() -> PyMesh {
-    PyMesh::wrap(primitives::cube())
-}
-/// Octahedron with vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1).
-#[pyfunction]
-fn octahedron() -> PyMesh {
-    PyMesh::wrap(primitives::octahedron())
-}
-/// Dodecahedron with circumradius √3 (20 vertices, 12 pentagons).
-#[pyfunction]
-fn dodecahedron() -> PyMesh {
-    PyMesh::wrap(primitives::dodecahedron())
-}
-/// Icosahedron with vertices (0, ±1, ±φ) and cyclic permutations.
-#[pyfunction]
-fn icosahedron() -> PyMesh {
-    PyMesh::wrap(primitives::icosahedron())
-}
-/// Quad torus around the z axis: ``major`` segments around the axis, ``minor``
-/// around the tube. V = major·minor, F = V, genus 1.
-#[pyfunction]
-#[pyo3(signature = (major = 24, minor = 12, major_radius = 1.0, minor_radius = 0.4))]
-fn torus(
-    py: Python<'_>,
-    #[pyo3(from_py_with = super::big_int)] major: i128,
-    #[pyo3(from_py_with = super::big_int)] minor: i128,
-    major_radius: f64,
-    minor_radius: f64,
-) -> PyResult<PyMesh> {
-    let major = super::usize_in("torus", "major", major, 3, crate::mesh::MAX_ELEMENTS)?;
-    let minor = super::usize_in("torus", "minor", minor, 3, crate::mesh::MAX_ELEMENTS)?;
-    super::finite_in("torus", "major_radius", major_radius, f64::MIN_POSITIVE, f64::MAX)?;
-    super::finite_in("torus", "minor_radius", minor_radius, f64::MIN_POSITIVE, f64::MAX)?;
-    super::run_interruptible(py, || primitives::torus(major, minor, major_radius, minor_radius)).map(PyMesh::wrap)
-}
-/// A closed genus-``g`` slab, tunnelled with InsertEdge (quads only).
-///
-/// Parameters
-/// ----------
-/// g : int
-///     The genus, 0 to 10000.
-#[pyfunction]
-fn genus_surface(py: Python<'_>, #[pyo3(from_py_with = super::big_int)] g: i128) -> PyResult<PyMesh> {
-    let g = super::usize_in("genus_surface", "g", g, 0, 10_000)?;
-    super::run_interruptible(py, || primitives::genus_surface(g)).map(PyMesh::wrap)
-}
-
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMesh>()?;
-    m.add_function(wrap_pyfunction!(tetrahedron, m)?)?;
-    m.add_function(wrap_pyfunction!(cube, m)?)?;
-    m.add_function(wrap_pyfunction!(octahedron, m)?)?;
-    m.add_function(wrap_pyfunction!(dodecahedron, m)?)?;
-    m.add_function(wrap_pyfunction!(icosahedron, m)?)?;
-    m.add_function(wrap_pyfunction!(torus, m)?)?;
-    m.add_function(wrap_pyfunction!(genus_surface, m)?)?;
-    Ok(())
+    super::primitives::register(m)
 }

@@ -6,6 +6,7 @@
 use pyo3::prelude::*;
 
 mod alloc;
+mod boundary;
 mod data;
 mod levels;
 mod display;
@@ -17,6 +18,7 @@ pub(crate) mod mesh;
 mod refine;
 mod repair;
 mod ops;
+mod primitives;
 mod printing;
 mod smooth;
 

@@ -248,11 +248,17 @@ impl PyMesh {
     /// whose faces ``0..F`` are this mesh's faces (outer shell) and
     /// ``F..2F`` their inner twins.
     ///
+    /// An open mesh gives the closed solid shell of its surface: the hole
+    /// faces (among ``0..F``) are peeled at once, so each boundary loop
+    /// becomes a strip of quads joining the outer and inner rims (listed in
+    /// :attr:`Rind.punched`). The shell is the double of the open surface:
+    /// χ = 2χ, genus 2g + b − 1 for a connected surface with b ≥ 1 loops.
+    ///
     /// Raises
     /// ------
     /// MeshError
     ///     A thickness that is not positive, or one that flips an inner face
-    ///     (named); a mesh with hole faces or point-spheres.
+    ///     (named); a mesh with point-spheres.
     fn rind(&self, py: Python<'_>, thickness: f64) -> PyResult<PyRind> {
         let r = py.detach(|| self.inner.rind(thickness)).map_err(err)?;
         Ok(PyRind { inner: r })

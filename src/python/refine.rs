@@ -18,6 +18,11 @@ impl PyMesh {
     /// (Remark 2); genus unchanged. The dodecahedron gives the truncated
     /// icosahedron (12 pentagons, 20 hexagons).
     ///
+    /// Open meshes stay open: each boundary loop stays one loop (F counts
+    /// real faces, so the counts hold and χ is kept), and its new vertices
+    /// lie on the boundary edges, at ``t`` along each, instead of being
+    /// averaged over the hole.
+    ///
     /// Parameters
     /// ----------
     /// iterations : int, default 1
@@ -54,6 +59,10 @@ impl PyMesh {
     /// iteration V' = 2E, E' = 3E, F' = F + V, genus unchanged. Planar faces
     /// with 3-valent vertices (and the octahedron and icosahedron) stay
     /// planar at every iteration.
+    ///
+    /// Open meshes stay open: a boundary loop is cut like a face (its
+    /// corners cut off along the boundary edges) and stays one loop; the
+    /// counts hold with F counting real faces, so χ is kept.
     ///
     /// Parameters
     /// ----------

@@ -65,29 +65,33 @@ impl PyMesh {
     /// The repair path on polygons (see :func:`topomesh.repair`): returns the
     /// mesh and the report's counts as a dict.
     #[staticmethod]
-    #[pyo3(signature = (vertices, faces, tolerance = None, close_boundaries = false))]
+    #[pyo3(signature = (vertices, faces, tolerance = None, close_boundaries = None, boundaries = "keep"))]
     fn _repair<'py>(
         py: Python<'py>,
         vertices: &Bound<'py, PyAny>,
         faces: &Bound<'py, PyAny>,
         tolerance: Option<f64>,
-        close_boundaries: bool,
+        close_boundaries: Option<bool>,
+        boundaries: &str,
     ) -> PyResult<(PyMesh, Bound<'py, PyDict>)> {
+        let keep = super::boundary::keep_boundaries("repair", close_boundaries, boundaries)?;
         let (sizes, idx) = self::faces(py, faces)?;
-        run(py, vertices, &sizes, idx.as_slice(), tolerance, close_boundaries)
+        run(py, vertices, &sizes, idx.as_slice(), tolerance, keep)
     }
 
     /// :meth:`_repair` on ``face_sizes`` + flat ``face_indices``.
     #[staticmethod]
-    #[pyo3(signature = (vertices, face_sizes, face_indices, tolerance = None, close_boundaries = false))]
+    #[pyo3(signature = (vertices, face_sizes, face_indices, tolerance = None, close_boundaries = None, boundaries = "keep"))]
     fn _repair_flat<'py>(
         py: Python<'py>,
         vertices: &Bound<'py, PyAny>,
         face_sizes: &Bound<'py, PyAny>,
         face_indices: &Bound<'py, PyAny>,
         tolerance: Option<f64>,
-        close_boundaries: bool,
+        close_boundaries: Option<bool>,
+        boundaries: &str,
     ) -> PyResult<(PyMesh, Bound<'py, PyDict>)> {
+        let close_boundaries = super::boundary::keep_boundaries("repair", close_boundaries, boundaries)?;
         let sizes = indices_1d(py, face_sizes, "face_sizes")?;
         let idx = indices_1d(py, face_indices, "face_indices")?;
         run(py, vertices, sizes.as_slice(), idx.as_slice(), tolerance, close_boundaries)
@@ -119,40 +123,48 @@ impl PyMesh {
     /// Parameters
     /// ----------
     /// tm : trimesh.Trimesh
-    /// close_boundaries : bool, default False
-    ///     Cap boundary loops with hole faces instead of raising.
+    /// close_boundaries : bool or None, default None
+    ///     Legacy spelling of ``boundaries`` (``True``: keep, ``False``: refuse).
     /// repair : bool, default False
     ///     Pass the triangles through :func:`topomesh.repair` first (merge,
     ///     drop degenerate and duplicate faces, orient, split pinches); call
     ///     :func:`topomesh.repair` yourself to get the report.
     /// tolerance : float, optional
     ///     Merge tolerance of the repair (default 1e-9 × bounding-box diagonal).
+    /// boundaries : {"keep", "refuse"}, default "keep"
+    ///     An open mesh (trimesh's ``is_watertight`` False) is kept open, its
+    ///     boundary loops stored as hole faces; ``"refuse"`` raises
+    ///     :class:`MeshError` at a boundary edge.
     #[staticmethod]
-    #[pyo3(signature = (tm, close_boundaries = false, repair = false, tolerance = None))]
+    #[pyo3(signature = (tm, close_boundaries = None, repair = false, tolerance = None, boundaries = "keep"))]
     fn from_trimesh<'py>(
         py: Python<'py>,
         tm: &Bound<'py, PyAny>,
-        close_boundaries: bool,
+        close_boundaries: Option<bool>,
         repair: bool,
         tolerance: Option<f64>,
+        boundaries: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
-        delegate(py, "from_trimesh", tm, close_boundaries, repair, tolerance)
+        let keep = super::boundary::keep_boundaries("from_trimesh", close_boundaries, boundaries)?;
+        delegate(py, "from_trimesh", tm, keep, repair, tolerance)
     }
 
     /// A mesh from a pyvista dataset: ``PolyData`` (polygon faces and
     /// triangle strips; vertex and line cells are left out) or any other
     /// dataset, e.g. an ``UnstructuredGrid``, through its ``extract_surface()``.
-    /// Options as in :meth:`from_trimesh`.
+    /// Options as in :meth:`from_trimesh` (open surfaces are kept open by default).
     #[staticmethod]
-    #[pyo3(signature = (data, close_boundaries = false, repair = false, tolerance = None))]
+    #[pyo3(signature = (data, close_boundaries = None, repair = false, tolerance = None, boundaries = "keep"))]
     fn from_pyvista<'py>(
         py: Python<'py>,
         data: &Bound<'py, PyAny>,
-        close_boundaries: bool,
+        close_boundaries: Option<bool>,
         repair: bool,
         tolerance: Option<f64>,
+        boundaries: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
-        delegate(py, "from_pyvista", data, close_boundaries, repair, tolerance)
+        let keep = super::boundary::keep_boundaries("from_pyvista", close_boundaries, boundaries)?;
+        delegate(py, "from_pyvista", data, keep, repair, tolerance)
     }
 }
 
@@ -160,12 +172,12 @@ fn delegate<'py>(
     py: Python<'py>,
     func: &str,
     obj: &Bound<'py, PyAny>,
-    close_boundaries: bool,
+    keep: bool,
     repair: bool,
     tolerance: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let kw = PyDict::new(py);
-    kw.set_item("close_boundaries", close_boundaries)?;
+    kw.set_item("boundaries", if keep { "keep" } else { "refuse" })?;
     kw.set_item("repair", repair)?;
     kw.set_item("tolerance", tolerance)?;
     py.import("topomesh._interop")?.getattr(func)?.call((obj,), Some(&kw))

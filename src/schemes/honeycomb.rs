@@ -38,13 +38,21 @@
 //! one of old half-edge `h`; faces are `[front faces in old face order |
 //! vertex faces in old vertex order]`. Self-loops, one-gons, two-gons,
 //! multi-edges and repeated vertices need no special case. Point-spheres
-//! (no edge to act on) are copied unchanged. A face marked as a hole is
-//! subdivided like any other (its points are pulled towards the hole's
-//! centroid) and its front face is the new hole. O(output) time and memory.
+//! (no edge to act on) are copied unchanged. O(output) time and memory.
+//!
+//! **Open meshes.** A boundary loop (a face marked as a hole) is refined
+//! like a face for the connectivity, and its front face is the new hole, so
+//! every boundary loop stays one loop, through as many edges as before. Its
+//! new vertices stay on the boundary edges: `v'_n = p_n` (weight `a = 1`),
+//! the point at `t` along the boundary edge, not eq. 2's average over the
+//! hole polygon, which would pull the boundary towards the hole's centroid
+//! and grow a flange into the hole (a hole is no face to smooth). With F
+//! counting real faces and b boundary loops, `V' = 2E, E' = 3E, F' = F + V,
+//! b' = b`, so `χ' = V − E + F = χ` (`χ = 2c − 2g − b`) and the genus stays.
 
 use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::{FaceId, Mesh, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -114,7 +122,8 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
             let f = face[h] as usize;
             let nn = fl.degree(f);
             let p = edge_point(pos, vert[h], vert[h ^ 1], t);
-            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
+            // one-gons (section 3's second condition) and holes (module docs) keep p
+            let a = if nn == 1 || m.is_hole(FaceId(f as u32)) { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
             if a == 1.0 {
                 return p;
             }
@@ -350,5 +359,16 @@ mod tests {
         let h = honeycomb(&open, 0.5, None).unwrap();
         h.validate().unwrap();
         assert_eq!(h.n_holes(), 1);
+        assert_eq!((h.euler_characteristic(), h.n_boundary_loops()), (open.euler_characteristic(), 1));
+        // the new boundary runs through the old boundary edges' points at t
+        let old = open.positions();
+        let mids: Vec<DVec3> = open.boundary_edges().iter().map(|&[a, b]| 0.25 * old[a as usize] + 0.75 * old[b as usize]).collect();
+        let h = honeycomb(&open, 0.25, None).unwrap();
+        let lp = h.boundary_loops();
+        assert_eq!(lp[0].len(), 4);
+        for v in &lp[0] {
+            let p = h.position(*v);
+            assert!(mids.iter().any(|q| (*q - p).length() < 1e-12), "{p} is not an edge point of the old boundary");
+        }
     }
 }

@@ -79,6 +79,17 @@
 //! 5. **CreatePipe** (step 5) between each remeshing face and its offset face:
 //!    one quad per side; both faces disappear.
 //!
+//! # Open meshes: refused
+//!
+//! Every face becomes a wall: its remeshing face, joined by a pipe to its
+//! inward offset copy, the offset faces joined across every edge. At a
+//! boundary edge there is no face on the other side to join, and the
+//! chapter gives no rule for the rim that would close the wall there;
+//! treating the hole as a face would fill it. [`menger`] refuses open
+//! meshes with a `Precondition` error that says so. (The rind,
+//! [`crate::ops::rind`], is one wall for the whole surface, which it closes
+//! along each boundary loop by peeling the hole.)
+//!
 //! # Counts
 //!
 //! For a connected input with `V, E, F`, genus `g`: the outer surface (genus
@@ -1147,7 +1158,12 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
 /// self-intersections when this is not zero. Zero does not prove the output
 /// free of them: the check tests each vertex's own triangles only.
 pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
-    super::hosts::refuse_holes("menger", m)?;
+    m.refuse_open(
+        "menger",
+        "the generalized sponge (dissertation ch. VII.3) thickens every face into a wall, a remeshing face joined by \
+         a pipe to its inward offset copy, and has no rule for the rim such a wall would need at a boundary; treating \
+         the holes as faces would fill them, so open meshes are refused; close the holes with faces first",
+    )?;
     let ((_, mesh), crossing) = build_valid(m, o)?;
     // a thickness under the face-width bound can still exceed what the body
     // allows (a thin slab of wide faces): an outward input must stay outward

@@ -36,6 +36,16 @@
 //! midpoint of an earlier iteration has two, one per pyramid it joins. Each
 //! cone gives one back face.
 //!
+//! # Open meshes: refused
+//!
+//! The rule has no boundary version, and its natural extension does not
+//! give a surface with boundary. Read on the capped mesh, a hole's corner
+//! triangles would become the new holes: the two at the ends of a boundary
+//! edge share that edge's midpoint, so every boundary midpoint would lie on
+//! two boundary loops (a pinch, not a manifold with boundary); filling the
+//! hole instead would close it silently. [`sierpinski`] therefore refuses
+//! open meshes with a [`MeshError::Precondition`] that says so.
+//!
 //! # Count formulas
 //!
 //! With `L` self-loops, `N = E − L` non-loop edges, `K` cones, `D` cones with
@@ -127,14 +137,21 @@ impl Walk {
     }
 }
 
+/// Why open meshes are refused (module docs, "Open meshes").
+const OPEN_MESHES: &str = "Sierpinski's rule (Srinivasan & Akleman, section 4) has no boundary version: on an open mesh \
+the pyramids of two neighbouring boundary vertices would meet at the boundary edge's midpoint, which would lie on two \
+boundary loops (a pinch, not a manifold with boundary), and treating the holes as faces would fill them; close the \
+holes with faces first";
+
 /// One Sierpinski iteration (see the module docs), built in one pass.
 ///
 /// Vertex `i < V` of the output is vertex `i` of the input; the midpoint of
 /// the `k`-th non-loop edge (in edge order) is vertex `V + k`. Works on every
 /// closed manifold mesh, its own output included; a mesh made of self-loops
-/// and point-spheres only is returned unchanged.
+/// and point-spheres only is returned unchanged. An open mesh is refused
+/// (`Precondition`, module docs).
 pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
-    super::hosts::refuse_holes("sierpinski", m)?;
+    m.refuse_open("sierpinski", OPEN_MESHES)?;
     let nv = m.n_vertices();
     let nh = m.n_halfedges();
     let (_, vert, _) = m.halfedge_columns();

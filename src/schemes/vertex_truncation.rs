@@ -44,6 +44,15 @@
 //! `[old faces in order | vertex faces in old vertex order]`. Self-loops,
 //! one-gons, two-gons, multi-edges and non-convex faces need no special case;
 //! point-spheres are copied unchanged; hole faces stay holes. O(output).
+//!
+//! **Open meshes.** A boundary loop (a hole face) is cut like a face: its
+//! cut points are those of the boundary edges, so the new boundary is the
+//! old one with its corners cut off (a 2n-gon hole for an n-gon, the same
+//! n-gon at `ratio = 1/2`) and every loop stays one loop. A boundary vertex
+//! becomes the polygon through the cut points of its edges, boundary edges
+//! included. With F counting real faces and b boundary loops the counts
+//! above hold as they are (`F' = F + V`, `b' = b`), so `χ' = V − E + F = χ`
+//! (`χ = 2c − 2g − b`) and the genus stays.
 
 use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
 use crate::error::{MeshError, Result};
