@@ -337,6 +337,15 @@ def test_truncation_arguments():
             c.vertex_truncation(mode="polyhedral", ratio=bad)
 
 
+@pytest.mark.parametrize("scheme", ["catmull_clark", "loop"])
+def test_schemes_with_boundary_rules_keep_holes(scheme):
+    box = topomesh.Mesh.from_polygons(topomesh.cube().vertices, face_rows(topomesh.cube())[1:])
+    out = getattr(box, scheme)(2)
+    out.validate()
+    assert out.n_boundary_loops == 1 and not out.is_closed
+    assert out.euler_characteristic == box.euler_characteristic == 1
+
+
 def test_point_spheres_and_holes_pass_through():
     m, _, _ = topomesh.cube().create_vertex([5.0, 0.0, 0.0])
     for out in (m.honeycomb(2), m.vertex_truncation(2), m.vertex_truncation(mode="polyhedral", ratio=0.5)):
@@ -350,7 +359,7 @@ def test_point_spheres_and_holes_pass_through():
         assert len(out.face_sizes) == out.n_faces - 1  # the hole is not exported
 
 
-@pytest.mark.parametrize("scheme", ["catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual", "sierpinski", "menger"])
+@pytest.mark.parametrize("scheme", ["doo_sabin", "sqrt3", "simplest", "midpoint", "dual", "sierpinski", "menger"])
 def test_schemes_without_boundary_rules_refuse_holes(scheme):
     # a capped hole must not become a real face: these schemes have no boundary rules yet
     box = topomesh.Mesh.from_polygons(topomesh.cube().vertices, face_rows(topomesh.cube())[1:], close_boundaries=True)
