@@ -30,7 +30,7 @@ import numpy as np
 
 from topomesh import Mesh
 
-__all__ = ["star_prism", "dented_cube", "planar_vertex_box", "monkey_saddle"]
+__all__ = ["star_prism", "dented_cube", "planar_vertex_box", "monkey_saddle", "terrain", "uv_cube", "checker"]
 
 
 def star_prism(points: int = 5, inner: float = 0.45, height: float = 0.6, apex: float = 0.5) -> Mesh:
@@ -193,3 +193,47 @@ def monkey_saddle(sides: int = 6, height: float = 1.0, amplitude: float = 0.35) 
     faces += [[t(i + 1), t(i), b(i), b(i + 1)] for i in range(sides)]
     faces.append([b(i) for i in reversed(range(sides))])
     return Mesh.from_polygons(verts, faces)
+
+
+def terrain(n: int = 6) -> Mesh:
+    """An open n × n quad patch of terrain over [0, 1]²: one boundary loop,
+    four corners of valence 2 (where the boundary options differ).
+
+    Returns
+    -------
+    Mesh
+        Open (``n_boundary_loops == 1``), vertex ``0, n, n(n+1), (n+1)² − 1`` the corners.
+    """
+    i, j = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    v = np.c_[i.ravel(), j.ravel(), 0.25 * np.sin(3 * i.ravel()) * np.cos(2.5 * j.ravel())]
+    w = n + 1
+    faces = [[a, a + 1, a + w + 1, a + w] for a in (r * w + c for r in range(n) for c in range(n))]
+    return Mesh.from_polygons(v, faces)
+
+
+def uv_cube() -> Mesh:
+    """The cube with UVs of a cross unfolding (14 distinct UVs in [0, 1]², seams where
+    the cross was cut) as the corner attribute ``"uv"``."""
+    from topomesh import cube
+
+    c = cube()
+    faces = c.face_indices.reshape(6, 4)
+    cells = {(0, 0, -1): (1, 0), (0, 0, 1): (1, 2), (0, -1, 0): (1, 1), (0, 1, 0): (1, 3), (-1, 0, 0): (0, 1), (1, 0, 0): (2, 1)}
+    uv = []
+    for f, n in zip(faces, np.rint(c.face_normals).astype(int)):
+        col, row = cells[(int(n[0]), int(n[1]), int(n[2]))]
+        q = c.vertices[f]
+        a, b = q[1] - q[0], q[3] - q[0]
+        for p in q:
+            d = p - q[0]
+            uv.append([col + d @ a / (a @ a), row + d @ b / (b @ b)])
+    return c.with_attributes(corner={"uv": np.array(uv) / [3, 4]})
+
+
+def checker(mesh: Mesh, squares: int = 8, name: str = "uv") -> np.ndarray:
+    """0/1 per face: the checkerboard square (``squares`` per unit of the
+    cross's cells) that the face's mean corner UV falls in, for colouring."""
+    u = mesh.corner_attributes[name]
+    starts = np.r_[0, np.cumsum(mesh.face_sizes)[:-1]]
+    mean = np.add.reduceat(u, starts) / mesh.face_sizes[:, None]
+    return (np.floor(mean[:, 0] * squares * 3) + np.floor(mean[:, 1] * squares * 4)) % 2

@@ -28,6 +28,8 @@ class Entry:
     #: zero-length features (self-loops at a point) make the raw geometry
     #: pinched; the peers are then asked about this smoothed realization
     realize: Callable[[Mesh], Mesh] | None = None
+    #: per-face (or per-vertex) values the render is coloured by
+    color: Callable[[Mesh], np.ndarray] | None = None
 
 
 def entries() -> Iterator[Entry]:
@@ -102,6 +104,46 @@ def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
     yield Entry("twisted_handle", "Twisted handle", lambda: modeling.arch_cube(1, twist=1))
     yield Entry("triangle_hexagon_handle", "Handle from a triangle to a hexagon", modeling.triangle_hexagon_handle)
     yield Entry("peeled_rind_sphere", "Peeled rind sphere", modeling.peeled_rind_sphere)
+    yield from _real_mesh_entries()
+
+
+def _real_mesh_entries() -> Iterator[Entry]:
+    """Open meshes, creases, UVs and correspondence (notebooks/05_real_meshes)."""
+    from topomesh import examples
+
+    for mode in ("edge_and_corner", "edge_only"):
+        yield Entry(f"terrain_catmull_clark_{mode}", f"Open terrain, Catmull-Clark ×3, boundary={mode}", lambda m=mode: examples.terrain().catmull_clark(3, boundary=m))
+    yield Entry("terrain_loop", "Open terrain, Loop ×3", lambda: examples.terrain().loop(3))
+
+    def creased(s: float) -> Mesh:
+        c = topomesh.cube()
+        top = {tuple(e): s for e in c.edges if (c.vertices[e, 2] > 0).all()}
+        return c.with_creases(top).catmull_clark(4)
+
+    for s, label in ((0.0, "0"), (1.0, "1"), (2.0, "2"), (float("inf"), "inf")):
+        yield Entry(f"creased_cube_{label}", f"Cube, top edges of sharpness {label}, Catmull-Clark ×4", lambda s=s: creased(s))
+    yield Entry(
+        "uv_cube_checker",
+        "Checkerboard UVs with seams through Catmull-Clark ×4",
+        lambda: examples.uv_cube().catmull_clark(4, corner_interpolation="boundaries"),
+        color=examples.checker,
+    )
+
+    def parents() -> Mesh:
+        t = topomesh.torus(8, 6)
+        return t.with_attributes(face={"parent": np.arange(len(t.face_sizes))}).catmull_clark(3)
+
+    yield Entry("torus_parents", "Torus, Catmull-Clark ×3, coloured by parent face", parents, color=lambda m: m.face_attributes["parent"] % 7)
+
+    def reposed() -> Mesh:
+        t = topomesh.torus(8, 6)
+        fine, corr = t.catmull_clark(3, correspondence=True)
+        v = t.vertices.copy()
+        ang = 1.2 * v[:, 1]
+        v[:, 0], v[:, 2] = np.cos(ang) * t.vertices[:, 0] - np.sin(ang) * t.vertices[:, 2], np.sin(ang) * t.vertices[:, 0] + np.cos(ang) * t.vertices[:, 2]
+        return fine.with_vertices(corr.matrix @ v)
+
+    yield Entry("torus_reposed", "Torus ×3 re-posed through the subdivision matrix S", reposed)
 
 
 @dataclass(frozen=True)
@@ -199,12 +241,12 @@ def peer_summary(mesh: Mesh) -> dict[str, object]:
     return row
 
 
-def render(mesh: Mesh, path: Path, title: str = "") -> None:
+def render(mesh: Mesh, path: Path, title: str = "", color_by: np.ndarray | None = None) -> None:
     """Render ``mesh`` off-screen to a PNG (:mod:`topomesh.viz`: polygon
     edges below 20k faces, the camera fitted to the mesh)."""
     from topomesh import viz
 
-    png = viz.render_png(mesh, [viz.title_text(mesh, title)], window_size=(640, 480), edges=None)
+    png = viz.render_png(mesh, [viz.title_text(mesh, title)], window_size=(640, 480), edges=None, color_by=color_by)
     Path(path).write_bytes(png)
 
 
@@ -226,7 +268,7 @@ def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress:
         m.validate()
         m.save(out / f"{e.name}.obj")
         if images:
-            render(m, out / f"{e.name}.png", e.title)
+            render(m, out / f"{e.name}.png", e.title, e.color(m).astype(float) if e.color else None)
         checked = e.realize(m) if e.realize else m
         row: dict[str, object] = {"name": e.name, "title": e.title}
         row.update(peer_summary(m))
