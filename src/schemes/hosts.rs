@@ -608,6 +608,40 @@ pub(crate) fn neighbor_sum(m: &Mesh, v: usize) -> (DVec3, usize) {
     (sum, n)
 }
 
+/// The input half-edge of every output corner, in the order the corners
+/// were given to [`Mesh::from_corner_twins`] (faces keep their first corner;
+/// none of `out`'s faces may be a point-sphere).
+pub(crate) fn corner_halfedges(out: &Mesh) -> Result<Vec<u32>> {
+    Ok(FaceLayout::new(out)?.fh)
+}
+
+/// Edge origins of a level from a rule per output corner: `of(c)` is the
+/// origin of the edge on the side leaving corner `c` (corners in build
+/// order, no point-sphere face in `out`). Each edge takes the rule of its
+/// even half-edge's corner; the rules of its two sides must agree.
+pub(crate) fn edge_origins_by_corner(out: &Mesh, o: &mut super::level::Origins, of: impl Fn(usize) -> (u8, u32)) -> Result<()> {
+    let fh = corner_halfedges(out)?;
+    let ne = out.n_edges();
+    o.edge_kind = vec![0; ne];
+    o.edge = vec![0; ne];
+    for (c, &h) in fh.iter().enumerate() {
+        crate::cancel::poll(c)?;
+        if h & 1 == 0 {
+            let (k, i) = of(c);
+            o.edge_kind[(h >> 1) as usize] = k;
+            o.edge[(h >> 1) as usize] = i;
+        }
+    }
+    Ok(())
+}
+
+/// The faces' origins of a level whose output faces `[first..]` come one
+/// per element: pushes `(kind, i)` for `i` in `0..n`.
+pub(crate) fn push_origins(kinds: &mut Vec<u8>, idx: &mut Vec<u32>, kind: u8, n: usize) {
+    kinds.extend(std::iter::repeat(kind).take(n));
+    idx.extend(0..n as u32);
+}
+
 #[cfg(test)]
 #[path = "hosts_test_meshes.rs"]
 pub(crate) mod test_meshes;
