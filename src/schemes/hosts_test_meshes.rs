@@ -316,3 +316,47 @@ pub fn check_level(name: &str, m: &Mesh, lv: &crate::schemes::level::Level) {
 pub fn open_euler(m: &Mesh) -> i64 {
     m.n_vertices() as i64 - m.n_edges() as i64 + (m.n_faces() - m.n_holes()) as i64
 }
+
+/// How many output elements name each input element of `kind` (`n` of
+/// them) as their origin.
+pub fn origin_counts(kinds: &[u8], idx: &[u32], kind: u8, n: usize) -> Vec<usize> {
+    let mut c = vec![0usize; n];
+    for (&k, &i) in kinds.iter().zip(idx) {
+        if k == kind {
+            c[i as usize] += 1;
+        }
+    }
+    c
+}
+
+/// Whether input face `f` is a point-sphere's.
+pub fn is_point_face(m: &Mesh, f: usize) -> bool {
+    m.f_start[f] & crate::mesh::POINT != 0
+}
+
+/// A level of a scheme against its plain call on the corpus: `check_level`,
+/// the same polygons and positions, a plain request gives only the mesh;
+/// then `more(name, m, level)`.
+pub fn level_matches_plain_on_corpus(
+    plain: impl Fn(&Mesh) -> crate::error::Result<Mesh>,
+    level: impl Fn(&Mesh, &crate::schemes::level::Request) -> crate::error::Result<crate::schemes::level::Level>,
+    more: impl Fn(&str, &Mesh, &crate::schemes::level::Level),
+) {
+    use crate::schemes::level::Request;
+    let full = Request { stencils: true, origins: true, ..Default::default() };
+    for (name, m) in corpus() {
+        let lv = level(&m, &full).unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_level(name, &m, &lv);
+        assert!(lv.creases.is_none(), "{name}");
+        let p = plain(&m).unwrap();
+        assert_eq!(lv.mesh.to_polygons(), p.to_polygons(), "{name}");
+        for (a, b) in lv.mesh.positions().iter().zip(p.positions()) {
+            assert!((*a - *b).length() <= 1e-12 * (1.0 + b.length()), "{name}");
+        }
+        let bare = level(&m, &Request::plain()).unwrap();
+        assert!(bare.stencils.is_none() && bare.origins.is_none() && bare.creases.is_none(), "{name}");
+        assert_eq!(bare.mesh.to_polygons(), p.to_polygons(), "{name}");
+        assert_eq!(bare.mesh.positions(), p.positions(), "{name}");
+        more(name, &m, &lv);
+    }
+}
