@@ -20,8 +20,19 @@
 //! Counts (H = 2E): V' = H, E' = 2H = 4E, F' = F + E + V; every new vertex is
 //! 4-valent. Output vertex `c` is the corner `c` in face order; faces are
 //! laid out `[F-faces | E-faces | V-faces]`.
+//!
+//! Stencils and correspondence ([`doo_sabin_level`]): the scheme is linear;
+//! the row of corner k of an n-gon is `Σᵢ αᵢ₋ₖ xᵢ` (n terms). Origins: an
+//! output element comes from the lowest-dimensional input element it lies
+//! in: a corner point lies inside its face → (FACE, f) (not its vertex: it
+//! is a point of the face's refinement, one per corner); the F-face of f →
+//! (FACE, f), the E-face of e → (EDGE, e), the V-face of v → (VERTEX, v);
+//! an F-face's sides lie inside f → (FACE, f), the other edges (between an
+//! E-face and a V-face) cross edge e → (EDGE, e).
 
-use super::hosts::{check_output_size, with_point_spheres, FaceLayout, SyncPtr, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, edge_origins_by_corner, refuse_holes, with_point_spheres, FaceLayout, SyncPtr, VertexLayout, MIN_LEN};
+use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -170,6 +181,68 @@ fn step(m: &Mesh) -> Result<Mesh> {
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
+/// One level with what `req` asks for (see the module docs); without
+/// requests it is [`doo_sabin`].
+pub fn doo_sabin_level(m: &Mesh, req: &Request) -> Result<Level> {
+    refuse_holes("doo_sabin", m)?;
+    with_point_spheres_level(m, req, |m, req| {
+        let mesh = step(m)?;
+        if !req.stencils && !req.origins {
+            return Ok(Level::plain(mesh));
+        }
+        let fl = FaceLayout::new(m)?;
+        let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+        let (_, vert, face) = m.halfedge_columns();
+        let stencils = if req.stencils {
+            Some(Stencils::build(nh, nv, |c, row| {
+                let f = face[fl.fh[c] as usize] as usize;
+                let hs = fl.corners(f);
+                let (n, k) = (hs.len(), c - fl.off[f] as usize);
+                for (i, &h) in hs.iter().enumerate() {
+                    row.add(vert[h as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (i + n - k) % n) });
+                }
+            })?)
+        } else {
+            None
+        };
+        let origins = if req.origins {
+            let mut o = Origins::with_capacity(nh, mesh.n_edges(), nf + ne + nv);
+            o.vertex_kind = vec![FACE; nh];
+            o.vertex.extend(fl.fh.iter().map(|&h| face[h as usize]));
+            o.face_kind.extend(std::iter::repeat(FACE).take(nf).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(VERTEX).take(nv)));
+            o.face.extend((0..nf as u32).chain(0..ne as u32).chain(0..nv as u32));
+            // corners: [F-faces (fh order) | E-faces, 4 per edge | V-faces]; the V-face sides are
+            // the E-faces' sides 1 and 3, so they cross edges too
+            let (ef, vf) = (nh, nh + 4 * ne);
+            let vl = VertexLayout::new(m)?;
+            let mut slot_he = vec![0u32; nh];
+            for h in 0..nh {
+                slot_he[vl.vidx[h] as usize] = h as u32;
+            }
+            edge_origins_by_corner(&mesh, &mut o, |c| {
+                if c < ef {
+                    (FACE, face[fl.fh[c] as usize])
+                } else if c < vf {
+                    let (e, k) = ((c - ef) / 4, (c - ef) % 4);
+                    match k {
+                        0 => (FACE, face[2 * e]),
+                        2 => (FACE, face[2 * e + 1]),
+                        _ => (EDGE, e as u32),
+                    }
+                } else {
+                    // slot of x: its side pairs with the E-face of rotate(x)
+                    let r = m.he_prev[slot_he[c - vf] as usize] ^ 1;
+                    (EDGE, r >> 1)
+                }
+            })?;
+            Some(o)
+        } else {
+            None
+        };
+        Ok(Level { mesh, stencils, origins, creases: None })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -197,6 +270,41 @@ mod tests {
             got.sort();
             assert_eq!(got, want, "{name} face sizes");
         });
+    }
+
+    #[test]
+    fn level_equals_plain_on_corpus() {
+        level_matches_plain_on_corpus(doo_sabin, doo_sabin_level, |name, m, lv| {
+            let o = lv.origins.as_ref().unwrap();
+            let fl = FaceLayout::new(m).unwrap();
+            let (fv, ff, fe) = (
+                origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces()),
+                origin_counts(&o.face_kind, &o.face, FACE, m.n_faces()),
+                origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces()),
+            );
+            for f in 0..m.n_faces() {
+                let point = is_point_face(m, f);
+                // n corner points and n F-face sides per n-gon; a point-sphere keeps its vertex
+                assert_eq!((fv[f], ff[f], fe[f]), (fl.degree(f), 1, fl.degree(f)), "{name} face {f} {point}");
+            }
+            assert!(origin_counts(&o.face_kind, &o.face, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+            assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 2), "{name}");
+            let vf = origin_counts(&o.face_kind, &o.face, VERTEX, m.n_vertices());
+            assert!(vf.iter().enumerate().all(|(v, &c)| c == usize::from(m.v_out[v] & crate::mesh::POINT == 0)), "{name}");
+            let kinds = |k: &[u8], kind: u8| k.iter().filter(|&&x| x == kind).count();
+            let ps = n_point_spheres(m);
+            assert_eq!(kinds(&o.vertex_kind, FACE), m.n_halfedges(), "{name}");
+            assert_eq!(kinds(&o.vertex_kind, VERTEX), ps, "{name}");
+            assert_eq!((kinds(&o.face_kind, FACE), kinds(&o.face_kind, EDGE), kinds(&o.face_kind, VERTEX)), (m.n_faces(), m.n_edges(), m.n_vertices() - ps), "{name}");
+        });
+    }
+
+    #[test]
+    fn level_refuses_holes() {
+        match doo_sabin_level(&cube_with_hole(), &Request::plain()) {
+            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("doo_sabin") && msg.contains("no boundary rules"), "{msg}"),
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]
