@@ -40,7 +40,8 @@
 //! image → (FACE, hole); every dual edge and both boundary halves of a
 //! boundary edge → (EDGE, that edge).
 
-use super::hosts::{check_output_size, edge_origins_by_corner, face_centroids, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};

@@ -52,7 +52,8 @@
 //! old edge → (EDGE, e). Holes are kept on every path, so open meshes get
 //! stencils and origins too; there is no sharpness to carry.
 
-use super::hosts::{edge_origins_by_corner, FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::corner_origins::edge_origins_by_corner;
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};

@@ -205,7 +205,7 @@ pub fn sierpinski_level(m: &Mesh, req: &super::level::Request) -> Result<super::
                 o.face.push(f as u32);
             }
         }
-        super::hosts::edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        super::corner_origins::edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
         Some(o)
     } else {
         None

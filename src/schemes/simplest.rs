@@ -27,7 +27,8 @@
 //! at a boundary would average the boundary polygon into itself without
 //! refining it).
 
-use super::hosts::{check_output_size, edge_origins_by_corner, refuse_holes, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, refuse_holes, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;

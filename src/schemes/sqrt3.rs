@@ -25,7 +25,8 @@
 //! parts of both faces beside e) → (EDGE, e), two per edge; the flipped
 //! edge → (EDGE, e); a spoke lies inside its face → (FACE, f).
 
-use super::hosts::{check_output_size, edge_origins_by_corner, neighbor_sum, refuse_holes, with_point_spheres, FaceLayout, MIN_LEN};
+use super::hosts::{check_output_size, neighbor_sum, refuse_holes, with_point_spheres, FaceLayout, MIN_LEN};
+use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;

@@ -53,7 +53,8 @@
 //! (EDGE, e), a cut (it cuts a corner of a face) → (FACE, that face). Holes
 //! are kept on every path, so open meshes get stencils and origins too.
 
-use super::hosts::{edge_origins_by_corner, FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::corner_origins::edge_origins_by_corner;
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
