@@ -496,7 +496,7 @@ mod tests {
     #[test]
     fn open_meshes_keep_their_holes_with_a_chaikin_boundary() {
         let full = Request { stencils: true, origins: true, ..Default::default() };
-        for (name, m) in [("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole())] {
+        for (name, m) in open_meshes() {
             let lv = doo_sabin_level(&m, &full).unwrap();
             check_level(name, &m, &lv);
             let r = &lv.mesh;

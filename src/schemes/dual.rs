@@ -331,7 +331,7 @@ mod tests {
 
     #[test]
     fn open_meshes_keep_their_boundary() {
-        for (name, m) in [("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole())] {
+        for (name, m) in open_meshes() {
             let lv = dual_level(&m, &full()).unwrap();
             check_level(name, &m, &lv);
             check_origins(name, &m, &lv);

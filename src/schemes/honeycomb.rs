@@ -420,7 +420,7 @@ mod tests {
         use crate::schemes::hosts::test_meshes::*;
         let full = Request { stencils: true, origins: true, ..Default::default() };
         let mut meshes = corpus();
-        meshes.extend([("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole())]);
+        meshes.extend(open_meshes());
         for (name, m) in meshes {
             for (t, a) in [(0.5, None), (0.3, Some(0.7)), (0.9, Some(1.0))] {
                 let lv = honeycomb_level(&m, t, a, &full).unwrap();

@@ -195,6 +195,26 @@ pub fn cube_with_hole() -> Mesh {
     Mesh::from_polygons(primitives::cube().positions().to_vec(), &sizes, &idx, opts).unwrap()
 }
 
+/// An icosahedron without two of its faces (apart, so two triangle holes).
+pub fn icosahedron_with_two_holes() -> Mesh {
+    let c = primitives::icosahedron().to_polygons();
+    let tri: Vec<&[u32]> = c.indices.chunks(3).collect();
+    // a face not sharing a vertex with face 0
+    let far = (1..tri.len()).find(|&f| tri[f].iter().all(|v| !tri[0].contains(v))).unwrap();
+    let idx: Vec<i64> = (0..tri.len()).filter(|&f| f != 0 && f != far).flat_map(|f| tri[f].iter().map(|&v| v as i64)).collect();
+    let sizes = vec![3i64; idx.len() / 3];
+    let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+    let m = Mesh::from_polygons(primitives::icosahedron().positions().to_vec(), &sizes, &idx, opts).unwrap();
+    assert_eq!(m.n_holes(), 2);
+    m
+}
+
+/// The open test meshes: a disk, an annulus (tube), a box with one hole and
+/// a triangle mesh with two.
+pub fn open_meshes() -> Vec<(&'static str, Mesh)> {
+    vec![("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole()), ("icosahedron_two_holes", icosahedron_with_two_holes())]
+}
+
 /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
 /// merged face runs along both sides of the new edge.
 pub fn handle_cube() -> Mesh {

@@ -352,7 +352,7 @@ mod tests {
         use crate::schemes::hosts::test_meshes::*;
         let full = Request { stencils: true, origins: true, ..Default::default() };
         let mut meshes = corpus();
-        meshes.extend([("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole())]);
+        meshes.extend(open_meshes());
         for (name, m) in meshes {
             for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.1 }, Truncation::Polyhedral { ratio: 0.5 }] {
                 let lv = vertex_truncation_level(&m, mode, &full).unwrap();
