@@ -210,6 +210,8 @@ fn step(m: &Mesh) -> Result<Mesh> {
 
 /// One level with what `req` asks for (see the module docs); without
 /// requests it is [`doo_sabin`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn doo_sabin_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, |m, req| {
         if m.n_holes() > 0 {

@@ -88,6 +88,8 @@ fn step(m: &Mesh) -> Result<Mesh> {
 
 /// The dual with what `req` asks for; open meshes keep their boundary (see
 /// the module docs). Closed and without requests it is [`dual`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn dual_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, level_step)
 }

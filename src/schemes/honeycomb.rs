@@ -170,6 +170,8 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
 
 /// One step with what `req` asks for (see the module docs); without
 /// requests it is [`honeycomb`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) -> Result<Level> {
     let mesh = honeycomb(m, t, tension)?;
     if !req.stencils && !req.origins {

@@ -380,3 +380,27 @@ pub fn level_matches_plain_on_corpus(
         more(name, &m, &lv);
     }
 }
+
+/// An edge with hole faces on both sides has no boundary rule: the levels
+/// with boundary rules that need a real side name the edge.
+#[test]
+fn edges_between_two_holes_are_refused() {
+    use crate::schemes::level::Request;
+    let mut m = primitives::cube();
+    let e = 0;
+    m.f_hole[m.he_face[2 * e] as usize] = true;
+    m.f_hole[m.he_face[2 * e + 1] as usize] = true;
+    for (name, r) in [
+        ("dual", crate::schemes::dual::dual_level(&m, &Request::plain()).map(|l| l.mesh)),
+        ("doo_sabin", crate::schemes::doo_sabin::doo_sabin_level(&m, &Request::plain()).map(|l| l.mesh)),
+    ] {
+        match r {
+            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with(name) && msg.contains("edge 0 has hole faces on both sides"), "{msg}"),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    // midpoint splits it like any edge and keeps both holes
+    let lv = crate::schemes::midpoint::midpoint_level(&m, &Request::plain()).unwrap();
+    lv.mesh.validate().unwrap();
+    assert_eq!(lv.mesh.n_holes(), 2);
+}

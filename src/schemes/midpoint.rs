@@ -97,6 +97,8 @@ fn positions(m: &Mesh, fl: &FaceLayout, face_point: &[u32], k: u32) -> Result<Ve
 
 /// One level with what `req` asks for; open meshes keep their holes (see
 /// the module docs). Closed and without requests it is [`midpoint`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn midpoint_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, level_step)
 }

@@ -147,6 +147,8 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
 /// subdivided edge, the kept self-loops and the self-loop inserted at the
 /// midpoint of e → (EDGE, e); a corner cut lies inside its face → (FACE, f).
 /// Open meshes are refused, as by [`sierpinski`]. No sharpness is carried.
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn sierpinski_level(m: &Mesh, req: &super::level::Request) -> Result<super::level::Level> {
     use super::level::{Level, Origins, EDGE, FACE, VERTEX};
     let (mesh, co) = build(m, req.origins)?;

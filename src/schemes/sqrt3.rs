@@ -108,6 +108,8 @@ fn step(m: &Mesh) -> Result<Mesh> {
 
 /// One level with what `req` asks for (see the module docs); without
 /// requests it is [`sqrt3`]. Refuses hole faces.
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
     refuse_holes("sqrt3", m)?;
     with_point_spheres_level(m, req, |m, req| {

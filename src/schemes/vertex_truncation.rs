@@ -158,6 +158,8 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
 
 /// One step with what `req` asks for (see the module docs); without
 /// requests it is [`vertex_truncation`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
 pub fn vertex_truncation_level(m: &Mesh, mode: Truncation, req: &Request) -> Result<Level> {
     let mesh = vertex_truncation(m, mode)?;
     if !req.stencils && !req.origins {
