@@ -20,8 +20,46 @@
 //! Counts (H = 2E): V' = H, E' = 2H = 4E, F' = F + E + V; every new vertex is
 //! 4-valent. Output vertex `c` is the corner `c` in face order; faces are
 //! laid out `[F-faces | E-faces | V-faces]`.
+//!
+//! Stencils and correspondence ([`doo_sabin_level`]): the scheme is linear;
+//! the row of corner k of an n-gon is `Σᵢ αᵢ₋ₖ xᵢ` (n terms). Origins: an
+//! output element comes from the lowest-dimensional input element it lies
+//! in: a corner point lies inside its face → (FACE, f) (not its vertex: it
+//! is a point of the face's refinement, one per corner); the F-face of f →
+//! (FACE, f), the E-face of e → (EDGE, e), the V-face of v → (VERTEX, v);
+//! an F-face's sides lie inside f → (FACE, f), the other edges (between an
+//! E-face and a V-face) cross edge e → (EDGE, e).
+//!
+//! # Open meshes ([`doo_sabin_level`])
+//!
+//! The boundary follows A. H. Nasri, "Polyhedral subdivision methods for
+//! free-form surfaces", ACM TOG 6(1), 1987: the boundary polygon is refined
+//! on its own as a uniform quadratic B-spline (Chaikin's corner cutting),
+//! so the limit boundary is the quadratic B-spline curve of the input
+//! boundary polygon. Each boundary edge a → b (a hole half-edge h) gets the
+//! two Chaikin points `qa = ¾ a + ¼ b` and `qb = ¼ a + ¾ b`; the corner
+//! points of real faces keep Doo & Sabin's mask (faces beside the boundary
+//! included: Nasri instead adjusts the boundary faces' own corner points;
+//! here they stay interior and the Chaikin points form an extra ring). The
+//! E-face of a boundary edge is `[p, p', qb, qa]` (two corner points of
+//! the real face, two Chaikin points); the V-face of a boundary vertex runs
+//! through the corner points of its real faces and its two Chaikin points;
+//! a hole of n corners becomes a hole of 2n corners, the Chaikin polygon
+//! `[qa(h₀), qb(h₀), qa(h₁), …]`. With b boundary edges:
+//!
+//! ```text
+//! V' = H + b,   E' = 4E + b,   F' = F_r + E + V real faces and the same holes
+//! ```
+//!
+//! and χ = V − E + F_r is unchanged. Chaikin points come from their edge
+//! (EDGE, e), a boundary segment along edge e → (EDGE, e), the segment
+//! cutting the boundary at vertex v → (VERTEX, v). An edge with holes on
+//! both sides is refused. The plain [`doo_sabin`] still refuses holes.
 
 use super::hosts::{check_output_size, with_point_spheres, FaceLayout, SyncPtr, VertexLayout, MIN_LEN};
+use super::corner_origins::edge_origins_by_corner;
+use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -170,6 +208,237 @@ fn step(m: &Mesh) -> Result<Mesh> {
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
+/// One level with what `req` asks for (see the module docs); without
+/// requests it is [`doo_sabin`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn doo_sabin_level(m: &Mesh, req: &Request) -> Result<Level> {
+    with_point_spheres_level(m, req, |m, req| {
+        if m.n_holes() > 0 {
+            return open_step(m, req);
+        }
+        let mesh = step(m)?;
+        if !req.stencils && !req.origins {
+            return Ok(Level::plain(mesh));
+        }
+        let fl = FaceLayout::new(m)?;
+        let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+        let (_, vert, face) = m.halfedge_columns();
+        let stencils = if req.stencils {
+            Some(Stencils::build(nh, nv, |c, row| {
+                let f = face[fl.fh[c] as usize] as usize;
+                let hs = fl.corners(f);
+                let (n, k) = (hs.len(), c - fl.off[f] as usize);
+                for (i, &h) in hs.iter().enumerate() {
+                    row.add(vert[h as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (i + n - k) % n) });
+                }
+            })?)
+        } else {
+            None
+        };
+        let origins = if req.origins {
+            let mut o = Origins::with_capacity(nh, mesh.n_edges(), nf + ne + nv);
+            o.vertex_kind = vec![FACE; nh];
+            o.vertex.extend(fl.fh.iter().map(|&h| face[h as usize]));
+            o.face_kind.extend(std::iter::repeat(FACE).take(nf).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(VERTEX).take(nv)));
+            o.face.extend((0..nf as u32).chain(0..ne as u32).chain(0..nv as u32));
+            // corners: [F-faces (fh order) | E-faces, 4 per edge | V-faces]; the V-face sides are
+            // the E-faces' sides 1 and 3, so they cross edges too
+            let (ef, vf) = (nh, nh + 4 * ne);
+            let vl = VertexLayout::new(m)?;
+            let mut slot_he = vec![0u32; nh];
+            for h in 0..nh {
+                slot_he[vl.vidx[h] as usize] = h as u32;
+            }
+            edge_origins_by_corner(&mesh, &mut o, |c| {
+                if c < ef {
+                    (FACE, face[fl.fh[c] as usize])
+                } else if c < vf {
+                    let (e, k) = ((c - ef) / 4, (c - ef) % 4);
+                    match k {
+                        0 => (FACE, face[2 * e]),
+                        2 => (FACE, face[2 * e + 1]),
+                        _ => (EDGE, e as u32),
+                    }
+                } else {
+                    // slot of x: its side pairs with the E-face of rotate(x)
+                    let r = m.he_prev[slot_he[c - vf] as usize] ^ 1;
+                    (EDGE, r >> 1)
+                }
+            })?;
+            Some(o)
+        } else {
+            None
+        };
+        Ok(Level { mesh, stencils, origins, creases: None })
+    })
+}
+
+/// Doo-Sabin on a mesh with holes, with the Chaikin boundary of the module
+/// docs. Positions are `S · P`.
+fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
+    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let hole = |h: usize| m.f_hole[face[h] as usize];
+    // qb(h), the Chaikin point near the head of hole half-edge h, is vertex nh + hidx[h]
+    let mut hidx = vec![u32::MAX; nh];
+    let mut holes_he = Vec::new();
+    for h in 0..nh {
+        crate::cancel::poll(h)?;
+        if hole(h) {
+            if hole(h ^ 1) {
+                return Err(crate::error::MeshError::Precondition(format!(
+                    "doo_sabin: edge {} has hole faces on both sides, so its boundary rule is undefined",
+                    h >> 1
+                )));
+            }
+            hidx[h] = holes_he.len() as u32;
+            holes_he.push(h as u32);
+        }
+    }
+    let b = holes_he.len();
+    check_output_size("doo_sabin", 4 * nh + 4 * b, nh + b)?;
+    let fl = FaceLayout::new(m)?;
+    let vl = VertexLayout::new(m)?;
+    let cidx = &fl.cidx;
+    let hu = nh as u32;
+    let qb = |h: usize| hu + hidx[h];
+    // corner bases: [F-faces and holes (2 per hole corner) in face order | E-faces | V-faces (2 per hole slot)]
+    let mut fb = Vec::with_capacity(nf + 1);
+    fb.push(0u32);
+    for f in 0..nf {
+        let d = fl.degree(f) as u32;
+        fb.push(fb[f] + if m.f_hole[f] { 2 * d } else { d });
+    }
+    let eb = fb[nf];
+    let mut vb = vec![0u32; nh + 1];
+    for h in 0..nh {
+        vb[vl.vidx[h] as usize + 1] = if hole(h) { 2 } else { 1 };
+    }
+    vb[0] = eb + 4 * ne as u32;
+    for s in 0..nh {
+        vb[s + 1] += vb[s];
+    }
+    let nc = vb[nh] as usize;
+    // the corner of half-edge h in its F-face (or the first of its two in its hole)
+    let fcorner = |h: usize| {
+        let f = face[h] as usize;
+        let k = fl.local(h as u32, face[h]) as u32;
+        fb[f] + if m.f_hole[f] { 2 * k } else { k }
+    };
+    let vfirst = |x: usize| vb[vl.vidx[x] as usize];
+    let vlast = |x: usize| vb[vl.vidx[x] as usize + 1] - 1;
+    let mut sizes = Vec::with_capacity(nf + ne + nv);
+    sizes.extend((0..nf).map(|f| fb[f + 1] - fb[f]));
+    sizes.extend(std::iter::repeat(4u32).take(ne));
+    sizes.extend((0..nv).map(|v| vb[vl.off[v + 1] as usize] - vb[vl.off[v] as usize]));
+    let mut cv = vec![0u32; nc];
+    let mut tw = vec![0u32; nc];
+    let mut co = if req.origins { vec![(EDGE, 0u32); nc] } else { Vec::new() };
+    let e_side = |h: usize| eb + 4 * (h >> 1) as u32 + 2 * (h & 1) as u32;
+    for h in 0..nh {
+        crate::cancel::poll(h)?;
+        let c = fcorner(h) as usize;
+        if hole(h) {
+            // Chaikin points of boundary edge h, then the cut at head(h)
+            cv[c] = cidx[h];
+            tw[c] = e_side(h);
+            cv[c + 1] = qb(h);
+            tw[c + 1] = vfirst(next[h] as usize);
+            if req.origins {
+                co[c] = (EDGE, (h >> 1) as u32);
+                co[c + 1] = (VERTEX, vert[h ^ 1]);
+            }
+        } else {
+            cv[c] = cidx[h];
+            tw[c] = e_side(h);
+            if req.origins {
+                co[c] = (FACE, face[h]);
+            }
+        }
+        // V-face slot of h: p(h), or for a hole corner qa(h) then qb(prev h)
+        let s = vfirst(h) as usize;
+        let r = (prev[h] ^ 1) as usize;
+        let to_e = eb + 4 * (r >> 1) as u32 + 1 + 2 * (r & 1) as u32;
+        cv[s] = cidx[h];
+        if hole(h) {
+            let p = prev[h] as usize;
+            tw[s] = fcorner(p) + 1;
+            cv[s + 1] = qb(p);
+            tw[s + 1] = to_e;
+            if req.origins {
+                co[s] = (VERTEX, vert[h]);
+                co[s + 1] = (EDGE, (r >> 1) as u32);
+            }
+        } else {
+            tw[s] = to_e;
+            if req.origins {
+                co[s] = (EDGE, (r >> 1) as u32);
+            }
+        }
+    }
+    for e in 0..ne {
+        crate::cancel::poll(e)?;
+        let (a, bb) = (2 * e, 2 * e + 1);
+        let (na, nb) = (next[a] as usize, next[bb] as usize);
+        let c = (eb + 4 * e as u32) as usize;
+        // [p(na), p(a), p(nb), p(b)], a hole side's p(n·) replaced by its qb
+        cv[c] = if hole(a) { qb(a) } else { cidx[na] };
+        cv[c + 1] = cidx[a];
+        cv[c + 2] = if hole(bb) { qb(bb) } else { cidx[nb] };
+        cv[c + 3] = cidx[bb];
+        tw[c] = fcorner(a);
+        tw[c + 1] = vlast(nb);
+        tw[c + 2] = fcorner(bb);
+        tw[c + 3] = vlast(na);
+        if req.origins {
+            co[c] = if hole(a) { (EDGE, e as u32) } else { (FACE, face[a]) };
+            co[c + 1] = (EDGE, e as u32);
+            co[c + 2] = if hole(bb) { (EDGE, e as u32) } else { (FACE, face[bb]) };
+            co[c + 3] = (EDGE, e as u32);
+        }
+    }
+    // rows: corner points of real faces (Doo-Sabin), qa of hole corners, then qb
+    let stencils = Stencils::build(nh + b, nv, |i, row| {
+        if i >= nh {
+            let h = holes_he[i - nh] as usize;
+            row.add(vert[h], 0.25);
+            row.add(vert[h ^ 1], 0.75);
+            return;
+        }
+        let h = fl.fh[i] as usize;
+        if hole(h) {
+            row.add(vert[h], 0.75);
+            row.add(vert[h ^ 1], 0.25);
+            return;
+        }
+        let f = face[h] as usize;
+        let hs = fl.corners(f);
+        let (n, k) = (hs.len(), i - fl.off[f] as usize);
+        for (j, &g) in hs.iter().enumerate() {
+            row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
+        }
+    })?;
+    let pos = stencils.apply_points(&m.pos)?;
+    let mut mesh = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
+    mesh.f_hole[..nf].copy_from_slice(&m.f_hole);
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(nh + b, mesh.n_edges(), nf + ne + nv);
+        o.vertex_kind.extend(fl.fh.iter().map(|&h| if hole(h as usize) { EDGE } else { FACE }));
+        o.vertex.extend(fl.fh.iter().map(|&h| if hole(h as usize) { h >> 1 } else { face[h as usize] }));
+        o.vertex_kind.extend(std::iter::repeat(EDGE).take(b));
+        o.vertex.extend(holes_he.iter().map(|&h| h >> 1));
+        o.face_kind.extend(std::iter::repeat(FACE).take(nf).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(VERTEX).take(nv)));
+        o.face.extend((0..nf as u32).chain(0..ne as u32).chain(0..nv as u32));
+        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils: req.stencils.then_some(stencils), origins, creases: None })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -197,6 +466,97 @@ mod tests {
             got.sort();
             assert_eq!(got, want, "{name} face sizes");
         });
+    }
+
+    #[test]
+    fn level_equals_plain_on_corpus() {
+        level_matches_plain_on_corpus(doo_sabin, doo_sabin_level, |name, m, lv| {
+            let o = lv.origins.as_ref().unwrap();
+            let fl = FaceLayout::new(m).unwrap();
+            let (fv, ff, fe) = (
+                origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces()),
+                origin_counts(&o.face_kind, &o.face, FACE, m.n_faces()),
+                origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces()),
+            );
+            for f in 0..m.n_faces() {
+                let point = is_point_face(m, f);
+                // n corner points and n F-face sides per n-gon; a point-sphere keeps its vertex
+                assert_eq!((fv[f], ff[f], fe[f]), (fl.degree(f), 1, fl.degree(f)), "{name} face {f} {point}");
+            }
+            assert!(origin_counts(&o.face_kind, &o.face, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+            assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 2), "{name}");
+            let vf = origin_counts(&o.face_kind, &o.face, VERTEX, m.n_vertices());
+            assert!(vf.iter().enumerate().all(|(v, &c)| c == usize::from(m.v_out[v] & crate::mesh::POINT == 0)), "{name}");
+            let kinds = |k: &[u8], kind: u8| k.iter().filter(|&&x| x == kind).count();
+            let ps = n_point_spheres(m);
+            assert_eq!(kinds(&o.vertex_kind, FACE), m.n_halfedges(), "{name}");
+            assert_eq!(kinds(&o.vertex_kind, VERTEX), ps, "{name}");
+            assert_eq!((kinds(&o.face_kind, FACE), kinds(&o.face_kind, EDGE), kinds(&o.face_kind, VERTEX)), (m.n_faces(), m.n_edges(), m.n_vertices() - ps), "{name}");
+        });
+    }
+
+    #[test]
+    fn open_meshes_keep_their_holes_with_a_chaikin_boundary() {
+        let full = Request { stencils: true, origins: true, ..Default::default() };
+        for (name, m) in open_meshes() {
+            let lv = doo_sabin_level(&m, &full).unwrap();
+            check_level(name, &m, &lv);
+            let r = &lv.mesh;
+            let b = (0..m.n_halfedges()).filter(|&h| m.f_hole[m.he_face[h] as usize]).count();
+            let (v, e, f, h) = (m.n_vertices(), m.n_edges(), m.n_faces() - m.n_holes(), m.n_halfedges());
+            assert_eq!((r.n_vertices(), r.n_edges(), r.n_faces() - r.n_holes(), r.n_holes()), (h + b, 4 * e + b, f + e + v, m.n_holes()), "{name}");
+            assert_eq!(open_euler(r), open_euler(&m), "{name}");
+            assert_eq!(r.n_components(), m.n_components(), "{name}");
+            // the boundary polygon is refined by Chaikin's rule: output hole f runs through
+            // 3/4 a + 1/4 b and 1/4 a + 3/4 b of every edge a -> b of input hole f
+            let p = m.positions();
+            for hf in (0..m.n_faces()).filter(|&x| m.f_hole[x]) {
+                assert!(r.f_hole[hf], "{name}");
+                let want: Vec<DVec3> = m
+                    .face_halfedges(crate::FaceId(hf as u32))
+                    .flat_map(|g| {
+                        let (a, bb) = (p[m.vertex(g).idx()], p[m.head(g).idx()]);
+                        [a * 0.75 + bb * 0.25, a * 0.25 + bb * 0.75]
+                    })
+                    .collect();
+                let got: Vec<DVec3> = r.face_vertices(crate::FaceId(hf as u32)).map(|x| r.position(x)).collect();
+                assert_eq!(got.len(), want.len(), "{name}");
+                for (a, bb) in got.iter().zip(&want) {
+                    assert!((*a - *bb).length() < 1e-12, "{name}: {a} vs {bb}");
+                }
+            }
+            // interior corner points keep Doo & Sabin's mask
+            let fl = FaceLayout::new(&m).unwrap();
+            for ff in (0..m.n_faces()).filter(|&x| !m.f_hole[x]) {
+                let hs = fl.corners(ff);
+                let n = hs.len();
+                for k in 0..n {
+                    let want: DVec3 = (0..n).map(|i| p[m.he_vert[hs[i] as usize] as usize] * doo_sabin_weight(n, (i + n - k) % n)).sum();
+                    assert!((r.positions()[fl.off[ff] as usize + k] - want).length() < 1e-12, "{name}");
+                }
+            }
+            // origins: n corner points per real n-gon, 2 Chaikin points and 1 E-face per boundary edge
+            let o = lv.origins.as_ref().unwrap();
+            let fv = origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces());
+            let ev = origin_counts(&o.vertex_kind, &o.vertex, EDGE, m.n_edges());
+            for x in 0..m.n_faces() {
+                assert_eq!(fv[x], if m.f_hole[x] { 0 } else { fl.degree(x) }, "{name}");
+            }
+            for x in 0..m.n_edges() {
+                let bnd = m.f_hole[m.he_face[2 * x] as usize] || m.f_hole[m.he_face[2 * x + 1] as usize];
+                assert_eq!(ev[x], if bnd { 2 } else { 0 }, "{name}");
+            }
+            assert!(origin_counts(&o.face_kind, &o.face, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+            // two steps: still open, still Chaikin
+            let lv2 = doo_sabin_level(r, &full).unwrap();
+            check_level(name, r, &lv2);
+            assert_eq!((lv2.mesh.n_holes(), open_euler(&lv2.mesh)), (m.n_holes(), open_euler(&m)), "{name}");
+        }
+        // the plain call still refuses holes
+        match doo_sabin(&cube_with_hole()) {
+            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("doo_sabin"), "{msg}"),
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]

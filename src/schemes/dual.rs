@@ -11,10 +11,41 @@
 //!
 //! Counts: V' = F, E' = E, F' = V. Output vertex f is the centroid of face f;
 //! output face v is the one of vertex v.
+//!
+//! # Open meshes ([`dual_level`])
+//!
+//! Convention: Blender's Dual Mesh node with *Keep Boundaries* (geometry
+//! nodes, `GeometryNodeDualMesh`, `keep_boundaries = True`): the boundary
+//! stays where it is. A boundary edge gets a vertex at its midpoint, a
+//! boundary vertex keeps a vertex at its own position, and the face of a
+//! boundary vertex runs through the centroids of its real faces and closes
+//! through `[m(e_in) … ] → m(e_out) → v → m(e_in)`: at each hole corner h of
+//! v it lists `m(edge h), v, m(edge prev h)`. Hole faces get no centroid;
+//! a hole of n corners becomes a hole of 2n corners
+//! `[v₀, m(h₀), v₁, m(h₁), …]` (the input boundary split at its midpoints).
+//! With F_r real faces, b boundary edges and V_b boundary vertices:
+//!
+//! ```text
+//! V' = F_r + b + V_b,   E' = E + 2b,   F' = V real faces and the same holes
+//! ```
+//!
+//! so χ = V' − E' + F'_r is unchanged (V_b = b on boundary loops without
+//! pinched vertices). An edge with holes on both sides has no dual and is
+//! refused.
+//!
+//! Stencils (the dual is linear): a centroid row is the mean of its face's
+//! corners, a boundary midpoint `½ a + ½ b`, a boundary vertex itself.
+//! Origins: centroid of f → (FACE, f), boundary midpoint → (EDGE, e),
+//! boundary vertex → (VERTEX, v); the face of v → (VERTEX, v), a hole's
+//! image → (FACE, hole); every dual edge and both boundary halves of a
+//! boundary edge → (EDGE, that edge).
 
 use super::hosts::{check_output_size, face_centroids, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
-use crate::error::Result;
-use crate::mesh::Mesh;
+use super::corner_origins::edge_origins_by_corner;
+use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
+use crate::error::{MeshError, Result};
+use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -55,6 +86,172 @@ fn step(m: &Mesh) -> Result<Mesh> {
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
+/// The dual with what `req` asks for; open meshes keep their boundary (see
+/// the module docs). Closed and without requests it is [`dual`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn dual_level(m: &Mesh, req: &Request) -> Result<Level> {
+    with_point_spheres_level(m, req, level_step)
+}
+
+fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
+    if m.n_holes() == 0 && !req.stencils && !req.origins {
+        return Ok(Level::plain(step(m)?));
+    }
+    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let hole = |h: usize| m.f_hole[face[h] as usize];
+    // numbering: real faces' centroids, boundary edges' midpoints, boundary vertices
+    let mut fidx = vec![NONE; nf];
+    let mut real = Vec::with_capacity(nf);
+    for f in 0..nf {
+        if !m.f_hole[f] {
+            fidx[f] = real.len() as u32;
+            real.push(f as u32);
+        }
+    }
+    let mut bidx = vec![NONE; ne];
+    let mut bedges = Vec::new();
+    for e in 0..ne {
+        crate::cancel::poll(e)?;
+        match (hole(2 * e), hole(2 * e + 1)) {
+            (true, true) => {
+                return Err(MeshError::Precondition(format!("dual: edge {e} has hole faces on both sides, so it has no dual edge")));
+            }
+            (false, false) => {}
+            _ => {
+                bidx[e] = (real.len() + bedges.len()) as u32;
+                bedges.push(e as u32);
+            }
+        }
+    }
+    let mut vidx_b = vec![NONE; nv];
+    let mut bverts = Vec::new();
+    for h in 0..nh {
+        let v = vert[h] as usize;
+        if hole(h) && vidx_b[v] == NONE {
+            vidx_b[v] = 0;
+        }
+    }
+    for (v, slot) in vidx_b.iter_mut().enumerate() {
+        if *slot != NONE {
+            *slot = (real.len() + bedges.len() + bverts.len()) as u32;
+            bverts.push(v as u32);
+        }
+    }
+    let n_out = real.len() + bedges.len() + bverts.len();
+    check_output_size("dual", nh + 4 * bedges.len(), n_out)?;
+    let fl = FaceLayout::new(m)?;
+    let vl = VertexLayout::new(m)?;
+    // corner base of every rotation slot (1 corner per real face, 3 per hole corner), then the holes'
+    let mut cb = vec![0u32; nh + 1];
+    for h in 0..nh {
+        crate::cancel::poll(h)?;
+        cb[vl.vidx[h] as usize + 1] = if hole(h) { 3 } else { 1 };
+    }
+    for s in 0..nh {
+        cb[s + 1] += cb[s];
+    }
+    let mut hb = vec![NONE; nf];
+    let mut nc = cb[nh];
+    let mut sizes: Vec<u32> = (0..nv).map(|v| cb[vl.off[v + 1] as usize] - cb[vl.off[v] as usize]).collect();
+    for f in 0..nf {
+        if m.f_hole[f] {
+            hb[f] = nc;
+            nc += 2 * fl.degree(f) as u32;
+            sizes.push(2 * fl.degree(f) as u32);
+        }
+    }
+    let first = |g: usize| cb[vl.vidx[g] as usize];
+    let last = |g: usize| cb[vl.vidx[g] as usize + 1] - 1;
+    let hole_corner = |h: usize| hb[face[h] as usize] + 2 * fl.local(h as u32, face[h]) as u32;
+    let mut cv = vec![0u32; nc as usize];
+    let mut tw = vec![0u32; nc as usize];
+    // per corner: the input edge its side comes from (origins)
+    let mut ce = if req.origins { vec![0u32; nc as usize] } else { Vec::new() };
+    for h in 0..nh {
+        crate::cancel::poll(h)?;
+        let r = (prev[h] ^ 1) as usize;
+        let c = first(h) as usize;
+        if hole(h) {
+            let p = prev[h] as usize;
+            cv[c] = bidx[h >> 1];
+            tw[c] = hole_corner(h);
+            cv[c + 1] = vidx_b[vert[h] as usize];
+            tw[c + 1] = hole_corner(p) + 1;
+            cv[c + 2] = bidx[p >> 1];
+            tw[c + 2] = last(next[r] as usize);
+            if req.origins {
+                ce[c..c + 3].copy_from_slice(&[(h >> 1) as u32, (p >> 1) as u32, (p >> 1) as u32]);
+            }
+        } else {
+            cv[c] = fidx[face[h] as usize];
+            tw[c] = last(next[r] as usize);
+            if req.origins {
+                ce[c] = (r >> 1) as u32;
+            }
+        }
+    }
+    for f in 0..nf {
+        if !m.f_hole[f] {
+            continue;
+        }
+        let hs = fl.corners(f);
+        let b = hb[f] as usize;
+        for (k, &h) in hs.iter().enumerate() {
+            let h = h as usize;
+            cv[b + 2 * k] = vidx_b[vert[h] as usize];
+            tw[b + 2 * k] = first(h);
+            cv[b + 2 * k + 1] = bidx[h >> 1];
+            tw[b + 2 * k + 1] = first(hs[(k + 1) % hs.len()] as usize) + 1;
+            if req.origins {
+                ce[b + 2 * k] = (h >> 1) as u32;
+                ce[b + 2 * k + 1] = (h >> 1) as u32;
+            }
+        }
+    }
+    crate::cancel::check()?;
+    let stencils = Stencils::build(n_out, nv, |i, row| {
+        if i < real.len() {
+            let hs = fl.corners(real[i] as usize);
+            let w = 1.0 / hs.len() as f64;
+            for &h in hs {
+                row.add(vert[h as usize], w);
+            }
+        } else if i < real.len() + bedges.len() {
+            let e = bedges[i - real.len()] as usize;
+            row.add(vert[2 * e], 0.5);
+            row.add(vert[2 * e + 1], 0.5);
+        } else {
+            row.add(bverts[i - real.len() - bedges.len()], 1.0);
+        }
+    })?;
+    let pos = stencils.apply_points(&m.pos)?;
+    let mut mesh = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
+    for f in nv..mesh.n_faces() {
+        mesh.f_hole[f] = true;
+    }
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(n_out, mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(EDGE).take(bedges.len())).chain(std::iter::repeat(VERTEX).take(bverts.len())));
+        o.vertex.extend(real.iter().chain(&bedges).chain(&bverts).copied());
+        o.face_kind.extend(std::iter::repeat(VERTEX).take(nv));
+        o.face.extend(0..nv as u32);
+        for f in 0..nf {
+            if m.f_hole[f] {
+                o.face_kind.push(FACE);
+                o.face.push(f as u32);
+            }
+        }
+        edge_origins_by_corner(&mesh, &mut o, |c| (EDGE, ce[c]))?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils: req.stencils.then_some(stencils), origins, creases: None })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -73,6 +270,104 @@ mod tests {
             let rr = dual(r).unwrap();
             assert_eq!(rr.face_size_histogram(), m.face_size_histogram(), "{name} dual of dual");
         });
+    }
+
+    fn full() -> Request<'static> {
+        Request { stencils: true, origins: true, ..Default::default() }
+    }
+
+    /// Each real face is the origin of one vertex, each vertex of one face,
+    /// each interior edge of one edge and each boundary edge of three (its
+    /// dual edge and its two boundary halves) and one vertex.
+    fn check_origins(name: &str, m: &Mesh, lv: &Level) {
+        let o = lv.origins.as_ref().unwrap();
+        let count = |k: &[u8], i: &[u32], kind: u8, n: usize| {
+            let mut c = vec![0usize; n];
+            for (&kk, &ii) in k.iter().zip(i) {
+                if kk == kind {
+                    c[ii as usize] += 1;
+                }
+            }
+            c
+        };
+        let bnd = |e: usize| m.f_hole[m.he_face[2 * e] as usize] || m.f_hole[m.he_face[2 * e + 1] as usize];
+        let fv = count(&o.vertex_kind, &o.vertex, FACE, m.n_faces());
+        for f in 0..m.n_faces() {
+            let point = m.f_start[f] & crate::mesh::POINT != 0;
+            assert_eq!(fv[f], usize::from(!m.f_hole[f] && !point), "{name} face {f}");
+        }
+        let ev = count(&o.vertex_kind, &o.vertex, EDGE, m.n_edges());
+        let ee = count(&o.edge_kind, &o.edge, EDGE, m.n_edges());
+        for e in 0..m.n_edges() {
+            assert_eq!((ev[e], ee[e]), if bnd(e) { (1, 3) } else { (0, 1) }, "{name} edge {e}");
+        }
+        assert_eq!(o.edge_kind.iter().filter(|&&k| k != EDGE).count(), 0, "{name}");
+        let vf = count(&o.face_kind, &o.face, VERTEX, m.n_vertices());
+        for (v, &c) in vf.iter().enumerate() {
+            // a point-sphere keeps its face, born from that face
+            assert_eq!(c, usize::from(m.v_out[v] & crate::mesh::POINT == 0), "{name} vertex {v}");
+        }
+        let hf = count(&o.face_kind, &o.face, FACE, m.n_faces());
+        for f in 0..m.n_faces() {
+            let point = m.f_start[f] & crate::mesh::POINT != 0;
+            assert_eq!(hf[f], usize::from(m.f_hole[f] || point), "{name} face {f}");
+        }
+    }
+
+    #[test]
+    fn level_equals_plain_on_corpus() {
+        for (name, m) in corpus() {
+            let lv = dual_level(&m, &full()).unwrap();
+            check_level(name, &m, &lv);
+            check_origins(name, &m, &lv);
+            let plain = dual(&m).unwrap();
+            assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
+            for (a, b) in lv.mesh.positions().iter().zip(plain.positions()) {
+                assert!((*a - *b).length() < 1e-12, "{name}");
+            }
+            let bare = dual_level(&m, &Request::plain()).unwrap();
+            assert!(bare.stencils.is_none() && bare.origins.is_none());
+            assert_eq!(bare.mesh.to_polygons(), plain.to_polygons(), "{name}");
+        }
+    }
+
+    #[test]
+    fn open_meshes_keep_their_boundary() {
+        for (name, m) in open_meshes() {
+            let lv = dual_level(&m, &full()).unwrap();
+            check_level(name, &m, &lv);
+            check_origins(name, &m, &lv);
+            let r = &lv.mesh;
+            let bnd: Vec<usize> = (0..m.n_edges()).filter(|&e| m.f_hole[m.he_face[2 * e] as usize] || m.f_hole[m.he_face[2 * e + 1] as usize]).collect();
+            let b = bnd.len();
+            let vb: std::collections::BTreeSet<u32> = bnd.iter().flat_map(|&e| [m.he_vert[2 * e], m.he_vert[2 * e + 1]]).collect();
+            let (v, e, fr) = (m.n_vertices(), m.n_edges(), m.n_faces() - m.n_holes());
+            assert_eq!((r.n_vertices(), r.n_edges(), r.n_faces() - r.n_holes(), r.n_holes()), (fr + b + vb.len(), e + 2 * b, v, m.n_holes()), "{name}");
+            assert_eq!(open_euler(r), open_euler(&m), "{name}");
+            assert_eq!(r.n_components(), m.n_components(), "{name}");
+            // the boundary is kept: boundary vertices stay, boundary edges split at their midpoints
+            let p = m.positions();
+            let o = lv.origins.as_ref().unwrap();
+            let mut out_b = 0;
+            for ov in 0..r.n_vertices() {
+                let (k, i) = (o.vertex_kind[ov], o.vertex[ov] as usize);
+                if k == VERTEX {
+                    assert_eq!(r.positions()[ov], p[i], "{name}");
+                    out_b += 1;
+                } else if k == EDGE {
+                    let mid = (p[m.he_vert[2 * i] as usize] + p[m.he_vert[2 * i + 1] as usize]) * 0.5;
+                    assert!((r.positions()[ov] - mid).length() < 1e-15, "{name}");
+                    out_b += 1;
+                }
+            }
+            let rb = (0..r.n_edges()).filter(|&x| r.f_hole[r.he_face[2 * x] as usize] || r.f_hole[r.he_face[2 * x + 1] as usize]).count();
+            assert_eq!((rb, out_b), (2 * b, 2 * b), "{name}");
+            // dual of an interior vertex: the centroids of its faces
+            let lv2 = dual_level(r, &full()).unwrap();
+            check_level(name, r, &lv2);
+            assert_eq!(open_euler(&lv2.mesh), open_euler(&m), "{name}");
+        }
+        assert!(dual(&cube_with_hole()).is_err());
     }
 
     #[test]

@@ -49,8 +49,21 @@
 //! and grow a flange into the hole (a hole is no face to smooth). With F
 //! counting real faces and b boundary loops, `V' = 2E, E' = 3E, F' = F + V,
 //! b' = b`, so `χ' = V − E + F = χ` (`χ = 2c − 2g − b`) and the genus stays.
+//!
+//! **Stencils and correspondence** ([`honeycomb_level`]): for fixed `t` and
+//! tension the new points are linear in the old ones; row `h` is
+//! `Σ_m a_{n,m} ((1 − t) v_m + t v_{m+1})` over its face (2N terms), a
+//! point-sphere's row the point itself. Origins: new vertex h lies inside
+//! its face → (FACE, face(h)); the front face of f → (FACE, f) (a hole's
+//! front face is the hole), the 2k-gon of v → (VERTEX, v); front-face
+//! sides lie inside their face → (FACE, f), an inserted edge crosses its
+//! old edge → (EDGE, e). Holes are kept on every path, so open meshes get
+//! stencils and origins too; there is no sharpness to carry.
 
 use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::corner_origins::edge_origins_by_corner;
+use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
 use crate::mesh::{FaceId, Mesh, NONE};
 use glam::DVec3;
@@ -162,6 +175,83 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         tw[ce + 1] = vc_even(next[hp ^ 1] as usize) + 1;
     }
     faces.build(m, new_pos, cv, &tw)
+}
+
+/// One step with what `req` asks for (see the module docs); without
+/// requests it is [`honeycomb`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) -> Result<Level> {
+    let mesh = honeycomb(m, t, tension)?;
+    if !req.stencils && !req.origins {
+        return Ok(Level::plain(mesh));
+    }
+    let fl = FaceLayout::new(m)?;
+    let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
+    let (_, vert, face) = m.halfedge_columns();
+    let points: Vec<u32> = (0..nv as u32).filter(|&v| m.v_out[v as usize] & crate::mesh::POINT != 0).collect();
+    let stencils = if req.stencils {
+        Some(Stencils::build(nh + points.len(), nv, |i, row| {
+            if i >= nh {
+                row.add(points[i - nh], 1.0);
+                return;
+            }
+            let f = face[i] as usize;
+            let hs = fl.corners(f);
+            let nn = hs.len();
+            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
+            let n = fl.local(i as u32, f as u32);
+            for (mm, &g) in hs.iter().enumerate() {
+                let w = if mm == n {
+                    a
+                } else {
+                    let k = (n + nn - mm) % nn;
+                    (3.0 + 2.0 * (std::f64::consts::TAU * k as f64 / nn as f64).cos()) * (1.0 - a) / (3.0 * nn as f64 - 5.0)
+                };
+                if w != 0.0 {
+                    row.add(vert[g as usize], w * (1.0 - t));
+                    row.add(vert[(g ^ 1) as usize], w * t);
+                }
+            }
+        })?)
+    } else {
+        None
+    };
+    let origins = if req.origins {
+        let vl = VertexLayout::new(m)?;
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(FACE).take(nh).chain(std::iter::repeat(VERTEX).take(points.len())));
+        o.vertex.extend(face.iter().copied().chain(points.iter().copied()));
+        o.face_kind.extend(std::iter::repeat(FACE).take(nf));
+        o.face.extend(0..nf as u32);
+        for v in 0..nv {
+            if vl.valence(v) > 0 {
+                o.face_kind.push(VERTEX);
+                o.face.push(v as u32);
+            }
+        }
+        // corner layout of `honeycomb`: front faces (a point-sphere's keeps one corner), then 2 per slot
+        let mut off = Vec::with_capacity(nf + 1);
+        off.push(0u32);
+        for f in 0..nf {
+            off.push(off[f] + (fl.degree(f) as u32).max(1));
+        }
+        let vb = off[nf] as usize;
+        let mut co = vec![(FACE, 0u32); vb + 2 * nh];
+        for h in 0..nh {
+            crate::cancel::poll(h)?;
+            let f = face[h];
+            co[(off[f as usize] as usize) + fl.local(h as u32, f)] = (FACE, f);
+            let ce = vb + 2 * vl.vidx[h] as usize;
+            co[ce] = (FACE, f);
+            co[ce + 1] = (EDGE, m.he_prev[h] >> 1);
+        }
+        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils, origins, creases: None })
 }
 
 #[inline]
@@ -334,6 +424,48 @@ mod tests {
             assert_eq!(canonical_faces(&ops), canonical_faces(&one));
             assert_eq!(ops.genus(), m.genus());
         }
+    }
+
+    #[test]
+    fn level_stencils_and_origins_on_corpus_and_open_meshes() {
+        use crate::schemes::hosts::test_meshes::*;
+        let full = Request { stencils: true, origins: true, ..Default::default() };
+        let mut meshes = corpus();
+        meshes.extend(open_meshes());
+        for (name, m) in meshes {
+            for (t, a) in [(0.5, None), (0.3, Some(0.7)), (0.9, Some(1.0))] {
+                let lv = honeycomb_level(&m, t, a, &full).unwrap();
+                check_level(name, &m, &lv);
+                let plain = honeycomb(&m, t, a).unwrap();
+                assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
+                assert_eq!(lv.mesh.positions(), plain.positions(), "{name}");
+                assert_eq!((lv.mesh.n_holes(), open_euler(&lv.mesh)), (m.n_holes(), open_euler(&m)), "{name}");
+                let o = lv.origins.as_ref().unwrap();
+                let fl = FaceLayout::new(&m).unwrap();
+                // n new vertices and n front sides per n-gon, one front face each; one vertex face
+                // per vertex, one inserted edge per edge
+                let (fv, ff, fe) = (
+                    origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces()),
+                    origin_counts(&o.face_kind, &o.face, FACE, m.n_faces()),
+                    origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces()),
+                );
+                for f in 0..m.n_faces() {
+                    assert_eq!((fv[f], ff[f], fe[f]), (fl.degree(f), 1, fl.degree(f)), "{name} face {f}");
+                }
+                assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+                let vf = origin_counts(&o.face_kind, &o.face, VERTEX, m.n_vertices());
+                let vv = origin_counts(&o.vertex_kind, &o.vertex, VERTEX, m.n_vertices());
+                for v in 0..m.n_vertices() {
+                    let point = m.v_out[v] & crate::mesh::POINT != 0;
+                    assert_eq!((vf[v], vv[v]), if point { (0, 1) } else { (1, 0) }, "{name} vertex {v}");
+                }
+                // the hole's front face is a hole and is born from it
+                for f in 0..m.n_faces() {
+                    assert_eq!(lv.mesh.f_hole[f], m.f_hole[f], "{name}");
+                }
+            }
+        }
+        assert!(honeycomb_level(&cube(), 2.0, None, &full).is_err());
     }
 
     #[test]

@@ -14,7 +14,9 @@
 //! scheme unchanged ([`with_point_spheres`]). Hole faces (from
 //! `close_boundaries`) are refused by the schemes without boundary rules
 //! ([`refuse_holes`]) instead of being refined into real faces; honeycomb
-//! and vertex truncation keep them as holes.
+//! and vertex truncation keep them as holes. The plain calls of the
+//! smoothing schemes refuse them too; their `*_level` functions (Catmull-
+//! Clark, midpoint, dual, Doo-Sabin) apply boundary rules and keep them.
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};

@@ -194,6 +194,26 @@ pub fn cube_with_hole() -> Mesh {
     Mesh::from_polygons(primitives::cube().positions().to_vec(), &sizes, &idx, opts).unwrap()
 }
 
+/// An icosahedron without two of its faces (apart, so two triangle holes).
+pub fn icosahedron_with_two_holes() -> Mesh {
+    let c = primitives::icosahedron().to_polygons();
+    let tri: Vec<&[u32]> = c.indices.chunks(3).collect();
+    // a face not sharing a vertex with face 0
+    let far = (1..tri.len()).find(|&f| tri[f].iter().all(|v| !tri[0].contains(v))).unwrap();
+    let idx: Vec<i64> = (0..tri.len()).filter(|&f| f != 0 && f != far).flat_map(|f| tri[f].iter().map(|&v| v as i64)).collect();
+    let sizes = vec![3i64; idx.len() / 3];
+    let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+    let m = Mesh::from_polygons(primitives::icosahedron().positions().to_vec(), &sizes, &idx, opts).unwrap();
+    assert_eq!(m.n_holes(), 2);
+    m
+}
+
+/// The open test meshes: a disk, an annulus (tube), a box with one hole and
+/// a triangle mesh with two.
+pub fn open_meshes() -> Vec<(&'static str, Mesh)> {
+    vec![("grid", open_grid(4)), ("tube", open_tube(8, 3)), ("cube_with_hole", cube_with_hole()), ("icosahedron_two_holes", icosahedron_with_two_holes())]
+}
+
 /// A cube whose faces 0 and 1 are merged by InsertEdge (genus 1): the
 /// merged face runs along both sides of the new edge.
 pub fn handle_cube() -> Mesh {
@@ -314,4 +334,72 @@ pub fn check_level(name: &str, m: &Mesh, lv: &crate::schemes::level::Level) {
 /// χ of the open surface: V − E + real faces.
 pub fn open_euler(m: &Mesh) -> i64 {
     m.n_vertices() as i64 - m.n_edges() as i64 + (m.n_faces() - m.n_holes()) as i64
+}
+
+/// How many output elements name each input element of `kind` (`n` of
+/// them) as their origin.
+pub fn origin_counts(kinds: &[u8], idx: &[u32], kind: u8, n: usize) -> Vec<usize> {
+    let mut c = vec![0usize; n];
+    for (&k, &i) in kinds.iter().zip(idx) {
+        if k == kind {
+            c[i as usize] += 1;
+        }
+    }
+    c
+}
+
+/// Whether input face `f` is a point-sphere's.
+pub fn is_point_face(m: &Mesh, f: usize) -> bool {
+    m.f_start[f] & crate::mesh::POINT != 0
+}
+
+/// A level of a scheme against its plain call on the corpus: `check_level`,
+/// the same polygons and positions, a plain request gives only the mesh;
+/// then `more(name, m, level)`.
+pub fn level_matches_plain_on_corpus(
+    plain: impl Fn(&Mesh) -> crate::error::Result<Mesh>,
+    level: impl Fn(&Mesh, &crate::schemes::level::Request) -> crate::error::Result<crate::schemes::level::Level>,
+    more: impl Fn(&str, &Mesh, &crate::schemes::level::Level),
+) {
+    use crate::schemes::level::Request;
+    let full = Request { stencils: true, origins: true, ..Default::default() };
+    for (name, m) in corpus() {
+        let lv = level(&m, &full).unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_level(name, &m, &lv);
+        assert!(lv.creases.is_none(), "{name}");
+        let p = plain(&m).unwrap();
+        assert_eq!(lv.mesh.to_polygons(), p.to_polygons(), "{name}");
+        for (a, b) in lv.mesh.positions().iter().zip(p.positions()) {
+            assert!((*a - *b).length() <= 1e-12 * (1.0 + b.length()), "{name}");
+        }
+        let bare = level(&m, &Request::plain()).unwrap();
+        assert!(bare.stencils.is_none() && bare.origins.is_none() && bare.creases.is_none(), "{name}");
+        assert_eq!(bare.mesh.to_polygons(), p.to_polygons(), "{name}");
+        assert_eq!(bare.mesh.positions(), p.positions(), "{name}");
+        more(name, &m, &lv);
+    }
+}
+
+/// An edge with hole faces on both sides has no boundary rule: the levels
+/// with boundary rules that need a real side name the edge.
+#[test]
+fn edges_between_two_holes_are_refused() {
+    use crate::schemes::level::Request;
+    let mut m = primitives::cube();
+    let e = 0;
+    m.f_hole[m.he_face[2 * e] as usize] = true;
+    m.f_hole[m.he_face[2 * e + 1] as usize] = true;
+    for (name, r) in [
+        ("dual", crate::schemes::dual::dual_level(&m, &Request::plain()).map(|l| l.mesh)),
+        ("doo_sabin", crate::schemes::doo_sabin::doo_sabin_level(&m, &Request::plain()).map(|l| l.mesh)),
+    ] {
+        match r {
+            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with(name) && msg.contains("edge 0 has hole faces on both sides"), "{msg}"),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    // midpoint splits it like any edge and keeps both holes
+    let lv = crate::schemes::midpoint::midpoint_level(&m, &Request::plain()).unwrap();
+    lv.mesh.validate().unwrap();
+    assert_eq!(lv.mesh.n_holes(), 2);
 }

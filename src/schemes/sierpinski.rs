@@ -151,6 +151,91 @@ holes with faces first";
 /// and point-spheres only is returned unchanged. An open mesh is refused
 /// (`Precondition`, module docs).
 pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
+    build(m, false).map(|r| r.0)
+}
+
+/// One iteration with what `req` asks for; without requests it is
+/// [`sierpinski`]. Positions are linear (old vertices and midpoints), so
+/// the stencils are exact. Origins (the lowest-dimensional input element an
+/// output element lies in): old vertex → (VERTEX, v), midpoint of e →
+/// (EDGE, e); the corner triangle of non-loop half-edge h lies inside
+/// face(h) → (FACE, face(h)); the back face of a cone of v runs around v →
+/// (VERTEX, v); a kept all-loop face → (FACE, f). Edges: the halves of a
+/// subdivided edge, the kept self-loops and the self-loop inserted at the
+/// midpoint of e → (EDGE, e); a corner cut lies inside its face → (FACE, f).
+/// Open meshes are refused, as by [`sierpinski`]. No sharpness is carried.
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn sierpinski_level(m: &Mesh, req: &super::level::Request) -> Result<super::level::Level> {
+    use super::level::{Level, Origins, EDGE, FACE, VERTEX};
+    let (mesh, co) = build(m, req.origins)?;
+    if !req.stencils && !req.origins {
+        return Ok(Level::plain(mesh));
+    }
+    let (nv, ne) = (m.n_vertices(), m.n_edges());
+    let (_, vert, face) = m.halfedge_columns();
+    let w = Walk::of(m);
+    let mids: Vec<u32> = (0..ne as u32).filter(|&e| w.is_nonloop(2 * e as usize)).collect();
+    let stencils = if req.stencils {
+        Some(super::stencil::Stencils::build(nv + mids.len(), nv, |i, row| {
+            if i < nv {
+                row.add(i as u32, 1.0);
+            } else {
+                let e = mids[i - nv] as usize;
+                row.add(vert[2 * e], 0.5);
+                row.add(vert[2 * e + 1], 0.5);
+            }
+        })?)
+    } else {
+        None
+    };
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(mids.len())));
+        o.vertex.extend((0..nv as u32).chain(mids.iter().copied()));
+        // faces: pieces (non-loop half-edges in order), back faces (cones in order of first half-edge), kept faces
+        let nh = m.n_halfedges();
+        let mut seen = vec![false; nh];
+        let mut cones = Vec::new();
+        for h in 0..nh {
+            if w.is_nonloop(h) {
+                o.face_kind.push(FACE);
+                o.face.push(face[h]);
+                if !seen[h] {
+                    let mut b = h;
+                    loop {
+                        seen[b] = true;
+                        b = w.sigma(b);
+                        if b == h {
+                            break;
+                        }
+                    }
+                    cones.push(vert[h]);
+                }
+            }
+        }
+        o.face_kind.extend(std::iter::repeat(VERTEX).take(cones.len()));
+        o.face.extend(cones);
+        for f in 0..m.n_faces() {
+            let s = m.f_start[f];
+            let all_loops = s & crate::mesh::POINT != 0 || m.face_halfedges(crate::FaceId(f as u32)).all(|h| !w.is_nonloop(h.idx()));
+            if all_loops {
+                o.face_kind.push(FACE);
+                o.face.push(f as u32);
+            }
+        }
+        super::corner_origins::edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils, origins, creases: None })
+}
+
+/// [`sierpinski`], and with `want_origins` the origin of every output
+/// corner's side (see [`sierpinski_level`]).
+fn build(m: &Mesh, want_origins: bool) -> Result<(Mesh, Vec<(u8, u32)>)> {
+    use super::level::{EDGE, FACE};
     m.refuse_open("sierpinski", OPEN_MESHES)?;
     let nv = m.n_vertices();
     let nh = m.n_halfedges();
@@ -271,6 +356,7 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
     // --- corners and twins
     let mut cv = vec![0u32; nc];
     let mut tw = vec![NONE; nc];
+    let mut co = if want_origins { vec![(EDGE, 0u32); nc] } else { Vec::new() };
     // π(h), the inverse of ν: h's first half is corner k + 1 of the
     // triangle of π(h), the non-loop half-edge before h in its face
     let mut pi = vec![NONE; nh];
@@ -310,6 +396,16 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
         // cut, triangle side: mid(ν(h)) -> mid(h); twin in the back face of cone element twin(h)
         cv[b + k + 2] = mid[nu >> 1];
         tw[b + k + 2] = back0 + 2 * cone_pos[h ^ 1] + 1;
+        if want_origins {
+            co[b] = (EDGE, (h >> 1) as u32);
+            let mut x = m.next(HalfedgeId(h as u32)).idx();
+            for j in 0..k {
+                co[b + 1 + j] = (EDGE, (x >> 1) as u32);
+                x = m.next(HalfedgeId(x as u32)).idx();
+            }
+            co[b + k + 1] = (EDGE, (nu >> 1) as u32);
+            co[b + k + 2] = (FACE, m.he_face[h]);
+        }
     }
     for bb in 0..nh {
         crate::cancel::poll(bb)?;
@@ -325,6 +421,10 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
         cv[s + 1] = mb;
         let t = bb ^ 1;
         tw[s + 1] = base[t] + w.loops_after[t] + 2;
+        if want_origins {
+            co[s] = (EDGE, (bb >> 1) as u32);
+            co[s + 1] = (FACE, m.he_face[t]);
+        }
     }
     {
         let mut c = kept0 as usize;
@@ -339,13 +439,16 @@ pub fn sierpinski(m: &Mesh) -> Result<Mesh> {
                     for h in m.face_halfedges(f) {
                         cv[c] = vert[h.idx()];
                         tw[c] = loop_slot[h.idx() ^ 1];
+                        if want_origins {
+                            co[c] = (EDGE, (h.idx() >> 1) as u32);
+                        }
                         c += 1;
                     }
                 }
             }
         }
     }
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+    Ok((Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?, co))
 }
 
 /// `iterations` Sierpinski steps.

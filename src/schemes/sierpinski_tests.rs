@@ -178,3 +178,33 @@ fn one_pass_equals_operators() {
         assert_eq!(face_signature(&a), face_signature(&b));
     }
 }
+
+#[test]
+fn level_stencils_and_origins() {
+    use crate::schemes::hosts::test_meshes::*;
+    use crate::schemes::level::{EDGE, FACE, VERTEX};
+    level_matches_plain_on_corpus(sierpinski, sierpinski_level, |name, m, lv| {
+        let o = lv.origins.as_ref().unwrap();
+        let c = SierpinskiCounts::of(m);
+        let n = (c.edges - c.self_loops) as usize;
+        let ev = origin_counts(&o.vertex_kind, &o.vertex, EDGE, m.n_edges());
+        let ee = origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges());
+        for e in 0..m.n_edges() {
+            // a non-loop edge: its midpoint, two halves and the self-loop at the midpoint; a loop is kept
+            let want = if m.is_self_loop(crate::EdgeId(e as u32)) { (0, 1) } else { (1, 3) };
+            assert_eq!((ev[e], ee[e]), want, "{name} edge {e}");
+        }
+        assert!(origin_counts(&o.vertex_kind, &o.vertex, VERTEX, m.n_vertices()).iter().all(|&x| x == 1), "{name}");
+        let kinds = |k: &[u8], kind: u8| k.iter().filter(|&&x| x == kind).count();
+        // 2N corner triangles and F₀ kept faces from faces, K back faces from vertices, 2N cuts from faces
+        assert_eq!(kinds(&o.face_kind, FACE), 2 * n + c.loop_faces as usize, "{name}");
+        assert_eq!(kinds(&o.face_kind, VERTEX), c.cones as usize, "{name}");
+        assert_eq!(kinds(&o.edge_kind, FACE), 2 * n, "{name}");
+    });
+    let lv = sierpinski_level(&sierpinski_tetrahedron(), &crate::schemes::level::Request { stencils: true, ..Default::default() }).unwrap();
+    assert_eq!(lv.stencils.unwrap().n_rows(), lv.mesh.n_vertices());
+    match sierpinski_level(&cube_with_hole(), &Default::default()) {
+        Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("sierpinski") && msg.contains("no boundary rules"), "{msg}"),
+        other => panic!("{other:?}"),
+    }
+}

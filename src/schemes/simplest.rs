@@ -18,8 +18,19 @@
 //! Counts (H = 2E): V' = E, E' = H = 2E, F' = F + V; every new vertex is
 //! 4-valent. Output vertex e is the midpoint of edge e; faces are
 //! `[F-faces | V-faces]`.
+//!
+//! Stencils and correspondence ([`simplest_level`]): the scheme is linear,
+//! a row is `½ a + ½ b`. Origins: the midpoint of e → (EDGE, e); the F-face
+//! of f → (FACE, f), the V-face of v → (VERTEX, v); every output edge lies
+//! inside one input face (it cuts a corner of it) → (FACE, that face).
+//! Open meshes are refused (no boundary rule yet: the plain mid-edge rule
+//! at a boundary would average the boundary polygon into itself without
+//! refining it).
 
-use super::hosts::{check_output_size, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::hosts::{check_output_size, refuse_holes, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
+use super::corner_origins::edge_origins_by_corner;
+use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -81,6 +92,50 @@ fn step(m: &Mesh) -> Result<Mesh> {
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
+/// One level with what `req` asks for (see the module docs); without
+/// requests it is [`simplest`]. Refuses hole faces.
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn simplest_level(m: &Mesh, req: &Request) -> Result<Level> {
+    refuse_holes("simplest", m)?;
+    with_point_spheres_level(m, req, |m, req| {
+        let mesh = step(m)?;
+        let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
+        let (_, vert, face) = m.halfedge_columns();
+        let stencils = if req.stencils {
+            Some(Stencils::build(ne, nv, |e, row| {
+                row.add(vert[2 * e], 0.5);
+                row.add(vert[2 * e + 1], 0.5);
+            })?)
+        } else {
+            None
+        };
+        let origins = if req.origins {
+            let fl = FaceLayout::new(m)?;
+            let vl = VertexLayout::new(m)?;
+            let mut o = Origins::with_capacity(ne, mesh.n_edges(), nf + nv);
+            o.vertex_kind = vec![EDGE; ne];
+            o.vertex.extend(0..ne as u32);
+            o.face_kind.extend(std::iter::repeat(FACE).take(nf).chain(std::iter::repeat(VERTEX).take(nv)));
+            o.face.extend((0..nf as u32).chain(0..nv as u32));
+            // F-face corner c is half-edge fh[c]; V-face slot s is the outgoing half-edge whose slot it is
+            let nh = m.n_halfedges();
+            let mut slot_he = vec![0u32; nh];
+            for h in 0..nh {
+                slot_he[vl.vidx[h] as usize] = h as u32;
+            }
+            edge_origins_by_corner(&mesh, &mut o, |c| {
+                let f = if c < nh { face[fl.fh[c] as usize] } else { face[slot_he[c - nh] as usize] };
+                (FACE, f)
+            })?;
+            Some(o)
+        } else {
+            None
+        };
+        Ok(Level { mesh, stencils, origins, creases: None })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -91,6 +146,30 @@ mod tests {
         check_on_corpus(simplest, |_, (v, e, f)| (e, 2 * e, f + v), |name, _, r| {
             assert!(r.vertices().filter(|&x| r.point_sphere_face(x).is_none()).all(|x| r.valence(x) == 4), "{name} 4-valent");
         });
+    }
+
+    #[test]
+    fn level_equals_plain_on_corpus() {
+        level_matches_plain_on_corpus(simplest, simplest_level, |name, m, lv| {
+            let o = lv.origins.as_ref().unwrap();
+            let fl = FaceLayout::new(m).unwrap();
+            assert!(origin_counts(&o.vertex_kind, &o.vertex, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+            assert!(origin_counts(&o.face_kind, &o.face, VERTEX, m.n_vertices()).iter().enumerate().all(|(v, &c)| c == usize::from(m.v_out[v] & crate::mesh::POINT == 0)), "{name}");
+            assert!(origin_counts(&o.face_kind, &o.face, FACE, m.n_faces()).iter().all(|&c| c == 1), "{name}");
+            // each face is the origin of its n corner-cutting edges
+            let fe = origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces());
+            for f in 0..m.n_faces() {
+                assert_eq!(fe[f], fl.degree(f), "{name} face {f}");
+            }
+        });
+    }
+
+    #[test]
+    fn level_refuses_holes() {
+        match simplest_level(&cube_with_hole(), &Request { stencils: true, ..Default::default() }) {
+            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("simplest") && msg.contains("no boundary rules"), "{msg}"),
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]

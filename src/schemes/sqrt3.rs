@@ -17,8 +17,18 @@
 //! Counts (H = 2E): V' = V + F, E' = E + H = 3E, F' = H = 2E (all triangles).
 //! Output vertices are `[smoothed old vertices | face centroids]`; output
 //! triangle `h` is the one of half-edge `h`.
+//!
+//! Stencils and correspondence ([`sqrt3_level`]): the scheme is linear; a
+//! vertex row is `(1 − αₙ) v + αₙ/n Σ neighbours`, a centroid row the mean
+//! of the face's corners. Origins: old vertex → (VERTEX, v), centroid →
+//! (FACE, f); triangle h straddles the flipped edge e = h/2 (it covers
+//! parts of both faces beside e) → (EDGE, e), two per edge; the flipped
+//! edge → (EDGE, e); a spoke lies inside its face → (FACE, f).
 
-use super::hosts::{check_output_size, neighbor_sum, with_point_spheres, MIN_LEN};
+use super::hosts::{check_output_size, neighbor_sum, refuse_holes, with_point_spheres, FaceLayout, MIN_LEN};
+use super::corner_origins::edge_origins_by_corner;
+use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use glam::DVec3;
@@ -96,6 +106,60 @@ fn step(m: &Mesh) -> Result<Mesh> {
     Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
 }
 
+/// One level with what `req` asks for (see the module docs); without
+/// requests it is [`sqrt3`]. Refuses hole faces.
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
+    refuse_holes("sqrt3", m)?;
+    with_point_spheres_level(m, req, |m, req| {
+        let mesh = step(m)?;
+        let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
+        let (_, vert, face) = m.halfedge_columns();
+        let stencils = if req.stencils {
+            let fl = FaceLayout::new(m)?;
+            Some(Stencils::build(nv + nf, nv, |i, row| {
+                if i < nv {
+                    let ring: Vec<u32> = super::creases::ring(m, m.v_out[i]).collect();
+                    let n = ring.len();
+                    let a = sqrt3_alpha(n);
+                    row.add(i as u32, 1.0 - a);
+                    for h in ring {
+                        row.add(vert[(h ^ 1) as usize], a / n as f64);
+                    }
+                } else {
+                    let hs = fl.corners(i - nv);
+                    for &h in hs {
+                        row.add(vert[h as usize], 1.0 / hs.len() as f64);
+                    }
+                }
+            })?)
+        } else {
+            None
+        };
+        let origins = if req.origins {
+            let mut o = Origins::with_capacity(nv + nf, mesh.n_edges(), nh);
+            o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(FACE).take(nf)));
+            o.vertex.extend((0..nv as u32).chain(0..nf as u32));
+            o.face_kind = vec![EDGE; nh];
+            o.face.extend((0..nh as u32).map(|h| h >> 1));
+            // triangle h = [a, c_g, c_f]: spoke in g, the flipped edge, spoke in f
+            edge_origins_by_corner(&mesh, &mut o, |c| {
+                let h = c / 3;
+                match c % 3 {
+                    0 => (FACE, face[h ^ 1]),
+                    1 => (EDGE, (h >> 1) as u32),
+                    _ => (FACE, face[h]),
+                }
+            })?;
+            Some(o)
+        } else {
+            None
+        };
+        Ok(Level { mesh, stencils, origins, creases: None })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -106,6 +170,33 @@ mod tests {
         check_on_corpus(sqrt3, |_, (v, e, f)| (v + f, 3 * e, 2 * e), |name, _, r| {
             assert!(all_faces_but_one_gons_have(r, 3), "{name} triangles");
         });
+    }
+
+    #[test]
+    fn level_equals_plain_on_corpus() {
+        level_matches_plain_on_corpus(sqrt3, sqrt3_level, |name, m, lv| {
+            let o = lv.origins.as_ref().unwrap();
+            let fl = FaceLayout::new(m).unwrap();
+            let ps = n_point_spheres(m);
+            let fv = origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces());
+            let fe = origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces());
+            for f in 0..m.n_faces() {
+                // one centroid and n spokes per real n-gon
+                assert_eq!((fv[f], fe[f]), if is_point_face(m, f) { (0, 0) } else { (1, fl.degree(f)) }, "{name} face {f}");
+            }
+            assert!(origin_counts(&o.vertex_kind, &o.vertex, VERTEX, m.n_vertices()).iter().all(|&c| c == 1), "{name}");
+            assert!(origin_counts(&o.face_kind, &o.face, EDGE, m.n_edges()).iter().all(|&c| c == 2), "{name}");
+            assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+            assert_eq!(o.face_kind.iter().filter(|&&k| k == FACE).count(), ps, "{name}");
+        });
+    }
+
+    #[test]
+    fn level_refuses_holes() {
+        match sqrt3_level(&cube_with_hole(), &Request::plain()) {
+            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("sqrt3") && msg.contains("no boundary rules"), "{msg}"),
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]

@@ -53,8 +53,19 @@
 //! included. With F counting real faces and b boundary loops the counts
 //! above hold as they are (`F' = F + V`, `b' = b`), so `χ' = V − E + F = χ`
 //! (`χ = 2c − 2g − b`) and the genus stays.
+//!
+//! **Stencils and correspondence** ([`vertex_truncation_level`]): cut
+//! points are linear, row h is `(1 − r) tail + r head` (`½ a + ½ b` when
+//! merged), a point-sphere's row the point. Origins: a cut point lies on
+//! its edge → (EDGE, e); the image of face f → (FACE, f) (a hole's image is
+//! the hole), the face of v → (VERTEX, v); an edge along an old edge →
+//! (EDGE, e), a cut (it cuts a corner of a face) → (FACE, that face). Holes
+//! are kept on every path, so open meshes get stencils and origins too.
 
 use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::corner_origins::edge_origins_by_corner;
+use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
+use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
 use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
@@ -152,6 +163,79 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
         }
     }
     faces.build(m, new_pos, cv, &tw)
+}
+
+/// One step with what `req` asks for (see the module docs); without
+/// requests it is [`vertex_truncation`].
+/// This scheme has no sharpness rules: `req.creases` is ignored and
+/// `Level.creases` is `None` (creases are dropped).
+pub fn vertex_truncation_level(m: &Mesh, mode: Truncation, req: &Request) -> Result<Level> {
+    let mesh = vertex_truncation(m, mode)?;
+    if !req.stencils && !req.origins {
+        return Ok(Level::plain(mesh));
+    }
+    let r = mode.ratio();
+    let merge = r == 0.5;
+    let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
+    let (_, vert, face) = m.halfedge_columns();
+    let points: Vec<u32> = (0..nv as u32).filter(|&v| m.v_out[v as usize] & crate::mesh::POINT != 0).collect();
+    let n_cut = if merge { nh / 2 } else { nh };
+    let stencils = if req.stencils {
+        Some(Stencils::build(n_cut + points.len(), nv, |i, row| {
+            if i >= n_cut {
+                row.add(points[i - n_cut], 1.0);
+            } else if merge {
+                row.add(vert[2 * i], 0.5);
+                row.add(vert[2 * i + 1], 0.5);
+            } else {
+                row.add(vert[i], 1.0 - r);
+                row.add(vert[i ^ 1], r);
+            }
+        })?)
+    } else {
+        None
+    };
+    let origins = if req.origins {
+        let fl = FaceLayout::new(m)?;
+        let vl = VertexLayout::new(m)?;
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind.extend(std::iter::repeat(EDGE).take(n_cut).chain(std::iter::repeat(VERTEX).take(points.len())));
+        o.vertex.extend((0..n_cut as u32).map(|i| if merge { i } else { i >> 1 }).chain(points.iter().copied()));
+        o.face_kind.extend(std::iter::repeat(FACE).take(nf));
+        o.face.extend(0..nf as u32);
+        for v in 0..nv {
+            if vl.valence(v) > 0 {
+                o.face_kind.push(VERTEX);
+                o.face.push(v as u32);
+            }
+        }
+        // corner layout of `vertex_truncation`: face images (a point-sphere's keeps one corner), then one per slot
+        let per_corner = if merge { 1 } else { 2 };
+        let mut off = Vec::with_capacity(nf + 1);
+        off.push(0u32);
+        for f in 0..nf {
+            off.push(off[f] + (per_corner * fl.degree(f) as u32).max(1));
+        }
+        let vb = off[nf] as usize;
+        let mut co = vec![(FACE, 0u32); vb + nh];
+        for h in 0..nh {
+            crate::cancel::poll(h)?;
+            let f = face[h];
+            let c = off[f as usize] as usize + per_corner as usize * fl.local(h as u32, f);
+            if merge {
+                co[c] = (FACE, f);
+            } else {
+                co[c] = (EDGE, (h >> 1) as u32);
+                co[c + 1] = (FACE, f);
+            }
+            co[vb + vl.vidx[h] as usize] = (FACE, f);
+        }
+        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils, origins, creases: None })
 }
 
 #[cfg(test)]
@@ -272,6 +356,39 @@ mod tests {
             assert!((t.position(crate::VertexId(h.0)) - want).length() < 1e-15);
         }
         assert!(t.signed_volume() > 0.0 && t.signed_volume() < m.signed_volume());
+    }
+
+    #[test]
+    fn level_stencils_and_origins_on_corpus_and_open_meshes() {
+        use crate::schemes::hosts::test_meshes::*;
+        let full = Request { stencils: true, origins: true, ..Default::default() };
+        let mut meshes = corpus();
+        meshes.extend(open_meshes());
+        for (name, m) in meshes {
+            for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.1 }, Truncation::Polyhedral { ratio: 0.5 }] {
+                let lv = vertex_truncation_level(&m, mode, &full).unwrap();
+                check_level(name, &m, &lv);
+                let plain = vertex_truncation(&m, mode).unwrap();
+                assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
+                assert_eq!(lv.mesh.positions(), plain.positions(), "{name}");
+                assert_eq!((lv.mesh.n_holes(), open_euler(&lv.mesh)), (m.n_holes(), open_euler(&m)), "{name}");
+                let o = lv.origins.as_ref().unwrap();
+                let fl = FaceLayout::new(&m).unwrap();
+                let merged = mode.ratio() == 0.5;
+                // per edge: 2 cut points (1 merged) and the edge along it (none merged); per n-gon:
+                // one face and n cuts; one face per vertex
+                let ev = origin_counts(&o.vertex_kind, &o.vertex, EDGE, m.n_edges());
+                let ee = origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges());
+                assert!(ev.iter().zip(&ee).all(|(&a, &b)| (a, b) == if merged { (1, 0) } else { (2, 1) }), "{name}");
+                let ff = origin_counts(&o.face_kind, &o.face, FACE, m.n_faces());
+                let fe = origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces());
+                for f in 0..m.n_faces() {
+                    assert_eq!((ff[f], fe[f]), (1, fl.degree(f)), "{name} face {f}");
+                }
+                let vf = origin_counts(&o.face_kind, &o.face, VERTEX, m.n_vertices());
+                assert!(vf.iter().enumerate().all(|(v, &c)| c == usize::from(m.v_out[v] & crate::mesh::POINT == 0)), "{name}");
+            }
+        }
     }
 
     #[test]
