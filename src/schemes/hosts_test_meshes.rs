@@ -403,3 +403,25 @@ fn edges_between_two_holes_are_refused() {
     lv.mesh.validate().unwrap();
     assert_eq!(lv.mesh.n_holes(), 2);
 }
+
+/// Point-spheres ride along with the open-mesh levels.
+#[test]
+fn open_levels_keep_point_spheres() {
+    use crate::schemes::level::{Level, Request};
+    let mut m = cube_with_hole();
+    m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
+    let full = Request { stencils: true, origins: true, ..Default::default() };
+    let runs: [(&str, crate::error::Result<Level>); 5] = [
+        ("midpoint", crate::schemes::midpoint::midpoint_level(&m, &full)),
+        ("dual", crate::schemes::dual::dual_level(&m, &full)),
+        ("doo_sabin", crate::schemes::doo_sabin::doo_sabin_level(&m, &full)),
+        ("honeycomb", crate::schemes::honeycomb::honeycomb_level(&m, 0.5, None, &full)),
+        ("vertex_truncation", crate::schemes::vertex_truncation::vertex_truncation_level(&m, crate::schemes::vertex_truncation::Truncation::Chaikin, &full)),
+    ];
+    for (name, lv) in runs {
+        let lv = lv.unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_level(name, &m, &lv);
+        assert_eq!((lv.mesh.n_holes(), n_point_spheres(&lv.mesh), lv.mesh.n_components()), (1, 1, 2), "{name}");
+        assert_eq!(open_euler(&lv.mesh), open_euler(&m), "{name}");
+    }
+}
