@@ -199,7 +199,8 @@ pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) ->
             let f = face[i] as usize;
             let hs = fl.corners(f);
             let nn = hs.len();
-            let a = if nn == 1 { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
+            // as in `honeycomb`: one-gons and holes keep p (module docs)
+            let a = if nn == 1 || m.f_hole[f] { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
             let n = fl.local(i as u32, f as u32);
             for (mm, &g) in hs.iter().enumerate() {
                 let w = if mm == n {

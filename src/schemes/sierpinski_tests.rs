@@ -204,7 +204,7 @@ fn level_stencils_and_origins() {
     let lv = sierpinski_level(&sierpinski_tetrahedron(), &crate::schemes::level::Request { stencils: true, ..Default::default() }).unwrap();
     assert_eq!(lv.stencils.unwrap().n_rows(), lv.mesh.n_vertices());
     match sierpinski_level(&cube_with_hole(), &Default::default()) {
-        Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("sierpinski") && msg.contains("no boundary rules"), "{msg}"),
+        Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("sierpinski") && msg.contains("no boundary version"), "{msg}"),
         other => panic!("{other:?}"),
     }
 }
