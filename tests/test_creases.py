@@ -365,3 +365,68 @@ def test_corner_attributes_follow_seams_and_survive_pickle() -> None:
         c.with_attributes(corner={"uv": (uv[:4], np.arange(24))})
     with pytest.raises(MeshError, match="corner_interpolation"):
         m.catmull_clark(corner_interpolation="bilinear")
+
+
+ALL_SCHEMES = {
+    "catmull_clark": {}, "loop": {}, "doo_sabin": {}, "sqrt3": {}, "simplest": {}, "midpoint": {}, "dual": {},
+    "honeycomb": {}, "vertex_truncation": {}, "vertex_truncation_polyhedral": {"mode": "polyhedral", "ratio": 0.3}, "sierpinski": {},
+}
+
+
+def run(m: tm.Mesh, scheme: str, levels: int, **kw):
+    name = scheme.replace("_polyhedral", "")
+    return getattr(m, name)(levels, **ALL_SCHEMES[scheme], **kw)
+
+
+@pytest.mark.parametrize("scheme", sorted(ALL_SCHEMES))
+@pytest.mark.parametrize("name", ["cube", "torus", "mixed"])
+def test_every_scheme_has_a_matrix_and_parents(scheme: str, name: str) -> None:
+    """Attribute interpolation equals S @ attribute, S @ P the positions, and parents
+    cover every output face, for every linear scheme (issue 15's 'done when')."""
+    m = MESHES[name]()
+    rng = np.random.default_rng(2)
+    a = rng.random((m.n_vertices, 2))
+    mat = np.arange(len(m.face_sizes))
+    levels = 1 if scheme == "sierpinski" else 2
+    out, corr = run(m.with_attributes(vertex={"a": a}, face={"m": mat}), scheme, levels, correspondence=True)
+    assert out == run(m, scheme, levels)
+    S = corr.matrix
+    np.testing.assert_allclose(S @ m.vertices, out.vertices, atol=1e-12)
+    np.testing.assert_allclose(out.vertex_attributes["a"], S @ a, atol=1e-12)
+    assert corr.face_parents.shape == (len(out.face_sizes),) and (corr.face_parents >= 0).all()
+    np.testing.assert_array_equal(out.face_attributes["m"], mat[corr.face_parents])
+    assert set(np.unique(corr.vertex_kinds)) <= {0, 1, 2} and len(corr.vertex_kinds) == out.n_vertices
+    # every origin index is in range for its kind
+    lim = {0: m.n_vertices, 1: m.n_edges, 2: len(m.face_sizes)}
+    for kinds, idx in ((corr.vertex_kinds, corr.vertex_origins), (corr.face_kinds, corr.face_origins)):
+        for k, n in lim.items():
+            assert ((idx[kinds == k] >= 0) & (idx[kinds == k] < n)).all()
+
+
+@pytest.mark.parametrize("scheme", ["catmull_clark", "loop", "doo_sabin", "midpoint", "dual", "honeycomb", "vertex_truncation"])
+@pytest.mark.parametrize("fixture", ["disk", "annulus", "cylinder", "genus2_three_holes"])
+def test_open_inputs_keep_chi_and_boundaries(scheme: str, fixture: str) -> None:
+    from tests import open_meshes
+
+    m = open_meshes.mesh(fixture)
+    out, corr = run(m, scheme, 2, correspondence=True)
+    out.validate()
+    assert out.n_boundary_loops == m.n_boundary_loops and out.genus == m.genus
+    assert out.euler_characteristic == m.euler_characteristic
+    np.testing.assert_allclose(corr.matrix @ m.vertices, out.vertices, atol=1e-12)
+    assert len(corr.face_parents) == len(out.face_sizes)
+
+
+@pytest.mark.parametrize("scheme", ["sqrt3", "simplest", "sierpinski"])
+def test_schemes_without_boundary_rules_refuse_open_inputs(scheme: str) -> None:
+    from tests import open_meshes
+
+    with pytest.raises(MeshError, match=rf"^{scheme}: the mesh has 1 boundary loop"):
+        run(open_meshes.mesh("disk"), scheme, 1)
+
+
+def test_menger_warns_that_it_drops_data() -> None:
+    c = tm.cube().with_attributes(vertex={"a": np.arange(8.0)})
+    with pytest.warns(tm.GeometryWarning, match="does not carry"):
+        out = c.menger(1)
+    assert out.vertex_attributes == {}

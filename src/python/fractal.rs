@@ -41,9 +41,10 @@ impl PyMesh {
     ///     the paper's rule has no boundary version, and its natural
     ///     extension would make every boundary midpoint a pinch on two
     ///     boundary loops; close the holes first.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn sierpinski(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "sierpinski", predict::sierpinski, sp::sierpinski)
+    #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
+    fn sierpinski<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
+        let spec = super::levels::Spec::plain("sierpinski", predict::sierpinski);
+        super::levels::run(py, self, iterations, progress, spec, correspondence, sp::sierpinski_level)
     }
 
     /// Generalized Menger sponge (dissertation ch. VII): every face is
@@ -100,6 +101,11 @@ impl PyMesh {
     #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
     fn menger(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
+        if !self.data.is_empty() && iterations > 0 {
+            // offsets along normals are not linear in the positions: no stencils to carry data with
+            let msg = "menger: the output does not carry the input's creases and attributes (the offset construction has no subdivision matrix)";
+            PyErr::warn(py, &py.get_type::<GeometryWarning>(), &std::ffi::CString::new(msg).expect("no NUL"), 1)?;
+        }
         // (iteration, vertices still crossing) for every iteration left with crossings
         let left = std::sync::Mutex::new(Vec::<(usize, usize)>::new());
         let done = std::sync::atomic::AtomicUsize::new(0);

@@ -35,6 +35,13 @@ pub(crate) struct Spec {
     pub with_data: Option<DataLevel>,
 }
 
+impl Spec {
+    /// A scheme without crease, face-varying or direct-data rules.
+    pub fn plain(name: &'static str, predict: crate::budget::Predictor) -> Spec {
+        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None }
+    }
+}
+
 /// A level function that also interpolates vertex data.
 pub(crate) type DataLevel = fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)>;
 

@@ -2,10 +2,10 @@
 //! papers: `Mesh.honeycomb` and `Mesh.vertex_truncation`.
 
 use super::mesh::PyMesh;
-use super::{arg_err, err, iterate, big_int};
+use super::{arg_err, err, big_int};
 use crate::budget::predict;
-use crate::schemes::honeycomb::{self, honeycomb};
-use crate::schemes::vertex_truncation::{vertex_truncation, Truncation};
+use crate::schemes::honeycomb;
+use crate::schemes::vertex_truncation::{self, Truncation};
 use pyo3::prelude::*;
 
 #[pymethods]
@@ -44,10 +44,19 @@ impl PyMesh {
     /// ------
     /// MeshError
     ///     ``iterations`` negative, ``t`` or ``tension`` outside [0, 1].
-    #[pyo3(signature = (iterations = 1, t = 0.5, tension = None, progress = false))]
-    fn honeycomb(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, t: f64, tension: Option<f64>, progress: bool) -> PyResult<PyMesh> {
+    #[pyo3(signature = (iterations = 1, t = 0.5, tension = None, progress = false, *, correspondence = false))]
+    fn honeycomb<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = big_int)] iterations: i128,
+        t: f64,
+        tension: Option<f64>,
+        progress: bool,
+        correspondence: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
         honeycomb::check_args(t, tension).map_err(err)?;
-        iterate(py, &self.inner, iterations, progress, "honeycomb", predict::truncation, |m| honeycomb(m, t, tension))
+        let spec = super::levels::Spec::plain("honeycomb", predict::truncation);
+        super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| honeycomb::honeycomb_level(m, t, tension, r))
     }
 
     /// Vertex truncation (Akleman, Edmundson & Ozener, "A Generalized Vertex
@@ -90,8 +99,17 @@ impl PyMesh {
     /// MeshError
     ///     ``iterations`` negative, unknown ``mode``, ``ratio`` outside
     ///     (0, 0.5] or not 0.25 with ``mode="chaikin"``.
-    #[pyo3(signature = (iterations = 1, mode = "chaikin", ratio = 0.25, progress = false))]
-    fn vertex_truncation(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, mode: &str, ratio: f64, progress: bool) -> PyResult<PyMesh> {
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (iterations = 1, mode = "chaikin", ratio = 0.25, progress = false, *, correspondence = false))]
+    fn vertex_truncation<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = big_int)] iterations: i128,
+        mode: &str,
+        ratio: f64,
+        progress: bool,
+        correspondence: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let how = match mode {
             "chaikin" if ratio == 0.25 => Truncation::Chaikin,
             "chaikin" => {
@@ -105,6 +123,7 @@ impl PyMesh {
             }
         };
         how.check().map_err(err)?;
-        iterate(py, &self.inner, iterations, progress, "vertex_truncation", predict::truncation, |m| vertex_truncation(m, how))
+        let spec = super::levels::Spec::plain("vertex_truncation", predict::truncation);
+        super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| vertex_truncation::vertex_truncation_level(m, how, r))
     }
 }

@@ -1,7 +1,7 @@
 //! Smoothing and refinement schemes as `Mesh` methods (`crate::schemes`).
 
 use super::mesh::PyMesh;
-use super::{iterate, big_int, levels};
+use super::{big_int, levels};
 use crate::budget::predict;
 use crate::schemes;
 use pyo3::prelude::*;
@@ -81,9 +81,9 @@ impl PyMesh {
     /// One new vertex per corner; faces for every old face, edge and vertex.
     /// Per level: V' = 2E, E' = 4E, F' = F + E + V. Zero-length self-loops
     /// open into tubes. Parameters, return and errors as :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn doo_sabin(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "doo_sabin", predict::doo_sabin, schemes::doo_sabin::doo_sabin)
+    #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
+    fn doo_sabin<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
+        levels::run(py, self, iterations, progress, levels::Spec::plain("doo_sabin", predict::doo_sabin), correspondence, schemes::doo_sabin::doo_sabin_level)
     }
 
     /// Loop subdivision (Loop 1987) with Loop's original
@@ -125,9 +125,9 @@ impl PyMesh {
     /// n-gons are treated like triangles (centroid, spokes, flips). Per
     /// level: V' = V + F, E' = 3E, F' = 2E triangles. Parameters, return and
     /// errors as :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn sqrt3(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "sqrt3", predict::sqrt3, schemes::sqrt3::sqrt3)
+    #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
+    fn sqrt3<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
+        levels::run(py, self, iterations, progress, levels::Spec::plain("sqrt3", predict::sqrt3), correspondence, schemes::sqrt3::sqrt3_level)
     }
 
     /// The simplest subdivision scheme (Peters & Reif 1997): mid-edge
@@ -136,9 +136,9 @@ impl PyMesh {
     ///
     /// Per level: V' = E, E' = 2E, F' = F + V; every new vertex is
     /// 4-valent. Parameters, return and errors as :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn simplest(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "simplest", predict::simplest, schemes::simplest::simplest)
+    #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
+    fn simplest<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
+        levels::run(py, self, iterations, progress, levels::Spec::plain("simplest", predict::simplest), correspondence, schemes::simplest::simplest_level)
     }
 
     /// Midpoint (linear) subdivision: triangles split 1 -> 4 at edge
@@ -147,17 +147,17 @@ impl PyMesh {
     ///
     /// Per level: V' = V + E + F_(n!=3), F' = 4 F_3 + sum_(n!=3) n.
     /// Parameters, return and errors as :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn midpoint(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "midpoint", predict::midpoint, schemes::midpoint::midpoint)
+    #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
+    fn midpoint<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
+        levels::run(py, self, iterations, progress, levels::Spec::plain("midpoint", predict::midpoint), correspondence, schemes::midpoint::midpoint_level)
     }
 
     /// The dual mesh: a vertex at every face centroid, a face around every
     /// vertex (V' = F, E' = E, F' = V). Orientation is kept. Parameters,
     /// return and errors as :meth:`catmull_clark`.
-    #[pyo3(signature = (iterations = 1, progress = false))]
-    fn dual(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        iterate(py, &self.inner, iterations, progress, "dual", predict::dual, schemes::dual::dual)
+    #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
+    fn dual<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
+        levels::run(py, self, iterations, progress, levels::Spec::plain("dual", predict::dual), correspondence, schemes::dual::dual_level)
     }
 
     /// Limit positions and unit normals of the Catmull-Clark or Loop surface

@@ -227,7 +227,15 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
             row.add(bverts[i - real.len() - bedges.len()], 1.0);
         }
     })?;
-    let pos = stencils.apply_points(&m.pos)?;
+    let pos = if m.n_holes() == 0 {
+        // closed: the centroids exactly as the plain path sums them (same layout)
+        let mut p = vec![DVec3::ZERO; nf];
+        face_centroids(m, &fl, &mut p);
+        crate::cancel::check()?;
+        p
+    } else {
+        stencils.apply_points(&m.pos)?
+    };
     let mut mesh = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
     for f in nv..mesh.n_faces() {
         mesh.f_hole[f] = true;
