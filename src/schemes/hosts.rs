@@ -11,12 +11,13 @@
 //! sides are two half-edges with their own corners and new points.
 //!
 //! Point-spheres (a vertex with one face and no edge) carry through every
-//! scheme unchanged ([`with_point_spheres`]). Hole faces (from
-//! `close_boundaries`) are refused by the schemes without boundary rules
-//! ([`refuse_holes`]) instead of being refined into real faces; honeycomb
-//! and vertex truncation keep them as holes. The plain calls of the
-//! smoothing schemes refuse them too; their `*_level` functions (Catmull-
-//! Clark, midpoint, dual, Doo-Sabin) apply boundary rules and keep them.
+//! scheme unchanged ([`with_point_spheres`]). Hole faces (the boundary
+//! loops of an open mesh) are refused by the schemes without boundary rules
+//! (√3, simplest: [`refuse_holes`]) instead of being refined into real
+//! faces; honeycomb and vertex truncation keep them as holes, and the
+//! `*_level` functions of Catmull-Clark, Loop, midpoint, dual and Doo-Sabin
+//! apply boundary rules and keep them (the Python methods call those; the
+//! plain Rust `midpoint`, `dual` and `doo_sabin` still refuse holes).
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
@@ -231,17 +232,17 @@ impl FaceThenVertexFaces {
     }
 }
 
-/// Refuses a mesh with hole faces (boundary loops capped by
-/// `close_boundaries`): a scheme without boundary rules would refine the cap
-/// like a real face and silently close the hole.
+/// Refuses a mesh with hole faces (boundary loops): a scheme without
+/// boundary rules would refine the hole like a real face and silently
+/// close it.
 pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
     let holes = m.n_holes();
     if holes == 0 {
         return Ok(());
     }
     Err(crate::error::MeshError::Precondition(format!(
-        "{scheme}: the mesh has {holes} boundary loop{} (hole faces from close_boundaries); {scheme} has no boundary rules \
-         and would fill {}, so it refuses open meshes (honeycomb and vertex_truncation keep holes open)",
+        "{scheme}: the mesh has {holes} boundary loop{} (it is open); {scheme} has no boundary rules \
+         and would fill {}, so it refuses open meshes (catmull_clark, loop, doo_sabin, midpoint, dual, honeycomb and vertex_truncation keep holes open)",
         if holes == 1 { "" } else { "s" },
         if holes == 1 { "it" } else { "them" }
     )))
