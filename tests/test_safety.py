@@ -251,6 +251,7 @@ def _base_calls():
         "Mesh.vertex_truncation": (cube.vertex_truncation, {"iterations": 1, "mode": "polyhedral", "ratio": 0.3}),
         "Mesh.menger": (cube.menger, {"iterations": 1, "thickness": 0.3, "collapse_angle": 90.0}),
         "Mesh.rind": (cube.rind, {"thickness": 0.1}),
+        "Mesh.mark_creases": (cube.mark_creases, {"angle": 30.0}),
         "Mesh.printable": (cube.printable, {"min_thickness": 0.5}),
         "Mesh.subdivide_edge": (cube.subdivide_edge, {"edge": 0, "t": 0.5}),
         # a tunnel and a straight pipe through a 3 x 3 grid cube: valid calls free of crossings
@@ -280,6 +281,10 @@ NOT_NUMERIC = {
     "start", "vertices", "faces", "face_sizes", "face_indices", "close_boundaries", "boundaries", "allow_multi_edges", "path",
     "points", "point", "weights", "corners", "keep", "other", "probabilities", "return_faces", "blocks",
     "matrices", "translations", "reference", "tm", "data", "repair", "twins", "options",
+    # issue 15: flags, option names and data arrays (checked in tests/test_creases.py); a
+    # crease's sharpness may be inf (infinitely sharp), so it is probed there, not here
+    "correspondence", "boundary", "crease_method", "corner_interpolation", "edge_sharpness", "vertex_sharpness",
+    "vertex", "face", "corner", "sharpness",
 }
 
 
