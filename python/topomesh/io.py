@@ -61,6 +61,17 @@ from typing import TYPE_CHECKING, Callable, Union
 import numpy as np
 
 from topomesh._core import GeometryWarning, Mesh, MeshError, _read_obj
+from topomesh._fileattrs import (
+    _Data,
+    _npz_arrays,
+    _npz_data,
+    _obj_data,
+    _obj_fields,
+    _ply_data,
+    _ply_fields,
+    _warn_left_out,
+    _write_obj,
+)
 
 if TYPE_CHECKING:
     PathLike = Union[str, os.PathLike]
@@ -148,19 +159,22 @@ def load(
     if not Path(path).is_file():
         raise MeshError(f"{name}: no such file")
     twins = None
+    data = _Data()
     try:
         if kind == ".npz":
-            verts, sizes, idx, twins = _read_npz(path)
+            verts, sizes, idx, twins, data = _read_npz(path)
         elif kind == ".ply":
-            verts, sizes, idx, twins = _read_ply(path)
+            verts, sizes, idx, twins, props = _read_ply(path)
+            data = _ply_data(name, *props, len(idx))
         elif kind == ".obj":
-            verts, sizes, idx, n_lines, n_points = _read_obj(name)
+            verts, sizes, idx, n_lines, n_points, extras = _read_obj(name)
             if n_lines or n_points:
                 warnings.warn(
                     f"{name}: skipped {n_lines} polyline (l) and {n_points} point (p) elements: they are not faces",
                     GeometryWarning,
                     stacklevel=2,
                 )
+            data = _obj_data(name, extras)
         elif kind == ".stl":
             from topomesh.stl import read_stl  # welds exact duplicates, as STL repeats every corner
 
@@ -183,11 +197,20 @@ def load(
             from topomesh._repair import repair_flat
 
             mesh, _report = repair_flat(verts, sizes, idx, close_boundaries=close_boundaries, boundaries=boundaries)
+            if data:
+                warnings.warn(
+                    f"{name}: repair=True renumbers vertices and faces, so the file's attributes and creases "
+                    f"({data.names()}) are left out; load without repair, then call topomesh.repair",
+                    GeometryWarning,
+                    stacklevel=2,
+                )
             return mesh
         kw = dict(close_boundaries=close_boundaries, boundaries=boundaries)
         if twins is not None:
-            return Mesh.from_flat(verts, sizes, idx, twins=twins, **kw)
-        return Mesh.from_flat(verts, sizes, idx, allow_multi_edges=allow_multi_edges, **kw)
+            mesh = Mesh.from_flat(verts, sizes, idx, twins=twins, **kw)
+        else:
+            mesh = Mesh.from_flat(verts, sizes, idx, allow_multi_edges=allow_multi_edges, **kw)
+        return data.attach(mesh)
     except MeshError as e:
         raise MeshError(f"{name}: {e}") from None
 
@@ -227,9 +250,11 @@ def save(mesh: Mesh, path: PathLike) -> None:
             "differently (it would not load back equal); save it as .npz or .ply, which store corner_twins"
         )
     if kind == ".npz":
-        _atomic_write(path, lambda tmp: _write_npz(tmp, mesh))
+        extra = _npz_arrays(name, mesh)
+        _atomic_write(path, lambda tmp: _write_npz(tmp, mesh, extra))
     elif kind == ".ply":
-        _atomic_write(path, lambda tmp: _write_ply(tmp, mesh))
+        fields = _ply_fields(name, mesh)
+        _atomic_write(path, lambda tmp: _write_ply(tmp, mesh, fields))
     elif kind in TRIANGLE_FORMATS:
         write3 = _threemf_exporter(name) if kind == ".3mf" else None
         verts, tris, (sides, pinched) = mesh._print_triangles()
@@ -238,7 +263,17 @@ def save(mesh: Mesh, path: PathLike) -> None:
         else:
             _atomic_write(path, lambda tmp: _write_3mf(tmp, write3, verts, tris))
         _warn_unprintable(name, kind, mesh, verts, sides, pinched)
+        if not _Data.of(mesh).empty():
+            _warn_left_out(name, f"{kind[1:].upper()} stores triangles only", _Data.of(mesh).names())
+    elif kind == ".obj":
+        uv, normal, group, material = _obj_fields(name, mesh)
+        if uv is None and normal is None and group is None and material is None:
+            _atomic_write(path, lambda tmp: mesh._write_text(tmp, "obj"))
+        else:
+            _atomic_write(path, lambda tmp: _write_obj(tmp, mesh, uv, normal, group, material))
     else:
+        if not _Data.of(mesh).empty():
+            _warn_left_out(name, "OFF stores positions and polygons only", _Data.of(mesh).names())
         _atomic_write(path, lambda tmp: mesh._write_text(tmp, kind[1:]))
 
 
@@ -282,7 +317,7 @@ def _atomic_write(path: PathLike, write: Callable[[str], None]) -> None:
         raise
 
 
-def _write_npz(tmp: str, mesh: Mesh) -> None:
+def _write_npz(tmp: str, mesh: Mesh, extra: dict) -> None:
     with open(tmp, "wb") as f:  # a file object: savez would append ".npz" to a name
         np.savez(
             f,
@@ -291,6 +326,7 @@ def _write_npz(tmp: str, mesh: Mesh) -> None:
             face_sizes=mesh.face_sizes,
             face_indices=mesh.face_indices,
             corner_twins=mesh.corner_twins,
+            **extra,
         )
 
 
@@ -302,51 +338,78 @@ def _read_npz(path: PathLike):
         version = int(z["format_version"])
         if version > NPZ_VERSION:
             raise MeshError(f"{os.fspath(path)}: .npz format version {version} is newer than this topomesh reads ({NPZ_VERSION})")
-        return tuple(z[k] for k in _NPZ_KEYS)
+        return tuple(z[k] for k in _NPZ_KEYS) + (_npz_data(z),)
 
 
 _PLY_INT = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
              "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4"}
+_PLY_NUM = dict(_PLY_INT, float="f4", float32="f4", double="f8", float64="f8")
 
 
-def _write_ply(tmp: str, mesh: Mesh) -> None:
+def _write_ply(tmp: str, mesh: Mesh, fields: tuple) -> None:
     """Binary little-endian PLY, the face records laid out with NumPy (plyfile
     writes list properties one face at a time: 25 s for 1M faces)."""
     verts, sizes = mesh.vertices, mesh.face_sizes
     idx, twins = mesh.face_indices, mesh.corner_twins
     if len(verts) >= 2**31 or len(idx) >= 2**31:
         raise MeshError("PLY stores int32 indices: the mesh is too large (use .npz)")
-    wide = len(sizes) > 0 and int(sizes.max()) > 255
-    count, cs = ("uint", 4) if wide else ("uchar", 1)
-    header = (
-        "ply\nformat binary_little_endian 1.0\n"
-        "comment written by topomesh; corner_twins: the twin corner of each corner, -1 at a boundary side, -2 at a point-sphere\n"
-        f"element vertex {len(verts)}\nproperty double x\nproperty double y\nproperty double z\n"
-        f"element face {len(sizes)}\nproperty list {count} int vertex_indices\nproperty list {count} int corner_twins\n"
-        "end_header\n"
-    ).encode("ascii")
-    rec = 2 * cs + 8 * sizes
+    vextra, fextra, cextra, comments = fields
+    top = int(sizes.max()) if len(sizes) else 0
+    # (property, count type or None for a scalar, value dtype, per-face or per-corner values (n, k))
+    fields = [("vertex_indices", idx.astype("<i4")[:, None]), ("corner_twins", twins.astype("<i4")[:, None])]
+    lists = [(p, "uint" if top > 255 else "uchar", "int", a) for p, a in fields]
+    lists += [(p, "uint" if top * a.shape[1] > 255 else "uchar", "double", a.astype("<f8")) for p, a in cextra]
+    scalars = [(p, t, a) for p, t, a in fextra]
+    header = ["ply", "format binary_little_endian 1.0",
+              "comment written by topomesh; corner_twins: the twin corner of each corner, -1 at a boundary side, -2 at a point-sphere"]
+    header += [f"comment {c}" for c in comments]
+    header += [f"element vertex {len(verts)}"] + [f"property double {c}" for c in ["x", "y", "z"] + [p for p, _ in vextra]]
+    header.append(f"element face {len(sizes)}")
+    header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[:2]]
+    header += [f"property {t} {p}" for p, t, _ in scalars]
+    header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[2:]]
+    header.append("end_header\n")
+    # per-face byte offset of every field inside its record, then the records' starts
+    order = [("list", x) for x in lists[:2]] + [("scalar", x) for x in scalars] + [("list", x) for x in lists[2:]]
+    rec = np.zeros(len(sizes), dtype=np.int64)
+    offsets = []
+    for kind, x in order:
+        offsets.append(rec.copy())
+        if kind == "scalar":
+            rec += x[2].dtype.itemsize
+        else:
+            a = x[3]
+            rec += (4 if x[1] == "uint" else 1) + a.dtype.itemsize * a.shape[1] * sizes
     start = np.zeros(len(sizes), dtype=np.int64)
     np.cumsum(rec[:-1], out=start[1:])
     buf = np.empty(int(rec.sum()), dtype=np.uint8)
-    cnt = sizes.astype("<u4" if wide else "u1").view(np.uint8).reshape(-1, cs)
-    lanes = np.arange(cs)
-    buf[(start[:, None] + lanes)] = cnt
-    buf[(start + cs + 4 * sizes)[:, None] + lanes] = cnt
-    face_start = np.repeat(start, sizes)
     local = np.arange(len(idx)) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    four = np.arange(4)
-    dest = face_start + cs + 4 * local
-    buf[dest[:, None] + four] = idx.astype("<i4").view(np.uint8).reshape(-1, 4)
-    dest += cs + 4 * np.repeat(sizes, sizes)
-    buf[dest[:, None] + four] = twins.astype("<i4").view(np.uint8).reshape(-1, 4)
+    for (kind, x), off in zip(order, offsets):
+        pos = start + off
+        if kind == "scalar":
+            a = np.ascontiguousarray(x[2])
+            n = a.dtype.itemsize
+            buf[pos[:, None] + np.arange(n)] = a.view(np.uint8).reshape(-1, n)
+            continue
+        ct, a = x[1], np.ascontiguousarray(x[3])
+        cs = 4 if ct == "uint" else 1
+        cnt = (sizes * a.shape[1]).astype("<u4" if cs == 4 else "u1").view(np.uint8).reshape(-1, cs)
+        buf[pos[:, None] + np.arange(cs)] = cnt
+        n = a.dtype.itemsize * a.shape[1]  # the bytes of one corner
+        dest = np.repeat(pos + cs, sizes) + n * local
+        buf[dest[:, None] + np.arange(n)] = a.view(np.uint8).reshape(-1, n)
+    vcols = [verts] + [np.asarray(c, dtype=np.float64)[:, None] for _, c in vextra]
     with open(tmp, "wb") as f:
-        f.write(header)
-        f.write(np.ascontiguousarray(verts, dtype="<f8").tobytes())
+        f.write("\n".join(header).encode("ascii"))
+        f.write(np.ascontiguousarray(np.hstack(vcols), dtype="<f8").tobytes())
         f.write(buf.tobytes())
 
 
 def _read_ply(path: PathLike):
+    """``(vertices, sizes, indices, twins or None, (vertex properties, face
+    properties, list property names, comments))``: the fast NumPy read of
+    binary little-endian files whose faces all have one size, else
+    plyfile's."""
     fast = _read_ply_uniform(path)
     if fast is not None:
         return fast
@@ -355,55 +418,90 @@ def _read_ply(path: PathLike):
     ply = PlyData.read(os.fspath(path))
     v = ply["vertex"]
     verts = np.column_stack([np.asarray(v[c], dtype=np.float64) for c in ("x", "y", "z")]).reshape(-1, 3)
+    vprops = {p.name: np.asarray(v[p.name]) for p in v.properties}
     face = ply["face"]
-    names = face.data.dtype.names or ()
+    names = [p.name for p in face.properties]
     name = "vertex_indices" if "vertex_indices" in names else "vertex_index"
     lists = face[name]
     sizes = np.fromiter((len(x) for x in lists), dtype=np.int64, count=len(lists))
-    flat = lambda ls: np.concatenate(list(ls)).astype(np.int64) if len(ls) else np.zeros(0, np.int64)  # noqa: E731
-    twins = flat(face["corner_twins"]) if "corner_twins" in names else None
-    return verts, sizes, flat(lists), twins
+    flat = lambda ls: np.concatenate(list(ls)) if len(ls) else np.zeros(0)  # noqa: E731
+    list_names = {p.name for p in face.properties if hasattr(p, "len_dtype")}
+    fprops = {p: flat(face[p]) if p in list_names else np.asarray(face[p]) for p in names}
+    twins = fprops["corner_twins"].astype(np.int64) if "corner_twins" in names else None
+    idx = fprops[name].astype(np.int64)
+    return verts, sizes, idx, twins, (vprops, fprops, list_names, list(ply.comments))
 
 
 def _read_ply_uniform(path: PathLike):
-    """The layout :func:`_write_ply` writes, when every face has one size:
-    read with one ``np.frombuffer``. ``None`` for anything else (plyfile
-    reads it, one face at a time)."""
+    """Binary little-endian PLY with a vertex element of scalar properties
+    (``x y z`` among them) and a face element whose lists have one length
+    each over all faces (every face of one size): read with one
+    ``np.frombuffer`` per element. ``None`` for anything else."""
     with open(path, "rb") as f:
         data = f.read()
     end = data.find(b"end_header\n")
     if not data.startswith(b"ply\n") or end < 0:
         return None
-    lines = [ln.split() for ln in data[:end].decode("ascii", "replace").splitlines()[1:]]
-    lines = [ln for ln in lines if ln and ln[0] != "comment"]
+    rows = [ln.split() for ln in data[:end].decode("ascii", "replace").splitlines()[1:]]
+    comments = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else ""
+                for ln in data[:end].decode("ascii", "replace").splitlines()[1:] if ln.split()[:1] == ["comment"]]
+    rows = [r for r in rows if r and r[0] not in ("comment", "obj_info")]
     try:
-        (fmt, vel, x, y, z, fel, l1, l2) = lines
-        nv, nf = int(vel[2]), int(fel[2])
-        ok = (
-            fmt[1:] == ["binary_little_endian", "1.0"]
-            and vel[:2] == ["element", "vertex"] and fel[:2] == ["element", "face"]
-            and [x, y, z] == [["property", "double", c] for c in "xyz"]
-            and l1[:2] == l2[:2] == ["property", "list"] and l1[2] == l2[2] and l1[2] in _PLY_INT
-            and l1[3] == l2[3] == "int" and l1[4] == "vertex_indices" and l2[4] == "corner_twins"
-        )
-    except (ValueError, IndexError):
+        if rows[0][1:] != ["binary_little_endian", "1.0"]:
+            return None
+        elements = []
+        for r in rows[1:]:
+            if r[0] == "element":
+                elements.append((r[1], int(r[2]), []))
+            elif r[0] == "property" and r[1] == "list":
+                elements[-1][2].append((r[4], _PLY_INT[r[2]], _PLY_NUM[r[3]]))
+            elif r[0] == "property":
+                elements[-1][2].append((r[2], None, _PLY_NUM[r[1]]))
+            else:
+                return None
+        (vname, nv, vprops), (fname, nf, fprops) = elements
+    except (ValueError, IndexError, KeyError):
         return None
-    if not ok:
+    if (vname, fname) != ("vertex", "face") or any(c is not None for _, c, _ in vprops) or nf == 0:
+        return None
+    names = [p for p, _, _ in fprops]
+    if "vertex_indices" not in names or not {"x", "y", "z"} <= {p for p, _, _ in vprops}:
         return None
     body = end + len(b"end_header\n")
-    cdt = np.dtype(_PLY_INT[l1[2]]).newbyteorder("<")
-    fbytes = len(data) - body - 24 * nv
-    if nf == 0 or fbytes < 0:
+    vdt = np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
+    fstart = body + nv * vdt.itemsize
+    # the list lengths of the first face fix the record layout
+    fields, pos = [], fstart
+    for p, c, t in fprops:
+        t = np.dtype(t).newbyteorder("<")
+        if c is None:
+            fields.append((p, t))
+            pos += t.itemsize
+            continue
+        c = np.dtype(c).newbyteorder("<")
+        if pos + c.itemsize > len(data):
+            return None
+        k = int(np.frombuffer(data, c, 1, pos)[0])
+        fields += [("\0n" + p, c), (p, t, (k,))]
+        pos += c.itemsize + k * t.itemsize
+    fdt = np.dtype(fields)
+    if len(data) != fstart + nf * fdt.itemsize:
         return None
-    k = int(np.frombuffer(data, cdt, 1, body + 24 * nv)[0])
-    if k <= 0 or fbytes != nf * (2 * cdt.itemsize + 8 * k):
+    faces = np.frombuffer(data, fdt, nf, fstart)
+    for p, c, _ in fprops:
+        if c is not None and not (faces["\0n" + p] == fdt[p].shape[0]).all():
+            return None
+    k = fdt["vertex_indices"].shape[0]
+    if k == 0:
         return None
-    rec = np.dtype([("n1", cdt), ("idx", "<i4", (k,)), ("n2", cdt), ("tw", "<i4", (k,))])
-    faces = np.frombuffer(data, rec, nf, body + 24 * nv)
-    if not ((faces["n1"] == k).all() and (faces["n2"] == k).all()):
-        return None
-    verts = np.frombuffer(data, "<f8", 3 * nv, body).reshape(nv, 3).astype(np.float64)
-    return verts, np.full(nf, k, np.int64), faces["idx"].reshape(-1).astype(np.int64), faces["tw"].reshape(-1).astype(np.int64)
+    vrec = np.frombuffer(data, vdt, nv, body)
+    verts = np.column_stack([vrec[c].astype(np.float64) for c in "xyz"]).reshape(nv, 3)
+    vp = {p: vrec[p] for p in vdt.names}
+    fp = {p: faces[p].reshape(-1) if c is not None else faces[p] for p, c, _ in fprops}
+    lists = {p for p, c, _ in fprops if c is not None}
+    twins = fp["corner_twins"].astype(np.int64) if "corner_twins" in fp else None
+    idx = fp["vertex_indices"].astype(np.int64)
+    return verts, np.full(nf, k, np.int64), idx, twins, (vp, fp, lists, comments)
 
 
 # ------------------------------------------------------------- STL and 3MF

@@ -1,20 +1,49 @@
 //! File readers of the core exposed to `topomesh.io` (private helpers).
 
 use super::convert::{i64_array, vec3_array};
+use numpy::PyArray2;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 /// Reads an OBJ file with the core reader (GIL released). Returns
 /// ``(vertices (V, 3) float64, face_sizes (F,) int64, face_indices int64,
-/// n_polylines, n_points)``; indices are 0-based in the file's ``v`` order.
+/// n_polylines, n_points, extras)``; indices are 0-based in the file's ``v``
+/// order. ``extras`` holds what the file has of: ``"texcoords"`` ((T, k)
+/// float64, k the most components a ``vt`` had) with ``"corner_texcoords"``
+/// (per corner, -1 where none), ``"normals"`` (N, 3) with
+/// ``"corner_normals"``, ``"face_groups"`` (per face, int64) with
+/// ``"group_names"`` (list of str), ``"face_materials"`` with
+/// ``"material_names"``.
 #[pyfunction]
 fn _read_obj<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Bound<'py, PyAny>> {
     let d = super::run_interruptible(py, || crate::io::read_obj(&path))?;
+    let extras = PyDict::new(py);
+    if !d.corner_texcoords.is_empty() {
+        let k = d.texcoord_dim.max(1);
+        let rows: Vec<Vec<f64>> = d.texcoords.iter().map(|r| r[..k].to_vec()).collect();
+        let table = if rows.is_empty() { numpy::PyArray2::<f64>::zeros(py, [0, k], false) } else { PyArray2::from_vec2(py, &rows)? };
+        extras.set_item("texcoords", table)?;
+        extras.set_item("corner_texcoords", i64_array(py, d.corner_texcoords))?;
+    }
+    if !d.corner_normals.is_empty() {
+        extras.set_item("normals", vec3_array(py, &d.normals))?;
+        extras.set_item("corner_normals", i64_array(py, d.corner_normals))?;
+    }
+    if !d.face_groups.is_empty() {
+        extras.set_item("face_groups", i64_array(py, d.face_groups.iter().map(|&g| g as i64)))?;
+        extras.set_item("group_names", d.group_names)?;
+    }
+    if !d.face_materials.is_empty() {
+        extras.set_item("face_materials", i64_array(py, d.face_materials.iter().map(|&g| g as i64)))?;
+        extras.set_item("material_names", d.material_names)?;
+    }
     let out = (
         vec3_array(py, &d.positions),
         i64_array(py, d.sizes),
         i64_array(py, d.indices),
         d.n_polylines,
         d.n_points,
+        extras,
     );
     Ok(out.into_pyobject(py)?.into_any())
 }
