@@ -141,12 +141,12 @@ def test_obj_read_blender_style_file(tmp_path):
     assert r.n_boundary_loops == 1
 
 
-def test_obj_partial_vt_is_left_out_with_a_warning(tmp_path):
+def test_obj_partial_vt_is_left_out(tmp_path):
     p = tmp_path / "p.obj"
-    p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nvt 0 0\nf 1/1 2/1 3/1\nf 2 4 3\n")
-    with pytest.warns(GeometryWarning, match="3 of 6 face corners have no vt"):
-        r = tm.load(p)
+    p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\nf 2//1 4//1 3//1\n")
+    r = tm.load(p)  # the second face has no texture: no UV for its corners
     assert "uv" not in r.corner_attributes
+    assert np.array_equal(r.corner_attributes["normal"], np.tile([0.0, 0, 1], (6, 1)))
 
 
 def test_obj_index_errors_name_the_line(tmp_path):

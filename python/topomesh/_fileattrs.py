@@ -61,21 +61,17 @@ def _warn_left_out(name: str, why: str, what: str, stacklevel: int = 3) -> None:
 
 def _obj_data(name: str, extras: dict) -> _Data:
     """The attributes of an OBJ file from ``_read_obj``'s extras: corner
-    ``"uv"`` and ``"normal"`` as (table, index), face ``"group"`` and
-    ``"material"`` as string arrays."""
+    ``"uv"`` and ``"normal"`` as (table, index) when every corner has a
+    ``vt`` (``vn``) index, face ``"group"`` and ``"material"`` as string
+    arrays."""
     d = _Data()
     for key, attr, what in (("texcoords", "uv", "vt"), ("normals", "normal", "vn")):
         if key not in extras:
             continue
         index = extras["corner_" + key]
-        missing = int(np.count_nonzero(index < 0))
-        if missing:
-            warnings.warn(
-                f"{name}: {missing} of {len(index)} face corners have no {what} index while others do: "
-                f"corner attribute {attr!r} left out",
-                GeometryWarning,
-                stacklevel=3,
-            )
+        if (index < 0).any():
+            # some faces have no vt (or vn): a file's faces without a texture, as
+            # Blender writes them; there is no value to give their corners
             continue
         d.corner[attr] = (extras[key], index)
     for key, attr in (("groups", "group"), ("materials", "material")):
@@ -174,14 +170,14 @@ def _vertex_names(name: str, k: int | None) -> list[str]:
     return [name] if k is None else [f"{name}_{j}" for j in range(k)]
 
 
-def _ply_fields(name: str, mesh: Mesh):
+def _ply_fields(name: str | None, mesh: Mesh):
     """The extra PLY properties of ``mesh``'s data: ``(vertex, face, corner,
     comments)`` with ``vertex`` a list of (property, float64 column),
     ``face`` of (property, PLY type, column), ``corner`` of (property, (C, k)
     float64 rows written k per corner in one list), and the header comments
     that say which properties make which attribute. Strings, objects and
     names that cannot be PLY property names are left out with a
-    GeometryWarning."""
+    GeometryWarning (none when ``name`` is None)."""
     d = _Data.of(mesh)
     used = set(_RESERVED)
     skipped = []
@@ -233,7 +229,7 @@ def _ply_fields(name: str, mesh: Mesh):
         vertex.append(("sharpness", d.vertex_sharpness))
         corner.append(("corner_sharpness", d.corner_sharpness.reshape(-1, 1)))
         comments.append("topomesh-creases vertex sharpness, corner_sharpness: the sharpness of the edge leaving each corner")
-    if skipped:
+    if skipped and name is not None:
         _warn_left_out(name, "PLY cannot store them", "; ".join(skipped), 4)
     return vertex, face, corner, comments
 
@@ -300,7 +296,7 @@ def _ply_data(name: str, vprops: dict, fprops: dict, lists: set, comments: list,
 # ------------------------------------------------------------------ NPZ
 
 
-def _npz_arrays(name: str, mesh: Mesh) -> dict:
+def _npz_arrays(name: str | None, mesh: Mesh) -> dict:
     """The optional ``.npz`` entries of ``mesh``'s data: ``vertex_attr__<name>``,
     ``face_attr__<name>``, ``corner_attr__<name>``, ``corner_sharpness`` and
     ``vertex_sharpness``. Object arrays (which need pickle) are left out with
@@ -315,7 +311,7 @@ def _npz_arrays(name: str, mesh: Mesh) -> dict:
                 out[f"{kind}_attr__{attr}"] = a
     if d.corner_sharpness is not None:
         out["corner_sharpness"], out["vertex_sharpness"] = d.corner_sharpness, d.vertex_sharpness
-    if skipped:
+    if skipped and name is not None:
         _warn_left_out(name, ".npz cannot store them", "; ".join(skipped), 4)
     return out
 

@@ -250,11 +250,11 @@ def save(mesh: Mesh, path: PathLike) -> None:
             "differently (it would not load back equal); save it as .npz or .ply, which store corner_twins"
         )
     if kind == ".npz":
-        extra = _npz_arrays(name, mesh)
-        _atomic_write(path, lambda tmp: _write_npz(tmp, mesh, extra))
+        _npz_arrays(name, mesh)  # warns (naming the path) about what it leaves out
+        _atomic_write(path, lambda tmp: _write_npz(tmp, mesh))
     elif kind == ".ply":
-        fields = _ply_fields(name, mesh)
-        _atomic_write(path, lambda tmp: _write_ply(tmp, mesh, fields))
+        _ply_fields(name, mesh)
+        _atomic_write(path, lambda tmp: _write_ply(tmp, mesh))
     elif kind in TRIANGLE_FORMATS:
         write3 = _threemf_exporter(name) if kind == ".3mf" else None
         verts, tris, (sides, pinched) = mesh._print_triangles()
@@ -317,7 +317,8 @@ def _atomic_write(path: PathLike, write: Callable[[str], None]) -> None:
         raise
 
 
-def _write_npz(tmp: str, mesh: Mesh, extra: dict) -> None:
+def _write_npz(tmp: str, mesh: Mesh) -> None:
+    extra = _npz_arrays(None, mesh)
     with open(tmp, "wb") as f:  # a file object: savez would append ".npz" to a name
         np.savez(
             f,
@@ -346,14 +347,14 @@ _PLY_INT = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "
 _PLY_NUM = dict(_PLY_INT, float="f4", float32="f4", double="f8", float64="f8")
 
 
-def _write_ply(tmp: str, mesh: Mesh, fields: tuple) -> None:
+def _write_ply(tmp: str, mesh: Mesh) -> None:
     """Binary little-endian PLY, the face records laid out with NumPy (plyfile
     writes list properties one face at a time: 25 s for 1M faces)."""
     verts, sizes = mesh.vertices, mesh.face_sizes
     idx, twins = mesh.face_indices, mesh.corner_twins
     if len(verts) >= 2**31 or len(idx) >= 2**31:
         raise MeshError("PLY stores int32 indices: the mesh is too large (use .npz)")
-    vextra, fextra, cextra, comments = fields
+    vextra, fextra, cextra, comments = _ply_fields(None, mesh)
     top = int(sizes.max()) if len(sizes) else 0
     # (property, count type or None for a scalar, value dtype, per-face or per-corner values (n, k))
     fields = [("vertex_indices", idx.astype("<i4")[:, None]), ("corner_twins", twins.astype("<i4")[:, None])]
