@@ -45,6 +45,57 @@ Formats
     vertices that coincide (after rounding to float32 for STL).
     See :func:`topomesh.printing.printable` for a full check.
 
+Attributes and creases
+----------------------
+What each format keeps of :meth:`Mesh.with_attributes` and
+:meth:`Mesh.with_creases` (every format also loads what it keeps):
+
+``.npz``
+    Everything: optional entries ``vertex_attr__<name>``,
+    ``face_attr__<name>`` (any dtype but object, which needs pickle: left
+    out with a :class:`GeometryWarning`), ``corner_attr__<name>`` (per
+    corner), ``corner_sharpness`` (the sharpness of the edge leaving each
+    corner: edge ids are renumbered by a rebuild, corners are not) and
+    ``vertex_sharpness``. ``format_version`` stays 1: the entries are
+    optional, and older readers ignore them.
+``.ply``
+    Numeric data as properties, named for other readers: a vertex
+    attribute becomes float64 vertex properties ``<name>`` (k = 1) or
+    ``<name>_0 .. <name>_{k-1}``, except ``"color"``/``"colour"`` with 3 or
+    4 columns (``red green blue [alpha]``, still float64: the values are
+    kept as they are) and ``"normal"``/``"normals"`` with 3 (``nx ny nz``);
+    a face attribute face properties of its dtype (``<name>`` or
+    ``<name>_j`` over its flattened trailing axes; int64 as PLY's int when it
+    fits, else double when exact; bool as uchar); a corner attribute one
+    per-face list of float64 with its k values per corner interleaved,
+    ``texcoord`` for a 2-column ``"uv"`` (the name MeshLab reads); creases a
+    vertex ``sharpness`` property and a ``corner_sharpness`` face list. A
+    ``comment topomesh-attribute <element> <name> <dtype> <shape>
+    <properties>`` header line per attribute makes the reading exact (names,
+    dtypes, shapes). Strings and names that are no PLY property name are
+    left out with a :class:`GeometryWarning`. A PLY from another program
+    gives ``red green blue [alpha]`` as ``"color"``, ``nx ny nz`` as
+    ``"normal"``, its other numeric vertex and face properties under their
+    names, a ``texcoord`` list of 2 values per corner as corner ``"uv"`` and
+    other lists of one number per corner as corner attributes.
+``.obj``
+    ``vt`` and ``vn`` with the corners' ``f v/vt/vn`` indices become the
+    corner attributes ``"uv"`` (k = the most components a ``vt`` has) and
+    ``"normal"``, read as (table, index) so seams stay exactly as written
+    (left out when some faces have no ``vt``/``vn``); ``g``/``o`` and
+    ``usemtl`` become the face attributes ``"group"`` and ``"material"``:
+    NumPy string arrays of each face's name (several ``g`` names joined by a
+    space; ``""`` before the first statement). :func:`save` writes them
+    back: a ``vt``/``vn`` table of the distinct values (corners that share a
+    value share a row, so seams stay seams) and a ``g``/``usemtl`` line
+    wherever the name changes; other attributes and creases are left out
+    with a :class:`GeometryWarning`.
+``.off``, ``.stl``, ``.3mf``
+    Positions and faces only; saving a mesh with data warns.
+
+``load(repair=True)`` renumbers vertices and faces, so it leaves a file's
+attributes out (with a :class:`GeometryWarning`).
+
 Saving is atomic: the file is written beside the target under a temporary
 name and renamed over it, so a failed save leaves any existing file as it was.
 Every failure, reading or writing, is a :class:`MeshError` naming the path.
