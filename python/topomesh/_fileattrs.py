@@ -106,50 +106,21 @@ def _obj_fields(name: str, mesh: Mesh):
     return (uv, normal, *labels)
 
 
-def _table(a: np.ndarray):
-    """(rows, index): the distinct rows of per-corner values ``a``, so that
-    corners sharing a value share a row and a seam stays a seam."""
-    a = a.reshape(len(a), -1)
-    rows, index = np.unique(a, axis=0, return_inverse=True)
-    return rows, index.reshape(-1)
-
-
 def _write_obj(tmp: str, mesh: Mesh, uv, normal, group, material) -> None:
-    """OBJ with ``vt``/``vn`` tables and ``f v/vt/vn`` corners, and a ``g``
-    or ``usemtl`` line wherever the face's group or material changes.
-    Floats as Python's ``repr``: the shortest decimal that reads back to the
-    same bits."""
-    out = ["# written by topomesh"]
-    out += [f"v {x!r} {y!r} {z!r}" for x, y, z in mesh.vertices.tolist()]
-    refs = []
-    if uv is not None:
-        rows, ti = _table(uv)
-        out += ["vt " + " ".join(repr(c) for c in r) for r in rows.tolist()]
-        refs.append((ti + 1).astype(str))
-    if normal is not None:
-        rows, ni = _table(normal)
-        out += ["vn " + " ".join(repr(c) for c in r) for r in rows.tolist()]
-        if uv is None:
-            refs.append(np.full(len(ni), "", dtype="<U1"))
-        refs.append((ni + 1).astype(str))
-    corners = (mesh.face_indices + 1).astype(str)
-    for r in refs:
-        corners = np.char.add(np.char.add(corners, "/"), r)
-    sizes = mesh.face_sizes
-    ends = np.cumsum(sizes)
-    cl = corners.tolist()
-    prev_g = prev_m = None
-    for f, (e, s) in enumerate(zip(ends.tolist(), sizes.tolist())):
-        if group is not None and group[f] != prev_g:
-            prev_g = group[f]
-            out.append(f"g {prev_g}".rstrip())
-        if material is not None and material[f] != prev_m:
-            prev_m = material[f]
-            out.append(f"usemtl {prev_m}".rstrip())
-        out.append("f " + " ".join(cl[e - s : e]))
-    with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
-        fh.write("\n".join(out))
-        fh.write("\n")
+    """OBJ through the core writer (``_core._write_obj``): ``vt``/``vn``
+    tables of the distinct per-corner values (corners that share a value
+    share a row, so a seam stays a seam), ``f v/vt/vn`` corners, and a ``g``
+    or ``usemtl`` line wherever the face's group or material changes."""
+    from topomesh._core import _write_obj as write
+
+    def names(a):
+        if a is None:
+            return None
+        ids = np.unique(a, return_inverse=True)
+        return ids[1].reshape(-1).astype(np.int64), [str(x) for x in ids[0]]
+
+    rows = lambda a: None if a is None else np.ascontiguousarray(a.reshape(len(a), -1), dtype=np.float64)  # noqa: E731
+    write(mesh, tmp, rows(uv), rows(normal), names(group), names(material))
 
 
 # ------------------------------------------------------------------ PLY

@@ -20,7 +20,10 @@
 //! index as written in the file.
 
 use crate::error::{MeshError, Result};
+use crate::mesh::Mesh;
 use glam::DVec3;
+use std::collections::HashMap;
+use std::io::Write;
 use std::path::Path;
 
 /// What [`read_obj`] returns: positions in file order, faces as sizes and
@@ -285,6 +288,128 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
     Ok(out)
 }
 
+/// Face-varying data for [`write_obj`]: per-corner rows (aligned with the
+/// exported corners) of `vt` (k components, 1 to 3) and `vn` (3), and per
+/// exported face an index into a list of group and of material names.
+#[derive(Default)]
+pub struct ObjAttributes<'a> {
+    pub texcoords: Option<(&'a [f64], usize)>,
+    pub normals: Option<&'a [f64]>,
+    pub groups: Option<(&'a [i64], &'a [String])>,
+    pub materials: Option<(&'a [i64], &'a [String])>,
+}
+
+/// The distinct rows of per-corner values in order of first use and each
+/// corner's row (bit equality, with -0.0 taken as 0.0): corners that share a
+/// value share a row, so a seam stays a seam.
+fn distinct_rows(values: &[f64], k: usize) -> (Vec<usize>, Vec<u32>) {
+    let mut first: Vec<usize> = Vec::new();
+    let mut ids: HashMap<[u64; 3], u32> = HashMap::with_capacity(values.len() / k.max(1) / 2);
+    let index = values
+        .chunks_exact(k)
+        .enumerate()
+        .map(|(c, row)| {
+            let mut key = [0u64; 3];
+            for (j, &x) in row.iter().enumerate() {
+                key[j] = (x + 0.0).to_bits();
+            }
+            *ids.entry(key).or_insert_with(|| {
+                first.push(c);
+                (first.len() - 1) as u32
+            })
+        })
+        .collect();
+    (first, index)
+}
+
+/// Writes the exported polygons of `m` (holes left out) as OBJ with `vt`/`vn`
+/// tables of the distinct per-corner values, `f v/vt/vn` corners, and a `g`
+/// or `usemtl` line wherever a face's name differs from the previous face's.
+/// Floats as the shortest decimal that reads back to the same bits.
+pub fn write_obj<W: Write>(m: &Mesh, attrs: &ObjAttributes<'_>, out: W) -> Result<()> {
+    let io = |e: std::io::Error| MeshError::Io(e.to_string());
+    let p = m.to_polygons();
+    let (nc, nf) = (p.indices.len(), p.sizes.len());
+    let bad = |what: &str, n: usize, want: usize| {
+        MeshError::InvalidArgument(format!("write_obj: {what} has {n} values, expected {want}"))
+    };
+    if let Some((t, k)) = attrs.texcoords {
+        if !(1..=3).contains(&k) || t.len() != nc * k {
+            return Err(bad("the texture coordinates", t.len(), nc * k.clamp(1, 3)));
+        }
+    }
+    if let Some(n) = attrs.normals {
+        if n.len() != nc * 3 {
+            return Err(bad("the normals", n.len(), nc * 3));
+        }
+    }
+    for (what, names) in [("group", attrs.groups), ("material", attrs.materials)] {
+        if let Some((ids, list)) = names {
+            if ids.len() != nf {
+                return Err(bad(&format!("the {what} ids"), ids.len(), nf));
+            }
+            if let Some(&i) = ids.iter().find(|&&i| i < 0 || i as usize >= list.len()) {
+                return Err(MeshError::InvalidArgument(format!("write_obj: {what} id {i} outside the {} names", list.len())));
+            }
+        }
+    }
+    let mut w = std::io::BufWriter::with_capacity(1 << 20, out);
+    writeln!(w, "# written by topomesh").map_err(io)?;
+    for q in m.positions() {
+        writeln!(w, "v {:?} {:?} {:?}", q.x, q.y, q.z).map_err(io)?;
+    }
+    let vt = attrs.texcoords.map(|(t, k)| {
+        let (first, index) = distinct_rows(t, k);
+        (t, k, first, index)
+    });
+    if let Some((t, k, first, _)) = &vt {
+        for &c in first {
+            w.write_all(b"vt").map_err(io)?;
+            for x in &t[c * k..(c + 1) * k] {
+                write!(w, " {x:?}").map_err(io)?;
+            }
+            w.write_all(b"\n").map_err(io)?;
+        }
+    }
+    let vn = attrs.normals.map(|n| (n, distinct_rows(n, 3)));
+    if let Some((n, (first, _))) = &vn {
+        for &c in first {
+            writeln!(w, "vn {:?} {:?} {:?}", n[3 * c], n[3 * c + 1], n[3 * c + 2]).map_err(io)?;
+        }
+    }
+    let (mut group, mut material) = (None, None);
+    let mut k = 0;
+    for (f, &s) in p.sizes.iter().enumerate() {
+        for (key, names, current) in [("g", attrs.groups, &mut group), ("usemtl", attrs.materials, &mut material)] {
+            if let Some((ids, list)) = names {
+                if *current != Some(ids[f]) {
+                    *current = Some(ids[f]);
+                    let name = &list[ids[f] as usize];
+                    if name.is_empty() {
+                        writeln!(w, "{key}").map_err(io)?;
+                    } else {
+                        writeln!(w, "{key} {name}").map_err(io)?;
+                    }
+                }
+            }
+        }
+        w.write_all(b"f").map_err(io)?;
+        for c in k..k + s as usize {
+            write!(w, " {}", p.indices[c] + 1).map_err(io)?;
+            match (&vt, &vn) {
+                (Some((_, _, _, ti)), Some((_, (_, ni)))) => write!(w, "/{}/{}", ti[c] + 1, ni[c] + 1),
+                (Some((_, _, _, ti)), None) => write!(w, "/{}", ti[c] + 1),
+                (None, Some((_, (_, ni)))) => write!(w, "//{}", ni[c] + 1),
+                (None, None) => Ok(()),
+            }
+            .map_err(io)?;
+        }
+        k += s as usize;
+        w.write_all(b"\n").map_err(io)?;
+    }
+    w.flush().map_err(io)
+}
+
 fn strip_cr(l: &[u8]) -> &[u8] {
     l.strip_suffix(b"\r").unwrap_or(l)
 }
@@ -366,6 +491,27 @@ f 1 2 3\ng a b\nusemtl M\nf 1/1 3/-1 4/2/1\no x\nf 1//1 2//1 -1//-1\ng a b\nusem
         assert!(e.starts_with("m.obj:3: normal index -2 is out of range"), "{e}");
         let e = parse_obj(b"v 0 0 0\nf 1/x 1 1\n", "m.obj").unwrap_err().to_string();
         assert!(e.starts_with("m.obj:2: texture coordinate index \"1/x\""), "{e}");
+    }
+
+    #[test]
+    fn written_attributes_read_back() {
+        let m = crate::primitives::cube();
+        let nc: usize = m.to_polygons().indices.len();
+        // per-face UV squares: 4 distinct values per face, repeated across faces
+        let uv: Vec<f64> = (0..nc).flat_map(|c| [(c % 4 == 1 || c % 4 == 2) as u8 as f64, (c % 4 >= 2) as u8 as f64]).collect();
+        let names = vec!["".to_string(), "top".to_string()];
+        let ids = [0i64, 1, 1, 0, 0, 1];
+        let attrs = ObjAttributes { texcoords: Some((&uv, 2)), groups: Some((&ids, &names)), ..Default::default() };
+        let mut out = Vec::new();
+        write_obj(&m, &attrs, &mut out).unwrap();
+        let d = parse_obj(&out, "w.obj").unwrap();
+        assert_eq!(d.texcoords.len(), 4);
+        let back: Vec<f64> = d.corner_texcoords.iter().flat_map(|&i| d.texcoords[i as usize][..2].to_vec()).collect();
+        assert_eq!(back, uv);
+        let got: Vec<&str> = d.face_groups.iter().map(|&g| d.group_names[g as usize].as_str()).collect();
+        assert_eq!(got, vec!["", "top", "top", "", "", "top"]);
+        let e = write_obj(&m, &ObjAttributes { texcoords: Some((&uv[1..], 2)), ..Default::default() }, Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("texture coordinates"), "{e}");
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! File readers of the core exposed to `topomesh.io` (private helpers).
 
 use super::convert::{i64_array, vec3_array};
-use numpy::PyArray2;
+use super::mesh::PyMesh;
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -48,7 +49,38 @@ fn _read_obj<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Bound<'
     Ok(out.into_pyobject(py)?.into_any())
 }
 
+/// Writes ``mesh`` as OBJ to ``path`` with the core writer (GIL released):
+/// ``texcoords`` (C, k) and ``normals`` (C, 3) float64 per exported corner
+/// become deduplicated ``vt``/``vn`` tables and ``f v/vt/vn`` corners;
+/// ``groups`` / ``materials`` are ``(ids per face, names)`` written as ``g``
+/// / ``usemtl`` lines where they change.
+#[pyfunction]
+#[pyo3(signature = (mesh, path, texcoords = None, normals = None, groups = None, materials = None))]
+fn _write_obj(
+    py: Python<'_>,
+    mesh: PyRef<'_, PyMesh>,
+    path: std::path::PathBuf,
+    texcoords: Option<PyReadonlyArray2<'_, f64>>,
+    normals: Option<PyReadonlyArray2<'_, f64>>,
+    groups: Option<(PyReadonlyArray1<'_, i64>, Vec<String>)>,
+    materials: Option<(PyReadonlyArray1<'_, i64>, Vec<String>)>,
+) -> PyResult<()> {
+    let tk = texcoords.as_ref().map(|t| t.as_array().ncols());
+    let t = texcoords.as_ref().map(|t| t.as_slice()).transpose()?;
+    let n = normals.as_ref().map(|n| n.as_slice()).transpose()?;
+    let g = groups.as_ref().map(|(i, names)| i.as_slice().map(|i| (i, names.as_slice()))).transpose()?;
+    let mt = materials.as_ref().map(|(i, names)| i.as_slice().map(|i| (i, names.as_slice()))).transpose()?;
+    let attrs = crate::io::ObjAttributes { texcoords: t.zip(tk), normals: n, groups: g, materials: mt };
+    let m = &mesh.inner;
+    py.detach(|| {
+        let f = std::fs::File::create(&path).map_err(|e| crate::MeshError::Io(format!("{}: {e}", path.display())))?;
+        crate::io::write_obj(m, &attrs, f)
+    })
+    .map_err(super::err)
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
+    m.add_function(wrap_pyfunction!(_write_obj, m)?)?;
     Ok(())
 }
