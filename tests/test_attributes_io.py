@@ -247,11 +247,10 @@ def test_triangle_and_off_formats_warn_what_they_drop(tmp_path):
             m.save(tmp_path / f"m{ext}")
 
 
-def test_load_repair_warns_that_attributes_are_left_out(tmp_path):
+def test_load_repair_leaves_attributes_out(tmp_path):
     uv_cube().save(tmp_path / "u.obj")
-    with pytest.warns(GeometryWarning, match="repair=True renumbers"):
-        r = tm.load(tmp_path / "u.obj", repair=True)
-    assert not r.corner_attributes
+    r = tm.load(tmp_path / "u.obj", repair=True)  # repair renumbers and keeps no map
+    assert r.n_faces == 6 and not r.corner_attributes and not r.face_attributes
 
 
 # ------------------------------------------------------------------ trimesh

@@ -234,7 +234,8 @@ def _build(
     ``vertex`` (per point), ``face`` (per face) and ``corner`` (per corner)
     attributes follow them; those that are not numbers (vertex, corner),
     have the wrong length or are not finite are left out with a
-    :class:`GeometryWarning`, and ``repair=True`` leaves all out (with one)."""
+    :class:`GeometryWarning`; ``repair=True`` leaves all out (it renumbers
+    vertices and faces and keeps no map)."""
     points = np.asarray(points, dtype=np.float64)
     indices = np.asarray(indices, dtype=np.int64).ravel()
     sizes = np.asarray(sizes, dtype=np.int64).ravel()
@@ -246,15 +247,12 @@ def _build(
             new = np.cumsum(used) - 1
             keep = used
             points, indices = points[used], new[indices]
-    attrs = _checked(source, len(used) if keep is not None else len(points), len(sizes), len(indices), vertex, face, corner)
     if repair:
         from topomesh._repair import repair_flat
 
-        if any(attrs):
-            names = ", ".join(sorted({k for d in attrs for k in d}))
-            _warn(f"{source}: repair=True renumbers vertices and faces, so the attributes ({names}) are left out")
         kw = dict(tolerance=tolerance, close_boundaries=close_boundaries, boundaries=boundaries)
         return repair_flat(points, sizes, indices, **kw)[0]
+    attrs = _checked(source, len(used) if keep is not None else len(points), len(sizes), len(indices), vertex, face, corner)
     mesh = Mesh.from_flat(points, sizes, indices, close_boundaries=close_boundaries, boundaries=boundaries)
     v, f, c = attrs
     if keep is not None:
@@ -305,7 +303,7 @@ def from_trimesh(
     ``"color"``) a vertex attribute ``"color"`` of RGBA in [0, 1]. Arrays of
     the wrong length, non-numeric or non-finite vertex data are left out
     with a :class:`GeometryWarning`; ``repair=True`` leaves all attributes
-    out (with one)."""
+    out (it renumbers vertices and faces)."""
     faces = np.asarray(tm.faces, dtype=np.int64).reshape(-1, 3)
     vertex = dict(getattr(tm, "vertex_attributes", {}) or {})
     face = dict(getattr(tm, "face_attributes", {}) or {})
@@ -377,7 +375,7 @@ def from_pyvista(
     strip's entry repeated on the triangles it is split into (vertex and
     line cells, which give no face, are skipped). Arrays that do not fit are
     left out with a :class:`GeometryWarning`; ``repair=True`` leaves all
-    attributes out (with one)."""
+    attributes out (it renumbers vertices and faces)."""
     pv = _need("pyvista")
     poly = data
     if not isinstance(poly, pv.PolyData):

@@ -93,8 +93,8 @@ What each format keeps of :meth:`Mesh.with_attributes` and
 ``.off``, ``.stl``, ``.3mf``
     Positions and faces only; saving a mesh with data warns.
 
-``load(repair=True)`` renumbers vertices and faces, so it leaves a file's
-attributes out (with a :class:`GeometryWarning`).
+``load(repair=True)`` renumbers vertices and faces (and keeps no map), so
+it leaves a file's attributes and creases out.
 
 Saving is atomic: the file is written beside the target under a temporary
 name and renamed over it, so a failed save leaves any existing file as it was.
@@ -189,7 +189,8 @@ def load(
     repair : bool, default False
         Run the file's polygons through :func:`topomesh.repair`
         (merge coincident vertices, drop degenerate faces, orient) instead of
-        building them as they are.
+        building them as they are; the file's attributes and creases are
+        then left out.
 
     Raises
     ------
@@ -248,13 +249,6 @@ def load(
             from topomesh._repair import repair_flat
 
             mesh, _report = repair_flat(verts, sizes, idx, close_boundaries=close_boundaries, boundaries=boundaries)
-            if data:
-                warnings.warn(
-                    f"{name}: repair=True renumbers vertices and faces, so the file's attributes and creases "
-                    f"({data.names()}) are left out; load without repair, then call topomesh.repair",
-                    GeometryWarning,
-                    stacklevel=2,
-                )
             return mesh
         kw = dict(close_boundaries=close_boundaries, boundaries=boundaries)
         if twins is not None:
