@@ -392,3 +392,20 @@ def test_conversions_without_attributes_add_none():
     assert not t.vertex_attributes and not t.face_attributes
     r = tm.Mesh.from_pyvista(c.to_pyvista())
     assert not r.vertex_attributes and not r.face_attributes and not r.corner_attributes
+
+
+@pytest.mark.parametrize("ext", [".ply", ".npz"])
+def test_point_sphere_creases_and_face_data(tmp_path, ext):
+    m, _, _ = tm.cube().create_vertex([5.0, 5.0, 5.0])  # a point-sphere: a lone corner
+    F = len(m.face_sizes)
+    m = m.with_attributes(vertex={"a": np.arange(m.n_vertices * 1.0)}, face={"f": np.arange(F)})
+    m = m.with_creases(edge_sharpness=np.r_[np.zeros(m.n_edges - 1), 2.0], vertex_sharpness={8: 3.0})
+    m.save(tmp_path / f"p{ext}")
+    assert_same_data(m, tm.load(tmp_path / f"p{ext}"))
+
+
+def test_ply_names_that_cannot_be_properties(tmp_path):
+    c = tm.cube().with_attributes(vertex={"has space": np.zeros(8), "x": np.ones(8), "ok": np.arange(8.0)})
+    with pytest.warns(GeometryWarning, match=r"'has space' .*; vertex attribute 'x' \(its name"):
+        c.save(tmp_path / "n.ply")
+    assert list(tm.load(tmp_path / "n.ply").vertex_attributes) == ["ok"]
