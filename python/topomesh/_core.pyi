@@ -14,6 +14,7 @@ from topomesh.correspondence import Correspondence
 
 __all__ = [
     "_read_obj",
+    "_write_obj",
     "IFS",
     "Mesh",
     "GeometryWarning",
@@ -460,6 +461,14 @@ def ifs_koch_reference() -> npt.NDArray[np.float64]: ...
 def ifs_gasket_reference() -> npt.NDArray[np.float64]: ...
 def ifs_koch_standard() -> IFS: ...
 def menger_sponge(level: int) -> Mesh: ...
+def _write_obj(
+    mesh: Mesh,
+    path: str | PathLike[str],
+    texcoords: npt.NDArray[np.float64] | None = None,
+    normals: npt.NDArray[np.float64] | None = None,
+    groups: tuple[npt.NDArray[np.int64], list[str]] | None = None,
+    materials: tuple[npt.NDArray[np.int64], list[str]] | None = None,
+) -> None: ...
 def _read_obj(
     path: str | PathLike[str],
-) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64], int, int]: ...
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64], int, int, dict[str, Any]]: ...

@@ -45,6 +45,57 @@ Formats
     vertices that coincide (after rounding to float32 for STL).
     See :func:`topomesh.printing.printable` for a full check.
 
+Attributes and creases
+----------------------
+What each format keeps of :meth:`Mesh.with_attributes` and
+:meth:`Mesh.with_creases` (every format also loads what it keeps):
+
+``.npz``
+    Everything: optional entries ``vertex_attr__<name>``,
+    ``face_attr__<name>`` (any dtype but object, which needs pickle: left
+    out with a :class:`GeometryWarning`), ``corner_attr__<name>`` (per
+    corner), ``corner_sharpness`` (the sharpness of the edge leaving each
+    corner: edge ids are renumbered by a rebuild, corners are not) and
+    ``vertex_sharpness``. ``format_version`` stays 1: the entries are
+    optional, and older readers ignore them.
+``.ply``
+    Numeric data as properties, named for other readers: a vertex
+    attribute becomes float64 vertex properties ``<name>`` (k = 1) or
+    ``<name>_0 .. <name>_{k-1}``, except ``"color"``/``"colour"`` with 3 or
+    4 columns (``red green blue [alpha]``, still float64: the values are
+    kept as they are) and ``"normal"``/``"normals"`` with 3 (``nx ny nz``);
+    a face attribute face properties of its dtype (``<name>`` or
+    ``<name>_j`` over its flattened trailing axes; int64 as PLY's int when it
+    fits, else double when exact; bool as uchar); a corner attribute one
+    per-face list of float64 with its k values per corner interleaved,
+    ``texcoord`` for a 2-column ``"uv"`` (the name MeshLab reads); creases a
+    vertex ``sharpness`` property and a ``corner_sharpness`` face list. A
+    ``comment topomesh-attribute <element> <name> <dtype> <shape>
+    <properties>`` header line per attribute makes the reading exact (names,
+    dtypes, shapes). Strings and names that are no PLY property name are
+    left out with a :class:`GeometryWarning`. A PLY from another program
+    gives ``red green blue [alpha]`` as ``"color"``, ``nx ny nz`` as
+    ``"normal"``, its other numeric vertex and face properties under their
+    names, a ``texcoord`` list of 2 values per corner as corner ``"uv"`` and
+    other lists of one number per corner as corner attributes.
+``.obj``
+    ``vt`` and ``vn`` with the corners' ``f v/vt/vn`` indices become the
+    corner attributes ``"uv"`` (k = the most components a ``vt`` has) and
+    ``"normal"``, read as (table, index) so seams stay exactly as written
+    (left out when some faces have no ``vt``/``vn``); ``g``/``o`` and
+    ``usemtl`` become the face attributes ``"group"`` and ``"material"``:
+    NumPy string arrays of each face's name (several ``g`` names joined by a
+    space; ``""`` before the first statement). :func:`save` writes them
+    back: a ``vt``/``vn`` table of the distinct values (corners that share a
+    value share a row, so seams stay seams) and a ``g``/``usemtl`` line
+    wherever the name changes; other attributes and creases are left out
+    with a :class:`GeometryWarning`.
+``.off``, ``.stl``, ``.3mf``
+    Positions and faces only; saving a mesh with data warns.
+
+``load(repair=True)`` renumbers vertices and faces (and keeps no map), so
+it leaves a file's attributes and creases out.
+
 Saving is atomic: the file is written beside the target under a temporary
 name and renamed over it, so a failed save leaves any existing file as it was.
 Every failure, reading or writing, is a :class:`MeshError` naming the path.
@@ -61,6 +112,18 @@ from typing import TYPE_CHECKING, Callable, Union
 import numpy as np
 
 from topomesh._core import GeometryWarning, Mesh, MeshError, _read_obj
+from topomesh._fileattrs import (
+    _Data,
+    _npz_arrays,
+    _npz_data,
+    _obj_data,
+    _obj_fields,
+    _ply_data,
+    _ply_fields,
+    _warn_left_out,
+    _write_obj,
+)
+from topomesh._ply import _read_ply, _read_ply_uniform, _write_ply  # noqa: F401  (tests patch io._write_ply)
 
 if TYPE_CHECKING:
     PathLike = Union[str, os.PathLike]
@@ -127,7 +190,8 @@ def load(
     repair : bool, default False
         Run the file's polygons through :func:`topomesh.repair`
         (merge coincident vertices, drop degenerate faces, orient) instead of
-        building them as they are.
+        building them as they are; the file's attributes and creases are
+        then left out.
 
     Raises
     ------
@@ -148,19 +212,22 @@ def load(
     if not Path(path).is_file():
         raise MeshError(f"{name}: no such file")
     twins = None
+    data = _Data()
     try:
         if kind == ".npz":
-            verts, sizes, idx, twins = _read_npz(path)
+            verts, sizes, idx, twins, data = _read_npz(path)
         elif kind == ".ply":
-            verts, sizes, idx, twins = _read_ply(path)
+            verts, sizes, idx, twins, props = _read_ply(path)
+            data = _ply_data(name, *props, len(idx))
         elif kind == ".obj":
-            verts, sizes, idx, n_lines, n_points = _read_obj(name)
+            verts, sizes, idx, n_lines, n_points, extras = _read_obj(name)
             if n_lines or n_points:
                 warnings.warn(
                     f"{name}: skipped {n_lines} polyline (l) and {n_points} point (p) elements: they are not faces",
                     GeometryWarning,
                     stacklevel=2,
                 )
+            data = _obj_data(name, extras)
         elif kind == ".stl":
             from topomesh.stl import read_stl  # welds exact duplicates, as STL repeats every corner
 
@@ -186,8 +253,10 @@ def load(
             return mesh
         kw = dict(close_boundaries=close_boundaries, boundaries=boundaries)
         if twins is not None:
-            return Mesh.from_flat(verts, sizes, idx, twins=twins, **kw)
-        return Mesh.from_flat(verts, sizes, idx, allow_multi_edges=allow_multi_edges, **kw)
+            mesh = Mesh.from_flat(verts, sizes, idx, twins=twins, **kw)
+        else:
+            mesh = Mesh.from_flat(verts, sizes, idx, allow_multi_edges=allow_multi_edges, **kw)
+        return data.attach(mesh)
     except MeshError as e:
         raise MeshError(f"{name}: {e}") from None
 
@@ -227,8 +296,10 @@ def save(mesh: Mesh, path: PathLike) -> None:
             "differently (it would not load back equal); save it as .npz or .ply, which store corner_twins"
         )
     if kind == ".npz":
+        _npz_arrays(name, mesh)  # warns (naming the path) about what it leaves out
         _atomic_write(path, lambda tmp: _write_npz(tmp, mesh))
     elif kind == ".ply":
+        _ply_fields(name, mesh)
         _atomic_write(path, lambda tmp: _write_ply(tmp, mesh))
     elif kind in TRIANGLE_FORMATS:
         write3 = _threemf_exporter(name) if kind == ".3mf" else None
@@ -238,7 +309,17 @@ def save(mesh: Mesh, path: PathLike) -> None:
         else:
             _atomic_write(path, lambda tmp: _write_3mf(tmp, write3, verts, tris))
         _warn_unprintable(name, kind, mesh, verts, sides, pinched)
+        if not _Data.of(mesh).empty():
+            _warn_left_out(name, f"{kind[1:].upper()} stores triangles only", _Data.of(mesh).names())
+    elif kind == ".obj":
+        uv, normal, group, material = _obj_fields(name, mesh)
+        if uv is None and normal is None and group is None and material is None:
+            _atomic_write(path, lambda tmp: mesh._write_text(tmp, "obj"))
+        else:
+            _atomic_write(path, lambda tmp: _write_obj(tmp, mesh, uv, normal, group, material))
     else:
+        if not _Data.of(mesh).empty():
+            _warn_left_out(name, "OFF stores positions and polygons only", _Data.of(mesh).names())
         _atomic_write(path, lambda tmp: mesh._write_text(tmp, kind[1:]))
 
 
@@ -283,6 +364,7 @@ def _atomic_write(path: PathLike, write: Callable[[str], None]) -> None:
 
 
 def _write_npz(tmp: str, mesh: Mesh) -> None:
+    extra = _npz_arrays(None, mesh)
     with open(tmp, "wb") as f:  # a file object: savez would append ".npz" to a name
         np.savez(
             f,
@@ -291,6 +373,7 @@ def _write_npz(tmp: str, mesh: Mesh) -> None:
             face_sizes=mesh.face_sizes,
             face_indices=mesh.face_indices,
             corner_twins=mesh.corner_twins,
+            **extra,
         )
 
 
@@ -302,108 +385,7 @@ def _read_npz(path: PathLike):
         version = int(z["format_version"])
         if version > NPZ_VERSION:
             raise MeshError(f"{os.fspath(path)}: .npz format version {version} is newer than this topomesh reads ({NPZ_VERSION})")
-        return tuple(z[k] for k in _NPZ_KEYS)
-
-
-_PLY_INT = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "i2", "int16": "i2",
-             "ushort": "u2", "uint16": "u2", "int": "i4", "int32": "i4", "uint": "u4", "uint32": "u4"}
-
-
-def _write_ply(tmp: str, mesh: Mesh) -> None:
-    """Binary little-endian PLY, the face records laid out with NumPy (plyfile
-    writes list properties one face at a time: 25 s for 1M faces)."""
-    verts, sizes = mesh.vertices, mesh.face_sizes
-    idx, twins = mesh.face_indices, mesh.corner_twins
-    if len(verts) >= 2**31 or len(idx) >= 2**31:
-        raise MeshError("PLY stores int32 indices: the mesh is too large (use .npz)")
-    wide = len(sizes) > 0 and int(sizes.max()) > 255
-    count, cs = ("uint", 4) if wide else ("uchar", 1)
-    header = (
-        "ply\nformat binary_little_endian 1.0\n"
-        "comment written by topomesh; corner_twins: the twin corner of each corner, -1 at a boundary side, -2 at a point-sphere\n"
-        f"element vertex {len(verts)}\nproperty double x\nproperty double y\nproperty double z\n"
-        f"element face {len(sizes)}\nproperty list {count} int vertex_indices\nproperty list {count} int corner_twins\n"
-        "end_header\n"
-    ).encode("ascii")
-    rec = 2 * cs + 8 * sizes
-    start = np.zeros(len(sizes), dtype=np.int64)
-    np.cumsum(rec[:-1], out=start[1:])
-    buf = np.empty(int(rec.sum()), dtype=np.uint8)
-    cnt = sizes.astype("<u4" if wide else "u1").view(np.uint8).reshape(-1, cs)
-    lanes = np.arange(cs)
-    buf[(start[:, None] + lanes)] = cnt
-    buf[(start + cs + 4 * sizes)[:, None] + lanes] = cnt
-    face_start = np.repeat(start, sizes)
-    local = np.arange(len(idx)) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    four = np.arange(4)
-    dest = face_start + cs + 4 * local
-    buf[dest[:, None] + four] = idx.astype("<i4").view(np.uint8).reshape(-1, 4)
-    dest += cs + 4 * np.repeat(sizes, sizes)
-    buf[dest[:, None] + four] = twins.astype("<i4").view(np.uint8).reshape(-1, 4)
-    with open(tmp, "wb") as f:
-        f.write(header)
-        f.write(np.ascontiguousarray(verts, dtype="<f8").tobytes())
-        f.write(buf.tobytes())
-
-
-def _read_ply(path: PathLike):
-    fast = _read_ply_uniform(path)
-    if fast is not None:
-        return fast
-    from plyfile import PlyData
-
-    ply = PlyData.read(os.fspath(path))
-    v = ply["vertex"]
-    verts = np.column_stack([np.asarray(v[c], dtype=np.float64) for c in ("x", "y", "z")]).reshape(-1, 3)
-    face = ply["face"]
-    names = face.data.dtype.names or ()
-    name = "vertex_indices" if "vertex_indices" in names else "vertex_index"
-    lists = face[name]
-    sizes = np.fromiter((len(x) for x in lists), dtype=np.int64, count=len(lists))
-    flat = lambda ls: np.concatenate(list(ls)).astype(np.int64) if len(ls) else np.zeros(0, np.int64)  # noqa: E731
-    twins = flat(face["corner_twins"]) if "corner_twins" in names else None
-    return verts, sizes, flat(lists), twins
-
-
-def _read_ply_uniform(path: PathLike):
-    """The layout :func:`_write_ply` writes, when every face has one size:
-    read with one ``np.frombuffer``. ``None`` for anything else (plyfile
-    reads it, one face at a time)."""
-    with open(path, "rb") as f:
-        data = f.read()
-    end = data.find(b"end_header\n")
-    if not data.startswith(b"ply\n") or end < 0:
-        return None
-    lines = [ln.split() for ln in data[:end].decode("ascii", "replace").splitlines()[1:]]
-    lines = [ln for ln in lines if ln and ln[0] != "comment"]
-    try:
-        (fmt, vel, x, y, z, fel, l1, l2) = lines
-        nv, nf = int(vel[2]), int(fel[2])
-        ok = (
-            fmt[1:] == ["binary_little_endian", "1.0"]
-            and vel[:2] == ["element", "vertex"] and fel[:2] == ["element", "face"]
-            and [x, y, z] == [["property", "double", c] for c in "xyz"]
-            and l1[:2] == l2[:2] == ["property", "list"] and l1[2] == l2[2] and l1[2] in _PLY_INT
-            and l1[3] == l2[3] == "int" and l1[4] == "vertex_indices" and l2[4] == "corner_twins"
-        )
-    except (ValueError, IndexError):
-        return None
-    if not ok:
-        return None
-    body = end + len(b"end_header\n")
-    cdt = np.dtype(_PLY_INT[l1[2]]).newbyteorder("<")
-    fbytes = len(data) - body - 24 * nv
-    if nf == 0 or fbytes < 0:
-        return None
-    k = int(np.frombuffer(data, cdt, 1, body + 24 * nv)[0])
-    if k <= 0 or fbytes != nf * (2 * cdt.itemsize + 8 * k):
-        return None
-    rec = np.dtype([("n1", cdt), ("idx", "<i4", (k,)), ("n2", cdt), ("tw", "<i4", (k,))])
-    faces = np.frombuffer(data, rec, nf, body + 24 * nv)
-    if not ((faces["n1"] == k).all() and (faces["n2"] == k).all()):
-        return None
-    verts = np.frombuffer(data, "<f8", 3 * nv, body).reshape(nv, 3).astype(np.float64)
-    return verts, np.full(nf, k, np.int64), faces["idx"].reshape(-1).astype(np.int64), faces["tw"].reshape(-1).astype(np.int64)
+        return tuple(z[k] for k in _NPZ_KEYS) + (_npz_data(z),)
 
 
 # ------------------------------------------------------------- STL and 3MF

@@ -5,24 +5,30 @@
 //! re-indexes positions per model (and per distinct `v/vt/vn` triple), so a
 //! vertex shared by two groups comes back twice and the file's numbering is
 //! lost; welding the copies back by position would also merge vertices that
-//! the file keeps apart. The polygon topology is all topomesh reads, so this
-//! reader parses `v` and `f` and skips the rest.
+//! the file keeps apart. This reader keeps the `v` numbering and gives the
+//! face-varying data beside it: the `vt` and `vn` tables with each corner's
+//! index into them (so UV seams stay exactly as written), and each face's
+//! group (`g`/`o`) and material (`usemtl`).
 //!
 //! Read as Blender, Maya, trimesh and pyvista write it: `v x y z [w | r g b]`,
-//! `f` corners as `v`, `v/vt`, `v/vt/vn` or `v//vn` (only `v` is used, so `vt`
-//! and `vn` may have their own counts), negative (relative) indices, comments
-//! (`#` to the end of the line), `\` line continuations, CRLF. `vt`, `vn`,
-//! `vp`, `g`, `o`, `s`, `usemtl`, `mtllib` and other statements are ignored;
-//! `l` (polyline) and `p` (point) elements are not faces: they are skipped
-//! and counted. Errors name the file and the line (1-based, where the
-//! statement starts) and the index as written in the file.
+//! `vt u [v [w]]`, `vn x y z`, `f` corners as `v`, `v/vt`, `v/vt/vn` or
+//! `v//vn` (the three have their own counts), negative (relative) indices,
+//! comments (`#` to the end of the line), `\` line continuations, CRLF.
+//! `vp`, `s`, `mtllib` and other statements are ignored; `l` (polyline) and
+//! `p` (point) elements are not faces: they are skipped and counted. Errors
+//! name the file and the line (1-based, where the statement starts) and the
+//! index as written in the file.
 
 use crate::error::{MeshError, Result};
+use crate::mesh::Mesh;
 use glam::DVec3;
+use std::collections::HashMap;
+use std::io::Write;
 use std::path::Path;
 
 /// What [`read_obj`] returns: positions in file order, faces as sizes and
-/// 0-based flat vertex indices, and the number of skipped `l` / `p` elements.
+/// 0-based flat vertex indices, and the number of skipped `l` / `p` elements;
+/// then the face-varying data.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ObjData {
     pub positions: Vec<DVec3>,
@@ -30,6 +36,95 @@ pub struct ObjData {
     pub indices: Vec<i64>,
     pub n_polylines: usize,
     pub n_points: usize,
+    /// `vt` rows (missing components 0) and the most components any had (1 to 3).
+    pub texcoords: Vec<[f64; 3]>,
+    pub texcoord_dim: usize,
+    /// Per corner (aligned with `indices`), 0-based `vt` index or -1 where the
+    /// corner has none; empty when no corner has one.
+    pub corner_texcoords: Vec<i64>,
+    pub normals: Vec<DVec3>,
+    /// Per corner `vn` index or -1, as `corner_texcoords`.
+    pub corner_normals: Vec<i64>,
+    /// Per face, an index into `group_names` (the last `g` or `o` before the
+    /// face; names of a `g` with several joined by a space; "" before any);
+    /// empty when the file has no `g`/`o`.
+    pub face_groups: Vec<u32>,
+    pub group_names: Vec<String>,
+    /// Per face, an index into `material_names` (the last `usemtl`; "" before
+    /// any); empty when the file has no `usemtl`.
+    pub face_materials: Vec<u32>,
+    pub material_names: Vec<String>,
+}
+
+/// Names met so far, numbered in order of first use, and the current one.
+#[derive(Default)]
+struct Names {
+    names: Vec<String>,
+    ids: std::collections::HashMap<String, u32>,
+    current: u32,
+    seen: bool,
+}
+
+impl Names {
+    fn set(&mut self, name: String) {
+        if !self.seen {
+            self.seen = true;
+            self.names.push(String::new()); // id 0: faces before the first statement
+            self.ids.insert(String::new(), 0);
+        }
+        let next = self.names.len() as u32;
+        self.current = *self.ids.entry(name.clone()).or_insert_with(|| next);
+        if self.current == next {
+            self.names.push(name);
+        }
+    }
+}
+
+/// Per-corner references into a side table (`vt` or `vn`), with the
+/// forward references to check once the table is complete.
+#[derive(Default)]
+struct CornerRefs {
+    refs: Vec<i64>,
+    forward: Vec<(usize, i64)>,
+}
+
+impl CornerRefs {
+    /// Records the reference `t` (as written; None for an empty field) of the corner `corner`.
+    fn push(&mut self, corner: usize, t: Option<i64>, n: i64, lineno: usize, what: &str) -> std::result::Result<(), String> {
+        let idx = match t {
+            None => -1,
+            Some(0) => return Err(format!("{what} index 0 is invalid (OBJ indices start at 1, or count back from -1)")),
+            Some(k) if k < 0 => {
+                if k < -n {
+                    return Err(format!("{what} index {k} is out of range ({n} {what} rows before this line)"));
+                }
+                n + k
+            }
+            Some(k) => {
+                if k > n {
+                    self.forward.push((lineno, k));
+                }
+                k - 1
+            }
+        };
+        if idx >= 0 && self.refs.len() < corner {
+            self.refs.resize(corner, -1); // the first reference: earlier corners had none
+        }
+        if idx >= 0 || !self.refs.is_empty() {
+            self.refs.push(idx);
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, n_corners: usize, n: usize, name: &str, what: &str) -> Result<Vec<i64>> {
+        if let Some(&(lineno, k)) = self.forward.iter().find(|&&(_, k)| k as usize > n) {
+            return Err(MeshError::InvalidArgument(format!("{name}:{lineno}: {what} index {k} is out of range ({n} {what} rows)")));
+        }
+        if !self.refs.is_empty() {
+            self.refs.resize(n_corners, -1);
+        }
+        Ok(std::mem::take(&mut self.refs))
+    }
 }
 
 /// Reads the OBJ file at `path` (see the module docs).
@@ -47,6 +142,9 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
     out.indices.reserve(bytes.len() / 20);
     // indices beyond the vertices read so far (forward references): checked at the end
     let mut forward: Vec<(usize, i64)> = Vec::new();
+    let (mut vt, mut vn) = (CornerRefs::default(), CornerRefs::default());
+    let (mut groups, mut materials) = (Names::default(), Names::default());
+    let (mut face_groups, mut face_materials) = (Vec::new(), Vec::new());
     let mut joined: Vec<u8> = Vec::new();
     let mut lines = bytes.split(|&b| b == b'\n').enumerate();
     while let Some((i, raw)) = lines.next() {
@@ -84,11 +182,51 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
                 }
                 out.positions.push(DVec3::from_array(c));
             }
+            b"vt" => {
+                let mut c = [0.0f64; 3];
+                let mut k = 0;
+                for t in toks.take(3) {
+                    c[k] = parse_f64(t).ok_or_else(|| err(format!("texture coordinate {:?} is not a number", lossy(t))))?;
+                    k += 1;
+                }
+                if k == 0 {
+                    return Err(err("texture coordinate (vt) has no components".into()));
+                }
+                out.texcoord_dim = out.texcoord_dim.max(k);
+                out.texcoords.push(c);
+            }
+            b"vn" => {
+                let mut c = [0.0f64; 3];
+                for (k, slot) in c.iter_mut().enumerate() {
+                    let t = toks.next().ok_or_else(|| err(format!("normal has {k} coordinates, needs 3")))?;
+                    *slot = parse_f64(t).ok_or_else(|| err(format!("normal coordinate {:?} is not a number", lossy(t))))?;
+                }
+                out.normals.push(DVec3::from_array(c));
+            }
+            b"g" | b"o" => {
+                let names: Vec<String> = toks.map(lossy).collect();
+                groups.set(names.join(" "));
+            }
+            b"usemtl" => {
+                let names: Vec<String> = toks.map(lossy).collect();
+                materials.set(names.join(" "));
+            }
             b"f" => {
                 let nv = out.positions.len() as i64;
+                let (nt, nn) = (out.texcoords.len() as i64, out.normals.len() as i64);
                 let before = out.indices.len();
                 for t in toks {
-                    let v = t.split(|&b| b == b'/').next().unwrap_or(t);
+                    let mut fields = t.split(|&b| b == b'/');
+                    let v = fields.next().unwrap_or(t);
+                    let side = |field: Option<&[u8]>, refs: &mut CornerRefs, n: i64, what: &str| -> Result<()> {
+                        let f = match field {
+                            None | Some(b"") => None,
+                            Some(f) => Some(parse_i64(f).ok_or_else(|| err(format!("{what} index {:?} is not an integer", lossy(t))))?),
+                        };
+                        refs.push(out.indices.len(), f, n, lineno, what).map_err(err)
+                    };
+                    side(fields.next(), &mut vt, nt, "texture coordinate")?;
+                    side(fields.next(), &mut vn, nn, "normal")?;
                     let k = parse_i64(v).ok_or_else(|| err(format!("face index {:?} is not an integer", lossy(t))))?;
                     let idx = match k {
                         0 => return Err(err("face index 0 is invalid (OBJ indices start at 1, or count back from -1)".into())),
@@ -113,6 +251,14 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
                     return Err(err("face has no vertices".into()));
                 }
                 out.sizes.push((out.indices.len() - before) as i64);
+                if groups.seen {
+                    face_groups.resize(out.sizes.len() - 1, 0);
+                    face_groups.push(groups.current);
+                }
+                if materials.seen {
+                    face_materials.resize(out.sizes.len() - 1, 0);
+                    face_materials.push(materials.current);
+                }
             }
             b"l" => out.n_polylines += 1,
             b"p" => out.n_points += 1,
@@ -125,7 +271,143 @@ pub fn parse_obj(bytes: &[u8], name: &str) -> Result<ObjData> {
             "{name}:{lineno}: face index {k} is out of range ({nv} vertices)"
         )));
     }
+    let nc = out.indices.len();
+    out.corner_texcoords = vt.finish(nc, out.texcoords.len(), name, "texture coordinate")?;
+    out.corner_normals = vn.finish(nc, out.normals.len(), name, "normal")?;
+    let nf = out.sizes.len();
+    if groups.seen {
+        face_groups.resize(nf, 0);
+        out.face_groups = face_groups;
+        out.group_names = groups.names;
+    }
+    if materials.seen {
+        face_materials.resize(nf, 0);
+        out.face_materials = face_materials;
+        out.material_names = materials.names;
+    }
     Ok(out)
+}
+
+/// Face-varying data for [`write_obj`]: per-corner rows (aligned with the
+/// exported corners) of `vt` (k components, 1 to 3) and `vn` (3), and per
+/// exported face an index into a list of group and of material names.
+#[derive(Default)]
+pub struct ObjAttributes<'a> {
+    pub texcoords: Option<(&'a [f64], usize)>,
+    pub normals: Option<&'a [f64]>,
+    pub groups: Option<(&'a [i64], &'a [String])>,
+    pub materials: Option<(&'a [i64], &'a [String])>,
+}
+
+/// The distinct rows of per-corner values in order of first use and each
+/// corner's row (bit equality, with -0.0 taken as 0.0): corners that share a
+/// value share a row, so a seam stays a seam.
+fn distinct_rows(values: &[f64], k: usize) -> (Vec<usize>, Vec<u32>) {
+    let mut first: Vec<usize> = Vec::new();
+    let mut ids: HashMap<[u64; 3], u32> = HashMap::with_capacity(values.len() / k.max(1) / 2);
+    let index = values
+        .chunks_exact(k)
+        .enumerate()
+        .map(|(c, row)| {
+            let mut key = [0u64; 3];
+            for (j, &x) in row.iter().enumerate() {
+                key[j] = (x + 0.0).to_bits();
+            }
+            *ids.entry(key).or_insert_with(|| {
+                first.push(c);
+                (first.len() - 1) as u32
+            })
+        })
+        .collect();
+    (first, index)
+}
+
+/// Writes the exported polygons of `m` (holes left out) as OBJ with `vt`/`vn`
+/// tables of the distinct per-corner values, `f v/vt/vn` corners, and a `g`
+/// or `usemtl` line wherever a face's name differs from the previous face's.
+/// Floats as the shortest decimal that reads back to the same bits.
+pub fn write_obj<W: Write>(m: &Mesh, attrs: &ObjAttributes<'_>, out: W) -> Result<()> {
+    let io = |e: std::io::Error| MeshError::Io(e.to_string());
+    let p = m.to_polygons();
+    let (nc, nf) = (p.indices.len(), p.sizes.len());
+    let bad = |what: &str, n: usize, want: usize| {
+        MeshError::InvalidArgument(format!("write_obj: {what} has {n} values, expected {want}"))
+    };
+    if let Some((t, k)) = attrs.texcoords {
+        if !(1..=3).contains(&k) || t.len() != nc * k {
+            return Err(bad("the texture coordinates", t.len(), nc * k.clamp(1, 3)));
+        }
+    }
+    if let Some(n) = attrs.normals {
+        if n.len() != nc * 3 {
+            return Err(bad("the normals", n.len(), nc * 3));
+        }
+    }
+    for (what, names) in [("group", attrs.groups), ("material", attrs.materials)] {
+        if let Some((ids, list)) = names {
+            if ids.len() != nf {
+                return Err(bad(&format!("the {what} ids"), ids.len(), nf));
+            }
+            if let Some(&i) = ids.iter().find(|&&i| i < 0 || i as usize >= list.len()) {
+                return Err(MeshError::InvalidArgument(format!("write_obj: {what} id {i} outside the {} names", list.len())));
+            }
+        }
+    }
+    let mut w = std::io::BufWriter::with_capacity(1 << 20, out);
+    writeln!(w, "# written by topomesh").map_err(io)?;
+    for q in m.positions() {
+        writeln!(w, "v {:?} {:?} {:?}", q.x, q.y, q.z).map_err(io)?;
+    }
+    let vt = attrs.texcoords.map(|(t, k)| {
+        let (first, index) = distinct_rows(t, k);
+        (t, k, first, index)
+    });
+    if let Some((t, k, first, _)) = &vt {
+        for &c in first {
+            w.write_all(b"vt").map_err(io)?;
+            for x in &t[c * k..(c + 1) * k] {
+                write!(w, " {x:?}").map_err(io)?;
+            }
+            w.write_all(b"\n").map_err(io)?;
+        }
+    }
+    let vn = attrs.normals.map(|n| (n, distinct_rows(n, 3)));
+    if let Some((n, (first, _))) = &vn {
+        for &c in first {
+            writeln!(w, "vn {:?} {:?} {:?}", n[3 * c], n[3 * c + 1], n[3 * c + 2]).map_err(io)?;
+        }
+    }
+    let (mut group, mut material) = (None, None);
+    let mut k = 0;
+    for (f, &s) in p.sizes.iter().enumerate() {
+        for (key, names, current) in [("g", attrs.groups, &mut group), ("usemtl", attrs.materials, &mut material)] {
+            if let Some((ids, list)) = names {
+                if *current != Some(ids[f]) {
+                    *current = Some(ids[f]);
+                    let name = &list[ids[f] as usize];
+                    if name.is_empty() {
+                        writeln!(w, "{key}").map_err(io)?;
+                    } else {
+                        writeln!(w, "{key} {name}").map_err(io)?;
+                    }
+                }
+            }
+        }
+        w.write_all(b"f").map_err(io)?;
+        for c in k..k + s as usize {
+            write!(w, " {}", p.indices[c] + 1).map_err(io)?;
+            match (&vt, &vn) {
+                (Some((_, _, _, ti)), Some((_, (_, ni)))) => write!(w, "/{}/{}", ti[c] + 1, ni[c] + 1),
+                (Some((_, _, _, ti)), None) => write!(w, "/{}", ti[c] + 1),
+                (None, Some((_, (_, ni)))) => write!(w, "//{}", ni[c] + 1),
+                (None, None) => Ok(()),
+            }
+            .map_err(io)?;
+        }
+        k += s as usize;
+        w.write_all(b"\n").map_err(io)?;
+    }
+    w.flush().map_err(io)
 }
 
 fn strip_cr(l: &[u8]) -> &[u8] {
@@ -186,6 +468,50 @@ mod tests {
         assert!(e.starts_with("m.obj:1: vertex coordinate \"x\""), "{e}");
         assert_eq!(parse_i64(b"-9223372036854775808"), Some(i64::MIN));
         assert_eq!(parse_i64(b"9223372036854775808"), None);
+    }
+
+    #[test]
+    fn texcoords_normals_groups_and_materials_per_corner_and_face() {
+        let text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1 0.5\nvn 0 0 1\n\
+f 1 2 3\ng a b\nusemtl M\nf 1/1 3/-1 4/2/1\no x\nf 1//1 2//1 -1//-1\ng a b\nusemtl N\nf 2/3 3/3 4/3\n";
+        let d = parse_obj(text, "m.obj").unwrap();
+        assert_eq!(d.texcoord_dim, 3);
+        assert_eq!(d.texcoords[2], [1.0, 1.0, 0.5]);
+        assert_eq!(d.corner_texcoords, vec![-1, -1, -1, 0, 2, 1, -1, -1, -1, 2, 2, 2]);
+        assert_eq!(d.corner_normals, vec![-1, -1, -1, -1, -1, 0, 0, 0, 0, -1, -1, -1]);
+        assert_eq!(d.group_names, vec!["", "a b", "x"]);
+        assert_eq!(d.face_groups, vec![0, 1, 2, 1]);
+        assert_eq!(d.material_names, vec!["", "M", "N"]);
+        assert_eq!(d.face_materials, vec![0, 1, 1, 2]);
+        let plain = parse_obj(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "m.obj").unwrap();
+        assert!(plain.corner_texcoords.is_empty() && plain.face_groups.is_empty() && plain.face_materials.is_empty());
+        let e = parse_obj(b"v 0 0 0\nvt 0 0\nf 1/2 1/1 1/1\n", "m.obj").unwrap_err().to_string();
+        assert_eq!(e, "m.obj:3: texture coordinate index 2 is out of range (1 texture coordinate rows)");
+        let e = parse_obj(b"v 0 0 0\nvn 0 0 1\nf 1//-2 1 1\n", "m.obj").unwrap_err().to_string();
+        assert!(e.starts_with("m.obj:3: normal index -2 is out of range"), "{e}");
+        let e = parse_obj(b"v 0 0 0\nf 1/x 1 1\n", "m.obj").unwrap_err().to_string();
+        assert!(e.starts_with("m.obj:2: texture coordinate index \"1/x\""), "{e}");
+    }
+
+    #[test]
+    fn written_attributes_read_back() {
+        let m = crate::primitives::cube();
+        let nc: usize = m.to_polygons().indices.len();
+        // per-face UV squares: 4 distinct values per face, repeated across faces
+        let uv: Vec<f64> = (0..nc).flat_map(|c| [(c % 4 == 1 || c % 4 == 2) as u8 as f64, (c % 4 >= 2) as u8 as f64]).collect();
+        let names = vec!["".to_string(), "top".to_string()];
+        let ids = [0i64, 1, 1, 0, 0, 1];
+        let attrs = ObjAttributes { texcoords: Some((&uv, 2)), groups: Some((&ids, &names)), ..Default::default() };
+        let mut out = Vec::new();
+        write_obj(&m, &attrs, &mut out).unwrap();
+        let d = parse_obj(&out, "w.obj").unwrap();
+        assert_eq!(d.texcoords.len(), 4);
+        let back: Vec<f64> = d.corner_texcoords.iter().flat_map(|&i| d.texcoords[i as usize][..2].to_vec()).collect();
+        assert_eq!(back, uv);
+        let got: Vec<&str> = d.face_groups.iter().map(|&g| d.group_names[g as usize].as_str()).collect();
+        assert_eq!(got, vec!["", "top", "top", "", "", "top"]);
+        let e = write_obj(&m, &ObjAttributes { texcoords: Some((&uv[1..], 2)), ..Default::default() }, Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("texture coordinates"), "{e}");
     }
 
     #[test]

@@ -1,25 +1,86 @@
 //! File readers of the core exposed to `topomesh.io` (private helpers).
 
 use super::convert::{i64_array, vec3_array};
+use super::mesh::PyMesh;
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 /// Reads an OBJ file with the core reader (GIL released). Returns
 /// ``(vertices (V, 3) float64, face_sizes (F,) int64, face_indices int64,
-/// n_polylines, n_points)``; indices are 0-based in the file's ``v`` order.
+/// n_polylines, n_points, extras)``; indices are 0-based in the file's ``v``
+/// order. ``extras`` holds what the file has of: ``"texcoords"`` ((T, k)
+/// float64, k the most components a ``vt`` had) with ``"corner_texcoords"``
+/// (per corner, -1 where none), ``"normals"`` (N, 3) with
+/// ``"corner_normals"``, ``"face_groups"`` (per face, int64) with
+/// ``"group_names"`` (list of str), ``"face_materials"`` with
+/// ``"material_names"``.
 #[pyfunction]
 fn _read_obj<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Bound<'py, PyAny>> {
     let d = super::run_interruptible(py, || crate::io::read_obj(&path))?;
+    let extras = PyDict::new(py);
+    if !d.corner_texcoords.is_empty() {
+        let k = d.texcoord_dim.max(1);
+        let rows: Vec<Vec<f64>> = d.texcoords.iter().map(|r| r[..k].to_vec()).collect();
+        let table = if rows.is_empty() { numpy::PyArray2::<f64>::zeros(py, [0, k], false) } else { PyArray2::from_vec2(py, &rows)? };
+        extras.set_item("texcoords", table)?;
+        extras.set_item("corner_texcoords", i64_array(py, d.corner_texcoords))?;
+    }
+    if !d.corner_normals.is_empty() {
+        extras.set_item("normals", vec3_array(py, &d.normals))?;
+        extras.set_item("corner_normals", i64_array(py, d.corner_normals))?;
+    }
+    if !d.face_groups.is_empty() {
+        extras.set_item("face_groups", i64_array(py, d.face_groups.iter().map(|&g| g as i64)))?;
+        extras.set_item("group_names", d.group_names)?;
+    }
+    if !d.face_materials.is_empty() {
+        extras.set_item("face_materials", i64_array(py, d.face_materials.iter().map(|&g| g as i64)))?;
+        extras.set_item("material_names", d.material_names)?;
+    }
     let out = (
         vec3_array(py, &d.positions),
         i64_array(py, d.sizes),
         i64_array(py, d.indices),
         d.n_polylines,
         d.n_points,
+        extras,
     );
     Ok(out.into_pyobject(py)?.into_any())
 }
 
+/// Writes ``mesh`` as OBJ to ``path`` with the core writer (GIL released):
+/// ``texcoords`` (C, k) and ``normals`` (C, 3) float64 per exported corner
+/// become deduplicated ``vt``/``vn`` tables and ``f v/vt/vn`` corners;
+/// ``groups`` / ``materials`` are ``(ids per face, names)`` written as ``g``
+/// / ``usemtl`` lines where they change.
+#[pyfunction]
+#[pyo3(signature = (mesh, path, texcoords = None, normals = None, groups = None, materials = None))]
+fn _write_obj(
+    py: Python<'_>,
+    mesh: PyRef<'_, PyMesh>,
+    path: std::path::PathBuf,
+    texcoords: Option<PyReadonlyArray2<'_, f64>>,
+    normals: Option<PyReadonlyArray2<'_, f64>>,
+    groups: Option<(PyReadonlyArray1<'_, i64>, Vec<String>)>,
+    materials: Option<(PyReadonlyArray1<'_, i64>, Vec<String>)>,
+) -> PyResult<()> {
+    let tk = texcoords.as_ref().map(|t| t.as_array().ncols());
+    let t = texcoords.as_ref().map(|t| t.as_slice()).transpose()?;
+    let n = normals.as_ref().map(|n| n.as_slice()).transpose()?;
+    let g = groups.as_ref().map(|(i, names)| i.as_slice().map(|i| (i, names.as_slice()))).transpose()?;
+    let mt = materials.as_ref().map(|(i, names)| i.as_slice().map(|i| (i, names.as_slice()))).transpose()?;
+    let attrs = crate::io::ObjAttributes { texcoords: t.zip(tk), normals: n, groups: g, materials: mt };
+    let m = &mesh.inner;
+    py.detach(|| {
+        let f = std::fs::File::create(&path).map_err(|e| crate::MeshError::Io(format!("{}: {e}", path.display())))?;
+        crate::io::write_obj(m, &attrs, f)
+    })
+    .map_err(super::err)
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
+    m.add_function(wrap_pyfunction!(_write_obj, m)?)?;
     Ok(())
 }
