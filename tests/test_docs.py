@@ -69,7 +69,7 @@ def test_reference_signatures_from_stubs(site: Path) -> None:
     page = (site / "api" / "mesh.html").read_text()
     text = html_mod.unescape(re.sub(r"<[^>]+>", "", page))
     # typed parameters and return types exist only in python/topomesh/_core.pyi
-    assert "honeycomb(iterations: int = 1, t: float = 0.5, tension: float | None = None, progress: bool = False) → Mesh" in text
+    assert "honeycomb(iterations: int = 1, t: float = 0.5, tension: float | None = None, progress: bool = False, *, correspondence: Literal[False] = False) → Mesh" in text
     assert "triangles(return_faces: Literal[True]) -> tuple[" in text  # the second overload
     assert "Type (from the stubs): npt.NDArray[np.float64]" in text  # Mesh.vertices
 
