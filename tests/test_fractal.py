@@ -316,8 +316,15 @@ def test_menger_warns_only_where_crossings_remain():
     assert len(rec) == 1
     n = int(str(rec[0].message).split(" left ")[1].split()[0])
     assert 0 < n <= d2.n_vertices
-    # the warning is about a real defect: an independent scan finds crossings
-    assert self_intersections(d3)
+    # the warning is about a real defect: an independent exact scan finds crossings
+    # (libigl's CGAL test, 0.8 s; the NumPy checker of test_ops takes minutes here)
+    try:
+        import igl.copyleft.cgal as cgal
+    except ImportError:
+        assert self_intersections(d3)
+    else:
+        v, t, _ = d3.triangulate()
+        assert len(cgal.remesh_self_intersections(v, t, detect_only=True)[2]) > 0
     # the result is still the valid manifold it would be without the warning
     d3.validate()
     assert d3.genus == 2 * d2.genus + d2.n_faces - 1

@@ -36,6 +36,26 @@ pub(crate) struct Spec {
 }
 
 impl Spec {
+    /// Catmull-Clark or Loop: creases, face-varying data and direct data
+    /// masks, with the keywords parsed (a `MeshError` names a bad one).
+    pub fn with_rules(
+        name: &'static str,
+        predict: crate::budget::Predictor,
+        boundary: &str,
+        crease_method: &str,
+        corner_interpolation: &str,
+        with_data: DataLevel,
+    ) -> PyResult<Spec> {
+        Ok(Spec {
+            name,
+            predict,
+            options: options(name, boundary, crease_method)?,
+            uses_creases: true,
+            face_varying: Some(self::corner_interpolation(name, corner_interpolation)?),
+            with_data: Some(with_data),
+        })
+    }
+
     /// A scheme without crease, face-varying or direct-data rules.
     pub fn plain(name: &'static str, predict: crate::budget::Predictor) -> Spec {
         Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None }

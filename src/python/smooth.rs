@@ -62,16 +62,7 @@ impl PyMesh {
         corner_interpolation: &str,
         correspondence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let options = levels::options("catmull_clark", boundary, crease_method)?;
-        let fv = levels::corner_interpolation("catmull_clark", corner_interpolation)?;
-        let spec = levels::Spec {
-            name: "catmull_clark",
-            predict: predict::catmull_clark,
-            options,
-            uses_creases: true,
-            face_varying: Some(fv),
-            with_data: Some(schemes::catmull_clark::catmull_clark_level_with),
-        };
+        let spec = levels::Spec::with_rules("catmull_clark", predict::catmull_clark, boundary, crease_method, corner_interpolation, schemes::catmull_clark::catmull_clark_level_with)?;
         levels::run(py, self, iterations, progress, spec, correspondence, schemes::catmull_clark::catmull_clark_level)
     }
 
@@ -106,16 +97,7 @@ impl PyMesh {
         corner_interpolation: &str,
         correspondence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let options = levels::options("loop", boundary, crease_method)?;
-        let fv = levels::corner_interpolation("loop", corner_interpolation)?;
-        let spec = levels::Spec {
-            name: "loop",
-            predict: predict::loop_subdivision,
-            options,
-            uses_creases: true,
-            face_varying: Some(fv),
-            with_data: Some(schemes::loop_subdivision::loop_level_with),
-        };
+        let spec = levels::Spec::with_rules("loop", predict::loop_subdivision, boundary, crease_method, corner_interpolation, schemes::loop_subdivision::loop_level_with)?;
         levels::run(py, self, iterations, progress, spec, correspondence, schemes::loop_subdivision::loop_level)
     }
 

@@ -150,23 +150,17 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
 /// k)` row-major arrays) with the level's weights: by the direct masks on a
 /// smooth closed mesh (no stencils built), else through the stencils.
 pub fn catmull_clark_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
-    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth()) && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0);
-    if data.is_empty() || (smooth && !req.stencils) {
-        let lv = catmull_clark_level(m, req)?;
-        if data.is_empty() {
-            return Ok((lv, vec![]));
-        }
-        let fl = FaceLayout::new(m)?;
-        let out = data.iter().map(|(a, k)| smooth_apply(m, &fl, a, *k)).collect::<Result<_>>()?;
-        return Ok((lv, out));
-    }
-    let mut lv = catmull_clark_level(m, &Request { stencils: true, ..*req })?;
-    let st = lv.stencils.as_ref().expect("requested");
-    let out = data.iter().map(|(a, k)| st.apply(a, *k)).collect::<Result<_>>()?;
-    if !req.stencils {
-        lv.stencils = None;
-    }
-    Ok((lv, out))
+    let fl = std::cell::OnceCell::new();
+    super::level::level_with_data(m, req, data, catmull_clark_level, |a, k| {
+        let fl = match fl.get() {
+            Some(fl) => fl,
+            None => {
+                let _ = fl.set(FaceLayout::new(m)?);
+                fl.get().expect("just set")
+            }
+        };
+        smooth_apply(m, fl, a, k)
+    })
 }
 
 /// The closed-surface masks on rows of `k` numbers (vertex data).

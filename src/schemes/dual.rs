@@ -289,15 +289,7 @@ mod tests {
     /// dual edge and its two boundary halves) and one vertex.
     fn check_origins(name: &str, m: &Mesh, lv: &Level) {
         let o = lv.origins.as_ref().unwrap();
-        let count = |k: &[u8], i: &[u32], kind: u8, n: usize| {
-            let mut c = vec![0usize; n];
-            for (&kk, &ii) in k.iter().zip(i) {
-                if kk == kind {
-                    c[ii as usize] += 1;
-                }
-            }
-            c
-        };
+        let count = origin_counts;
         let bnd = |e: usize| m.f_hole[m.he_face[2 * e] as usize] || m.f_hole[m.he_face[2 * e + 1] as usize];
         let fv = count(&o.vertex_kind, &o.vertex, FACE, m.n_faces());
         for f in 0..m.n_faces() {

@@ -245,3 +245,29 @@ pub fn with_point_spheres_level(m: &Mesh, req: &Request, step: impl Fn(&Mesh, &R
     }
     Ok(lv)
 }
+
+/// A level that also interpolates vertex data (row-major `(rows, k)`
+/// arrays): through `direct` (the scheme's masks applied to the data, no
+/// stencils built) on a smooth closed mesh without point-spheres and when
+/// no stencils are requested, else through the level's stencils.
+pub fn level_with_data(
+    m: &Mesh,
+    req: &Request,
+    data: &[(Vec<f64>, usize)],
+    level: impl Fn(&Mesh, &Request) -> Result<Level>,
+    direct: impl Fn(&[f64], usize) -> Result<Vec<f64>>,
+) -> Result<(Level, Vec<Vec<f64>>)> {
+    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth()) && !m.v_out.iter().any(|&o| o & POINT != 0);
+    if data.is_empty() || (smooth && !req.stencils) {
+        let lv = level(m, req)?;
+        let out = data.iter().map(|(a, k)| direct(a, *k)).collect::<Result<_>>()?;
+        return Ok((lv, out));
+    }
+    let mut lv = level(m, &Request { stencils: true, ..*req })?;
+    let st = lv.stencils.as_ref().expect("requested");
+    let out = data.iter().map(|(a, k)| st.apply(a, *k)).collect::<Result<_>>()?;
+    if !req.stencils {
+        lv.stencils = None;
+    }
+    Ok((lv, out))
+}

@@ -134,48 +134,35 @@ pub fn loop_level(m: &Mesh, req: &Request) -> Result<Level> {
 /// k)` arrays): by the direct masks on a smooth closed mesh (through the
 /// fan's centroids), else through the stencils.
 pub fn loop_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
-    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth()) && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0);
-    if data.is_empty() || (smooth && !req.stencils) {
-        let lv = loop_level(m, req)?;
-        if data.is_empty() {
-            return Ok((lv, vec![]));
-        }
-        let fan = fan_triangulate(m)?;
-        let out = data
-            .iter()
-            .map(|(a, k)| match &fan {
-                None => smooth_apply(m, a, *k),
-                Some(t) => {
-                    // the fan's centroids follow the input vertices, in face order
-                    let fl = FaceLayout::new(m)?;
-                    let (_, vert, _) = m.halfedge_columns();
-                    let mut b = a.clone();
-                    for f in 0..m.n_faces() {
-                        let hs = fl.corners(f);
-                        if hs.len() == 3 {
-                            continue;
-                        }
-                        let start = b.len();
-                        b.resize(start + k, 0.0);
-                        for &h in hs {
-                            for j in 0..*k {
-                                b[start + j] += a[vert[h as usize] as usize * k + j] / hs.len() as f64;
-                            }
-                        }
-                    }
-                    smooth_apply(t, &b, *k)
+    let fan = std::cell::OnceCell::new();
+    super::level::level_with_data(m, req, data, loop_level, |a, k| {
+        let fan = match fan.get() {
+            Some(f) => f,
+            None => {
+                let _ = fan.set(fan_triangulate(m)?);
+                fan.get().expect("just set")
+            }
+        };
+        let Some(t) = fan else { return smooth_apply(m, a, k) };
+        // the fan's centroids follow the input vertices, in face order
+        let fl = FaceLayout::new(m)?;
+        let (_, vert, _) = m.halfedge_columns();
+        let mut b = a.to_vec();
+        for f in 0..m.n_faces() {
+            let hs = fl.corners(f);
+            if hs.len() == 3 {
+                continue;
+            }
+            let start = b.len();
+            b.resize(start + k, 0.0);
+            for &h in hs {
+                for j in 0..k {
+                    b[start + j] += a[vert[h as usize] as usize * k + j] / hs.len() as f64;
                 }
-            })
-            .collect::<Result<_>>()?;
-        return Ok((lv, out));
-    }
-    let mut lv = loop_level(m, &Request { stencils: true, ..*req })?;
-    let st = lv.stencils.as_ref().expect("requested");
-    let out = data.iter().map(|(a, k)| st.apply(a, *k)).collect::<Result<_>>()?;
-    if !req.stencils {
-        lv.stencils = None;
-    }
-    Ok((lv, out))
+            }
+        }
+        smooth_apply(t, &b, k)
+    })
 }
 
 /// Loop's closed-surface masks on rows of `k` numbers, on triangles.

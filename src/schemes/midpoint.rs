@@ -190,15 +190,7 @@ mod tests {
     /// the origin of exactly two output edges.
     fn check_origins(name: &str, m: &Mesh, lv: &Level) {
         let o = lv.origins.as_ref().unwrap();
-        let count = |k: &[u8], i: &[u32], kind: u8, n: usize| {
-            let mut c = vec![0usize; n];
-            for (&kk, &ii) in k.iter().zip(i) {
-                if kk == kind {
-                    c[ii as usize] += 1;
-                }
-            }
-            c
-        };
+        let count = origin_counts;
         assert!(count(&o.vertex_kind, &o.vertex, VERTEX, m.n_vertices()).iter().all(|&c| c == 1), "{name}");
         assert!(count(&o.vertex_kind, &o.vertex, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
         let fl = FaceLayout::new(m).unwrap();
