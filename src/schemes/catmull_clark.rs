@@ -27,7 +27,7 @@
 //! keep the direct computation above (the same weights, tested equal).
 
 use super::creases::{EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, face_centroids, primal_host, primal_host_sides, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids, primal_host, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -105,7 +105,7 @@ pub fn catmull_clark_level(m: &Mesh, req: &Request) -> Result<Level> {
 }
 
 fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
-    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth());
+    let smooth = req.smooth_on(m);
     if smooth && !req.stencils && !req.origins && req.creases.is_none() {
         return Ok(Level::plain(step(m)?));
     }
@@ -122,15 +122,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     }
     let ls = LevelSharpness::new(m, req.creases, req.options);
     let stencils = if !smooth || req.stencils { Some(stencils(m, &fl, &ls, req, &real)?) } else { None };
-    let pos = match (&stencils, smooth) {
-        (Some(s), false) => s.apply_points(&m.pos)?,
-        _ => smooth_positions(m, &fl)?,
-    };
-    let (mesh, sides) = primal_host_sides(m, &fl, &face_point, pos, req.creases.is_some())?;
-    let creases = match (req.creases, &sides) {
-        (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
-        _ => None,
-    };
+    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, || smooth_positions(m, &fl))?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(FACE).take(real.len())));
@@ -289,7 +281,7 @@ mod tests {
     }
 
     fn full() -> Request<'static> {
-        Request { stencils: true, origins: true, ..Default::default() }
+        crate::schemes::hosts::test_meshes::full_request()
     }
 
     #[test]

@@ -497,7 +497,7 @@ mod tests {
 
     #[test]
     fn open_meshes_keep_their_holes_with_a_chaikin_boundary() {
-        let full = Request { stencils: true, origins: true, ..Default::default() };
+        let full = crate::schemes::hosts::test_meshes::full_request();
         for (name, m) in open_meshes() {
             let lv = doo_sabin_level(&m, &full).unwrap();
             check_level(name, &m, &lv);

@@ -281,7 +281,7 @@ mod tests {
     }
 
     fn full() -> Request<'static> {
-        Request { stencils: true, origins: true, ..Default::default() }
+        crate::schemes::hosts::test_meshes::full_request()
     }
 
     /// Each real face is the origin of one vertex, each vertex of one face,

@@ -362,7 +362,7 @@ pub fn level_matches_plain_on_corpus(
     more: impl Fn(&str, &Mesh, &crate::schemes::level::Level),
 ) {
     use crate::schemes::level::Request;
-    let full = Request { stencils: true, origins: true, ..Default::default() };
+    let full = full_request();
     for (name, m) in corpus() {
         let lv = level(&m, &full).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_level(name, &m, &lv);
@@ -407,10 +407,10 @@ fn edges_between_two_holes_are_refused() {
 /// Point-spheres ride along with the open-mesh levels.
 #[test]
 fn open_levels_keep_point_spheres() {
-    use crate::schemes::level::{Level, Request};
+    use crate::schemes::level::Level;
     let mut m = cube_with_hole();
     m.create_vertex(DVec3::new(5.0, 0.0, 0.0)).unwrap();
-    let full = Request { stencils: true, origins: true, ..Default::default() };
+    let full = full_request();
     let runs: [(&str, crate::error::Result<Level>); 5] = [
         ("midpoint", crate::schemes::midpoint::midpoint_level(&m, &full)),
         ("dual", crate::schemes::dual::dual_level(&m, &full)),
@@ -424,4 +424,9 @@ fn open_levels_keep_point_spheres() {
         assert_eq!((lv.mesh.n_holes(), n_point_spheres(&lv.mesh), lv.mesh.n_components()), (1, 1, 2), "{name}");
         assert_eq!(open_euler(&lv.mesh), open_euler(&m), "{name}");
     }
+}
+
+/// A request for everything but creases: stencils and origins.
+pub fn full_request() -> crate::schemes::level::Request<'static> {
+    crate::schemes::level::Request { stencils: true, origins: true, ..Default::default() }
 }

@@ -103,6 +103,38 @@ impl Request<'_> {
     pub fn plain() -> Request<'static> {
         Request::default()
     }
+
+    /// Whether `m` sees only the closed-surface rules: no hole, no nonzero
+    /// sharpness (the schemes' direct masks apply).
+    pub fn smooth_on(&self, m: &Mesh) -> bool {
+        m.n_holes() == 0 && self.creases.map_or(true, |c| c.is_smooth())
+    }
+}
+
+/// The shared tail of the primal levels (Catmull-Clark, Loop): positions
+/// from `stencils` unless `smooth` (then the scheme's `direct` masks), the
+/// host's connectivity, and the output's crease sharpness when asked for.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn primal_output(
+    m: &Mesh,
+    fl: &super::hosts::FaceLayout,
+    face_point: &[u32],
+    ls: &super::creases::LevelSharpness,
+    req: &Request,
+    stencils: Option<&Stencils>,
+    smooth: bool,
+    direct: impl FnOnce() -> Result<Vec<glam::DVec3>>,
+) -> Result<(Mesh, Option<Creases>)> {
+    let pos = match (stencils, smooth) {
+        (Some(s), false) => s.apply_points(&m.pos)?,
+        _ => direct()?,
+    };
+    let (mesh, sides) = super::hosts::primal_host_sides(m, fl, face_point, pos, req.creases.is_some())?;
+    let creases = match (req.creases, &sides) {
+        (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
+        _ => None,
+    };
+    Ok((mesh, creases))
 }
 
 /// A level's output.
@@ -257,7 +289,7 @@ pub fn level_with_data(
     level: impl Fn(&Mesh, &Request) -> Result<Level>,
     direct: impl Fn(&[f64], usize) -> Result<Vec<f64>>,
 ) -> Result<(Level, Vec<Vec<f64>>)> {
-    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth()) && !m.v_out.iter().any(|&o| o & POINT != 0);
+    let smooth = req.smooth_on(m) && !m.v_out.iter().any(|&o| o & POINT != 0);
     if data.is_empty() || (smooth && !req.stencils) {
         let lv = level(m, req)?;
         let out = data.iter().map(|(a, k)| direct(a, *k)).collect::<Result<_>>()?;

@@ -34,7 +34,7 @@
 //! vertex sharpness to pin it.
 
 use super::creases::{Creases, EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, fan_triangulate, primal_host, primal_host_sides, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, fan_triangulate, primal_host, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -284,19 +284,11 @@ fn triangle_level(m: &Mesh, req: &Request) -> Result<Level> {
     check_output_size("loop", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges())?;
     let fl = FaceLayout::new(m)?;
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
-    let smooth = m.n_holes() == 0 && req.creases.map_or(true, |c| c.is_smooth());
+    let smooth = req.smooth_on(m);
     let face_point: Vec<u32> = m.f_hole.iter().map(|&h| if h { HOLE } else { NONE }).collect();
     let ls = LevelSharpness::new(m, req.creases, req.options);
     let stencils = if !smooth || req.stencils { Some(stencils(m, &ls, req)?) } else { None };
-    let pos = match (&stencils, smooth) {
-        (Some(s), false) => s.apply_points(&m.pos)?,
-        _ => smooth_positions(m)?,
-    };
-    let (mesh, sides) = primal_host_sides(m, &fl, &face_point, pos, req.creases.is_some())?;
-    let creases = match (req.creases, &sides) {
-        (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
-        _ => None,
-    };
+    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, || smooth_positions(m))?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)));
@@ -394,7 +386,7 @@ mod tests {
 
     #[test]
     fn level_stencils_equal_the_direct_masks_on_corpus() {
-        let full = Request { stencils: true, origins: true, ..Default::default() };
+        let full = crate::schemes::hosts::test_meshes::full_request();
         for (name, m) in corpus() {
             let lv = loop_level(&m, &full).unwrap();
             check_level(name, &m, &lv);
@@ -432,7 +424,7 @@ mod tests {
 
     #[test]
     fn open_meshes_keep_their_holes_with_boundary_rules() {
-        let full = Request { stencils: true, origins: true, ..Default::default() };
+        let full = crate::schemes::hosts::test_meshes::full_request();
         for (name, m) in [("grid", open_grid(3)), ("tube", open_tube(6, 2)), ("cube_with_hole", cube_with_hole())] {
             let lv = loop_level(&m, &full).unwrap();
             check_level(name, &m, &lv);

@@ -181,7 +181,7 @@ mod tests {
     }
 
     fn full() -> Request<'static> {
-        Request { stencils: true, origins: true, ..Default::default() }
+        crate::schemes::hosts::test_meshes::full_request()
     }
 
     /// The origins partition the output as the counts say: V vertex points,

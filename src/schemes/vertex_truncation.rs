@@ -361,7 +361,7 @@ mod tests {
     #[test]
     fn level_stencils_and_origins_on_corpus_and_open_meshes() {
         use crate::schemes::hosts::test_meshes::*;
-        let full = Request { stencils: true, origins: true, ..Default::default() };
+        let full = crate::schemes::hosts::test_meshes::full_request();
         let mut meshes = corpus();
         meshes.extend(open_meshes());
         for (name, m) in meshes {
