@@ -403,7 +403,7 @@ def test_every_scheme_has_a_matrix_and_parents(scheme: str, name: str) -> None:
             assert ((idx[kinds == k] >= 0) & (idx[kinds == k] < n)).all()
 
 
-@pytest.mark.parametrize("scheme", ["catmull_clark", "loop", "doo_sabin", "midpoint", "dual", "honeycomb", "vertex_truncation"])
+@pytest.mark.parametrize("scheme", ["catmull_clark", "loop", "doo_sabin", "midpoint", "dual", "honeycomb", "vertex_truncation", "sqrt3"])
 @pytest.mark.parametrize("fixture", ["disk", "annulus", "cylinder", "genus2_three_holes"])
 def test_open_inputs_keep_chi_and_boundaries(scheme: str, fixture: str) -> None:
     from tests import open_meshes
@@ -417,7 +417,7 @@ def test_open_inputs_keep_chi_and_boundaries(scheme: str, fixture: str) -> None:
     assert len(corr.face_parents) == len(out.face_sizes)
 
 
-@pytest.mark.parametrize("scheme", ["sqrt3", "simplest", "sierpinski"])
+@pytest.mark.parametrize("scheme", ["simplest", "sierpinski"])
 def test_schemes_without_boundary_rules_refuse_open_inputs(scheme: str) -> None:
     from tests import open_meshes
 
@@ -430,3 +430,22 @@ def test_menger_warns_that_it_drops_data() -> None:
     with pytest.warns(tm.GeometryWarning, match="does not carry"):
         out = c.menger(1)
     assert out.vertex_attributes == {}
+
+
+def test_sqrt3_refines_the_boundary_every_second_level() -> None:
+    """Kobbelt's boundary rule (2000, section 4): odd levels keep the boundary (its
+    vertices do not move), even levels trisect every boundary edge."""
+    from tests import open_meshes
+
+    m = open_meshes.mesh("disk")
+    nb = m.boundary_edges().shape[0]
+    one = m.sqrt3()
+    assert one.boundary_edges().shape[0] == nb
+    loop = m.boundary_loops()[0]
+    np.testing.assert_array_equal(one.vertices[loop], m.vertices[loop])
+    two = m.sqrt3(iterations=2)
+    assert two.boundary_edges().shape[0] == 3 * nb
+    assert two.n_boundary_loops == 1 and two.euler_characteristic == m.euler_characteristic
+    assert (two.face_sizes == 3).all()
+    # one level at a time is an odd level each time: the boundary is never refined
+    assert one.sqrt3().boundary_edges().shape[0] == nb

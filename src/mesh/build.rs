@@ -286,6 +286,21 @@ impl Mesh {
         Mesh::build(positions, sizes, corner_verts, twin, holes, false)
     }
 
+    /// [`Mesh::from_corner_twins`] with some faces marked as holes
+    /// (boundary loops), for the schemes that keep a mesh open.
+    pub fn from_corner_twins_with_holes(
+        positions: Vec<DVec3>,
+        sizes: &[u32],
+        corner_verts: &[u32],
+        twin: &[u32],
+        holes: Vec<bool>,
+    ) -> Result<Mesh> {
+        if holes.len() != sizes.len() {
+            return Err(MeshError::InvalidArgument(format!("{} hole flags for {} faces", holes.len(), sizes.len())));
+        }
+        Mesh::build(positions, sizes, corner_verts, twin, holes, false)
+    }
+
     /// `twins_valid`: the caller guarantees what the twin check below tests
     /// (vertices in range, symmetric twins running between the same vertices
     /// in opposite directions, twinless corners alone in their face); the

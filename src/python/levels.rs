@@ -75,6 +75,8 @@ struct State<'a> {
     matrix: Option<Stencils>,
     origins: Option<Origins>,
     name: &'a str,
+    /// Index of the next level within this call.
+    level: usize,
 }
 
 /// Runs `level` `iterations` times on `slf` with its data; returns a `Mesh`,
@@ -91,8 +93,9 @@ pub(crate) fn run<'py>(
     let input = &slf.inner;
     let options = spec.options;
     if !correspondence && slf.data.is_empty() {
-        let (out, ()) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, (), |m, _| {
-            level(m, &Request { options, ..Default::default() }).map(|l| l.mesh)
+        let (out, _) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, 0usize, |m, k| {
+            *k += 1;
+            level(m, &Request { options, level: *k - 1, ..Default::default() }).map(|l| l.mesh)
         })?;
         return Ok(Bound::new(py, PyMesh::wrap(out.unwrap_or_else(|| input.clone())))?.into_any());
     }
@@ -139,6 +142,7 @@ pub(crate) fn run<'py>(
         matrix: None,
         origins: None,
         name: spec.name,
+        level: 0,
     };
     let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |m, st| {
         let direct = spec.with_data.filter(|_| !st.attrs.is_empty());
@@ -147,7 +151,9 @@ pub(crate) fn run<'py>(
             origins: st.want_origins,
             creases: st.creases.as_ref(),
             options: st.options,
+            level: st.level,
         };
+        st.level += 1;
         let lv = match direct {
             Some(f) => {
                 let (lv, data) = f(m, &req, &st.attrs)?;

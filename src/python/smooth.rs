@@ -105,8 +105,11 @@ impl PyMesh {
     /// flipped, old vertices smoothed with alpha_n = (4 - 2cos(2 pi/n))/9.
     ///
     /// n-gons are treated like triangles (centroid, spokes, flips). Per
-    /// level: V' = V + F, E' = 3E, F' = 2E triangles. Parameters, return and
-    /// errors as :meth:`catmull_clark`.
+    /// level: V' = V + F, E' = 3E, F' = 2E triangles. Open meshes follow
+    /// Kobbelt's boundary rule: the boundary is trisected on every second
+    /// level of one call (odd levels keep it), so ``iterations=2`` refines
+    /// it and two calls of one level do not. Parameters, return and errors
+    /// as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn sqrt3<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
         levels::run(py, self, iterations, progress, levels::Spec::plain("sqrt3", predict::sqrt3), correspondence, schemes::sqrt3::sqrt3_level)

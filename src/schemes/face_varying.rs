@@ -164,7 +164,7 @@ impl FaceVarying {
             Interpolation::Smooth | Interpolation::CornersOnly => {}
         }
         let boundary = if interp == Interpolation::Smooth { Boundary::EdgeOnly } else { Boundary::EdgeAndCorner };
-        let req = Request { stencils: true, origins: false, creases: Some(&c), options: SubdivOptions { boundary, ..geometry } };
+        let req = Request { stencils: true, origins: false, creases: Some(&c), options: SubdivOptions { boundary, ..geometry }, level: 0 };
         let lv = scheme(m, &req)?;
         let s = lv.stencils.as_ref().expect("requested");
         let values = s.apply(&self.values, self.k)?;

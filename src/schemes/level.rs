@@ -96,6 +96,9 @@ pub struct Request<'a> {
     /// Crease sharpness of the input (Catmull-Clark and Loop).
     pub creases: Option<&'a Creases>,
     pub options: SubdivOptions,
+    /// Index of this level within one call (0 for the first): √3's
+    /// boundary rule refines the boundary on odd indices only.
+    pub level: usize,
 }
 
 impl Request<'_> {

@@ -18,6 +18,9 @@
 //! Output vertices are `[smoothed old vertices | face centroids]`; output
 //! triangle `h` is the one of half-edge `h`.
 //!
+//! Open meshes: Kobbelt's §4 boundary rule, in [`boundary`] (through
+//! [`sqrt3_level`] only: it needs the level's parity).
+//!
 //! Stencils and correspondence ([`sqrt3_level`]): the scheme is linear; a
 //! vertex row is `(1 − αₙ) v + αₙ/n Σ neighbours`, a centroid row the mean
 //! of the face's corners. Origins: old vertex → (VERTEX, v), centroid →
@@ -25,7 +28,11 @@
 //! parts of both faces beside e) → (EDGE, e), two per edge; the flipped
 //! edge → (EDGE, e); a spoke lies inside its face → (FACE, f).
 
-use super::hosts::{check_output_size, neighbor_sum, refuse_holes, with_point_spheres, FaceLayout, MIN_LEN};
+mod boundary;
+#[cfg(test)]
+mod boundary_tests;
+
+use super::hosts::{check_output_size, neighbor_sum, with_point_spheres, FaceLayout, MIN_LEN};
 use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
@@ -34,8 +41,11 @@ use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// One level of √3 subdivision. See the module docs.
+/// One level of √3 subdivision of a closed mesh. See the module docs; open
+/// meshes go through [`sqrt3_level`] (the boundary rule needs the level's
+/// parity).
 pub fn sqrt3(m: &Mesh) -> Result<Mesh> {
+    super::hosts::refuse_holes("sqrt3", m)?;
     with_point_spheres("sqrt3", m, step)
 }
 
@@ -107,12 +117,15 @@ fn step(m: &Mesh) -> Result<Mesh> {
 }
 
 /// One level with what `req` asks for (see the module docs); without
-/// requests it is [`sqrt3`]. Refuses hole faces.
+/// requests it is [`sqrt3`]. Open meshes follow Kobbelt's boundary rule
+/// ([`boundary`]), whose parity is `req.level`.
 /// This scheme has no sharpness rules: `req.creases` is ignored and
 /// `Level.creases` is `None` (creases are dropped).
 pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
-    refuse_holes("sqrt3", m)?;
     with_point_spheres_level(m, req, |m, req| {
+        if m.n_holes() > 0 {
+            return boundary::open_level(m, req);
+        }
         let mesh = step(m)?;
         let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
         let (_, vert, face) = m.halfedge_columns();
@@ -189,14 +202,6 @@ mod tests {
             assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
             assert_eq!(o.face_kind.iter().filter(|&&k| k == FACE).count(), ps, "{name}");
         });
-    }
-
-    #[test]
-    fn level_refuses_holes() {
-        match sqrt3_level(&cube_with_hole(), &Request::plain()) {
-            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("sqrt3") && msg.contains("no boundary rules"), "{msg}"),
-            other => panic!("{other:?}"),
-        }
     }
 
     #[test]

@@ -1,0 +1,461 @@
+//! √3 subdivision on open meshes: Kobbelt's boundary rule (L. Kobbelt,
+//! "√3-subdivision", SIGGRAPH 2000, §4 "Boundaries"), with the topology and
+//! masks of CGAL's `Subdivision_method_3::Sqrt3_subdivision`
+//! (`Sqrt3_1step`, `Sqrt3_mask_3::border_node`), which implements it.
+//!
+//! The boundary is refined every *second* step, so that two steps trisect
+//! every boundary edge as they trisect every interior one:
+//!
+//! - **odd steps** (the 1st, 3rd, … level of one call): every real face gets
+//!   its centroid and interior edges are flipped as on closed meshes;
+//!   a boundary edge `a → b` is kept, and its face's piece is the triangle
+//!   `[a, b, c_f]`; boundary vertices do not move; interior vertices use
+//!   Kobbelt's rule over all their neighbours. Holes keep their corners.
+//!   Any polygon faces are accepted.
+//! - **even steps**: the input is an odd step's output, so every face with a
+//!   boundary edge is a triangle `(s, t, x)` with exactly one boundary edge
+//!   `s → t` (checked). That edge gets two points, `n₁ = (16s + 10t + u)/27`
+//!   next to `s` and `n₂ = (10s + 16t + w)/27` next to `t` (`u`, `w` the
+//!   boundary neighbours beyond `s` and `t`: the ternary cubic B-spline
+//!   rule); the face gets no centroid but the middle triangle `[n₁, n₂, x]`,
+//!   and its two interior edges flip onto `n₁` (edge `x s`) and `n₂` (edge
+//!   `t x`). A boundary vertex moves to `(4u + 19v + 4w)/27` (a vertex on
+//!   more than one boundary loop stays put).
+//!
+//! Counts (E_b boundary edges, F_r real faces, h holes; H = 2E counts the
+//! half-edges of real and hole faces alike):
+//! - odd:  V' = V + F_r, E' = 3E − E_b, F' = H − E_b + h (a triangle per
+//!   real half-edge, the holes);
+//! - even: V' = V + F_r + E_b (faces with a boundary side trade their
+//!   centroid for two edge points), E' = 3E, F' = H − E_b + h, and 3E_b
+//!   boundary edges.
+//!
+//! Both are checked against the mesh in the tests. χ and the boundary loops
+//! are kept.
+//!
+//! The level index within a call decides the parity (`Request::level`), as
+//! in CGAL, so `sqrt3(iterations=2)` on an open mesh is not two calls of
+//! `sqrt3(iterations=1)` (each of those is an odd step).
+
+use super::sqrt3_alpha;
+use crate::error::{MeshError, Result};
+use crate::mesh::{Mesh, NONE};
+use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
+use crate::schemes::stencil::Stencils;
+
+/// One level of √3 on a mesh with hole faces (no point-spheres: the caller
+/// splits them off). See the module docs.
+pub(super) fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
+    if req.level % 2 == 0 {
+        odd(m, req)
+    } else {
+        even(m, req)
+    }
+}
+
+struct Ctx<'a> {
+    m: &'a Mesh,
+    next: &'a [u32],
+    prev: &'a [u32],
+    vert: &'a [u32],
+    face: &'a [u32],
+    /// Output triangle of every real half-edge (`NONE` for hole ones).
+    tri: Vec<u32>,
+    /// First output corner of every hole half-edge (`NONE` for real ones).
+    hole_corner: Vec<u32>,
+    n_tri: usize,
+}
+
+impl<'a> Ctx<'a> {
+    /// `per_hole`: output corners of every hole half-edge (1 odd, 3 even).
+    fn new(m: &'a Mesh, per_hole: u32) -> Result<Ctx<'a>> {
+        let (next, vert, face) = m.halfedge_columns();
+        let nh = m.n_halfedges();
+        let mut tri = vec![NONE; nh];
+        let mut n_tri = 0u32;
+        for h in 0..nh {
+            if !m.f_hole[face[h] as usize] {
+                tri[h] = n_tri;
+                n_tri += 1;
+            }
+        }
+        let mut hole_corner = vec![NONE; nh];
+        let mut c = 3 * n_tri;
+        for f in 0..m.n_faces() {
+            crate::cancel::poll(f)?;
+            if !m.f_hole[f] {
+                continue;
+            }
+            let s = m.f_start[f];
+            let mut h = s;
+            loop {
+                hole_corner[h as usize] = c;
+                c += per_hole;
+                h = next[h as usize];
+                if h == s {
+                    break;
+                }
+            }
+        }
+        Ok(Ctx { m, next, prev: &m.he_prev, vert, face, tri, hole_corner, n_tri: n_tri as usize })
+    }
+
+    #[inline]
+    fn hole(&self, h: u32) -> bool {
+        self.m.f_hole[self.face[h as usize] as usize]
+    }
+
+    /// Output sizes and hole flags: a triangle per real half-edge, then the
+    /// holes with `per_hole` corners per side.
+    fn faces(&self, per_hole: u32) -> (Vec<u32>, Vec<bool>) {
+        let mut sizes = vec![3u32; self.n_tri];
+        let mut holes = vec![false; self.n_tri];
+        for f in 0..self.m.n_faces() {
+            if self.m.f_hole[f] {
+                sizes.push(per_hole * self.m.face_degree(crate::mesh::FaceId(f as u32)) as u32);
+                holes.push(true);
+            }
+        }
+        (sizes, holes)
+    }
+
+    /// The hole faces of the input in output face order.
+    fn hole_faces(&self) -> impl Iterator<Item = u32> + '_ {
+        (0..self.m.n_faces() as u32).filter(|&f| self.m.f_hole[f as usize])
+    }
+
+    /// The neighbours `(u, w)` along the boundary of a vertex `v` with one
+    /// hole corner `k` (k leaves v): `k` runs `v → u`, its predecessor `w → v`.
+    #[inline]
+    fn boundary_neighbours(&self, k: u32) -> (u32, u32) {
+        (self.vert[(k ^ 1) as usize], self.vert[self.prev[k as usize] as usize])
+    }
+
+    /// The one hole half-edge leaving `v`, `None` when `v` is interior,
+    /// `Some(NONE)` when it lies on more than one boundary loop.
+    fn hole_out(&self, v: usize) -> Option<u32> {
+        let mut found = None;
+        for h in crate::schemes::creases::ring(self.m, self.m.v_out[v]) {
+            if self.hole(h) {
+                found = Some(if found.is_some() { NONE } else { h });
+            }
+        }
+        found
+    }
+}
+
+/// Kobbelt's interior rule for the row of `v`.
+fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut crate::schemes::stencil::Row) {
+    let ring: Vec<u32> = crate::schemes::creases::ring(m, m.v_out[v]).collect();
+    let n = ring.len();
+    let a = sqrt3_alpha(n);
+    row.add(v as u32, 1.0 - a);
+    for h in ring {
+        row.add(vert[(h ^ 1) as usize], a / n as f64);
+    }
+}
+
+fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::stencil::Row) {
+    let s = m.f_start[f];
+    let mut h = s;
+    let mut hs = Vec::new();
+    loop {
+        hs.push(vert[h as usize]);
+        h = m.he_next[h as usize];
+        if h == s {
+            break;
+        }
+    }
+    for &v in &hs {
+        row.add(v, 1.0 / hs.len() as f64);
+    }
+}
+
+/// Builds the level from the output rows (vertex stencils), corners and
+/// per-corner edge origins.
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    m: &Mesh,
+    req: &Request,
+    st: Stencils,
+    sizes: Vec<u32>,
+    holes: Vec<bool>,
+    cv: Vec<u32>,
+    tw: Vec<u32>,
+    vertex_origin: Vec<(u8, u32)>,
+    face_origin: Vec<(u8, u32)>,
+    corner_origin: Vec<(u8, u32)>,
+) -> Result<Level> {
+    let pos = st.apply_points(&m.pos)?;
+    let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        (o.vertex_kind, o.vertex) = vertex_origin.into_iter().unzip();
+        (o.face_kind, o.face) = face_origin.into_iter().unzip();
+        crate::schemes::corner_origins::edge_origins_by_corner(&mesh, &mut o, |c| corner_origin[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils: req.stencils.then_some(st), origins, creases: None })
+}
+
+fn odd(m: &Mesh, req: &Request) -> Result<Level> {
+    let x = Ctx::new(m, 1)?;
+    let (nv, nf) = (m.n_vertices(), m.n_faces());
+    let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
+    // face points of the real faces
+    let mut fpt = vec![NONE; nf];
+    let mut real = Vec::new();
+    for f in 0..nf {
+        if !m.f_hole[f] {
+            fpt[f] = (nv + real.len()) as u32;
+            real.push(f);
+        }
+    }
+    let boundary: Vec<bool> = (0..nv).map(|v| x.hole_out(v).is_some()).collect();
+    let st = Stencils::build(nv + real.len(), nv, |i, row| {
+        if i < nv {
+            if boundary[i] {
+                row.add(i as u32, 1.0);
+            } else {
+                kobbelt_row(m, vert, i, row);
+            }
+        } else {
+            centroid_row(m, vert, real[i - nv], row);
+        }
+    })?;
+    let (sizes, holes) = x.faces(1);
+    let n_corners = 3 * x.n_tri + (m.n_halfedges() - x.n_tri);
+    let mut cv = vec![0u32; n_corners];
+    let mut tw = vec![0u32; n_corners];
+    let mut corner_origin = vec![(0u8, 0u32); if req.origins { n_corners } else { 0 }];
+    let mut face_origin = Vec::with_capacity(if req.origins { sizes.len() } else { 0 });
+    for h in 0..m.n_halfedges() {
+        crate::cancel::poll(h)?;
+        let hu = h as u32;
+        let f = face[h];
+        if x.hole(hu) {
+            let c = x.hole_corner[h] as usize;
+            cv[c] = vert[h];
+            tw[c] = 3 * x.tri[h ^ 1];
+            if req.origins {
+                corner_origin[c] = (EDGE, hu >> 1);
+            }
+            continue;
+        }
+        let b = 3 * x.tri[h] as usize;
+        let t = hu ^ 1;
+        // the spoke c_f → a: its other side is in the piece of prev(h)'s
+        // twin, or in prev(h)'s own boundary piece when prev(h) is a boundary side
+        let p = prev[h];
+        tw[b + 2] = if x.hole(p ^ 1) { 3 * x.tri[p as usize] + 1 } else { 3 * x.tri[(p ^ 1) as usize] };
+        cv[b] = vert[h];
+        cv[b + 2] = fpt[f as usize];
+        if x.hole(t) {
+            // boundary side a → b kept: [a, b, c_f]
+            cv[b + 1] = vert[t as usize];
+            tw[b] = x.hole_corner[t as usize];
+            tw[b + 1] = 3 * x.tri[next[h] as usize] + 2;
+            if req.origins {
+                face_origin.push((FACE, f));
+                corner_origin[b] = (EDGE, hu >> 1);
+                corner_origin[b + 1] = (FACE, f);
+                corner_origin[b + 2] = (FACE, f);
+            }
+        } else {
+            let g = face[t as usize];
+            cv[b + 1] = fpt[g as usize];
+            tw[b] = 3 * x.tri[next[t as usize] as usize] + 2;
+            tw[b + 1] = 3 * x.tri[t as usize] + 1;
+            if req.origins {
+                face_origin.push((EDGE, hu >> 1));
+                corner_origin[b] = (FACE, g);
+                corner_origin[b + 1] = (EDGE, hu >> 1);
+                corner_origin[b + 2] = (FACE, f);
+            }
+        }
+    }
+    let vertex_origin = if req.origins {
+        face_origin.extend(x.hole_faces().map(|f| (FACE, f)));
+        (0..nv as u32).map(|v| (VERTEX, v)).chain(real.iter().map(|&f| (FACE, f as u32))).collect()
+    } else {
+        vec![]
+    };
+    finish(m, req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+}
+
+fn even(m: &Mesh, req: &Request) -> Result<Level> {
+    let x = Ctx::new(m, 3)?;
+    let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
+    let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
+    // the boundary side of every face that has one (at most one, and only triangles)
+    let mut bside = vec![NONE; nf];
+    for h in 0..nh {
+        let hu = h as u32;
+        if !x.hole(hu) && x.hole(hu ^ 1) {
+            let f = face[h] as usize;
+            let deg = m.face_degree(crate::mesh::FaceId(f as u32));
+            if bside[f] != NONE || deg != 3 {
+                return Err(MeshError::Precondition(format!(
+                    "sqrt3: face {f} ({deg} corners) has {} boundary edges; the boundary-refining (even) step of √3 needs \
+                     every face at a boundary to be a triangle with one boundary edge, as an odd step outputs \
+                     (run sqrt3 with iterations=2 on the original mesh instead of one level at a time)",
+                    if bside[f] != NONE { "more than one" } else { "a" }
+                )));
+            }
+            bside[f] = hu;
+        }
+    }
+    // output vertices: old | centroids of the faces without a boundary side | two per boundary side
+    let mut fpt = vec![NONE; nf];
+    let mut centred = Vec::new();
+    for f in 0..nf {
+        if !m.f_hole[f] && bside[f] == NONE {
+            fpt[f] = (nv + centred.len()) as u32;
+            centred.push(f);
+        }
+    }
+    let base = (nv + centred.len()) as u32;
+    let sides: Vec<u32> = (0..nf).filter_map(|f| (bside[f] != NONE).then_some(bside[f])).collect();
+    let mut side_index = vec![NONE; nh];
+    for (i, &b) in sides.iter().enumerate() {
+        side_index[b as usize] = i as u32;
+    }
+    let n1 = |b: u32| base + 2 * side_index[b as usize];
+    let n2 = |b: u32| base + 2 * side_index[b as usize] + 1;
+    let hole_out: Vec<Option<u32>> = (0..nv).map(|v| x.hole_out(v)).collect();
+    let st = Stencils::build(base as usize + 2 * sides.len(), nv, |i, row| {
+        if i < nv {
+            match hole_out[i] {
+                None => kobbelt_row(m, vert, i, row),
+                Some(NONE) => row.add(i as u32, 1.0),
+                Some(k) => {
+                    let (u, w) = x.boundary_neighbours(k);
+                    row.add(u, 4.0 / 27.0);
+                    row.add(i as u32, 19.0 / 27.0);
+                    row.add(w, 4.0 / 27.0);
+                }
+            }
+        } else if i < base as usize {
+            centroid_row(m, vert, centred[i - nv], row);
+        } else {
+            let j = i - base as usize;
+            let b = sides[j / 2];
+            let k = b ^ 1;
+            let (s, t) = (vert[b as usize], vert[k as usize]);
+            if j % 2 == 0 {
+                let u = vert[(next[k as usize] ^ 1) as usize];
+                row.add(s, 16.0 / 27.0);
+                row.add(t, 10.0 / 27.0);
+                row.add(u, 1.0 / 27.0);
+            } else {
+                let w = vert[prev[k as usize] as usize];
+                row.add(s, 10.0 / 27.0);
+                row.add(t, 16.0 / 27.0);
+                row.add(w, 1.0 / 27.0);
+            }
+        }
+    })?;
+    // P(f, h): the point of face f that the flipped edge of h reaches
+    let point = |h: u32| -> u32 {
+        let f = face[h as usize] as usize;
+        let b = bside[f];
+        if b == NONE {
+            fpt[f]
+        } else if h == prev[b as usize] {
+            n1(b)
+        } else {
+            n2(b)
+        }
+    };
+    let (sizes, holes) = x.faces(3);
+    let n_corners = 3 * x.n_tri + 3 * (nh - x.n_tri);
+    let mut cv = vec![0u32; n_corners];
+    let mut tw = vec![0u32; n_corners];
+    let mut corner_origin = vec![(0u8, 0u32); if req.origins { n_corners } else { 0 }];
+    let mut face_origin = Vec::with_capacity(if req.origins { sizes.len() } else { 0 });
+    let tri = |h: u32| 3 * x.tri[h as usize];
+    for h in 0..nh {
+        crate::cancel::poll(h)?;
+        let hu = h as u32;
+        let f = face[h];
+        if x.hole(hu) {
+            // hole side k = b^1 (t → s) becomes t → n₂ → n₁ → s
+            let b = hu ^ 1;
+            let c = x.hole_corner[h] as usize;
+            cv[c] = vert[h];
+            cv[c + 1] = n2(b);
+            cv[c + 2] = n1(b);
+            tw[c] = tri(next[b as usize]) + 2;
+            tw[c + 1] = tri(b);
+            tw[c + 2] = tri(prev[b as usize] ^ 1);
+            if req.origins {
+                for i in 0..3 {
+                    corner_origin[c + i] = (EDGE, hu >> 1);
+                }
+            }
+            continue;
+        }
+        let c = tri(hu) as usize;
+        let t = hu ^ 1;
+        if x.hole(t) {
+            // the middle triangle [n₁, n₂, x] of the boundary face
+            let (p, n) = (prev[h], next[h]);
+            cv[c] = n1(hu);
+            cv[c + 1] = n2(hu);
+            cv[c + 2] = vert[p as usize];
+            tw[c] = x.hole_corner[t as usize] + 1;
+            tw[c + 1] = tri(n ^ 1);
+            tw[c + 2] = tri(p) + 2;
+            if req.origins {
+                face_origin.push((FACE, f));
+                corner_origin[c] = (EDGE, hu >> 1);
+                corner_origin[c + 1] = (FACE, f);
+                corner_origin[c + 2] = (FACE, f);
+            }
+            continue;
+        }
+        // interior side a → b: [a, P(g, t), P(f, h)]
+        let g = face[t as usize];
+        cv[c] = vert[h];
+        cv[c + 1] = point(t);
+        cv[c + 2] = point(hu);
+        tw[c + 1] = tri(t) + 1;
+        let bg = bside[g as usize];
+        let (tw0, o0) = if bg != NONE && t == prev[bg as usize] {
+            (x.hole_corner[(bg ^ 1) as usize] + 2, (EDGE, bg >> 1)) // s → n₁ on the boundary
+        } else if bg != NONE && t == next[bg as usize] {
+            (tri(bg) + 1, (FACE, g)) // x → n₂, the middle triangle's side
+        } else {
+            (tri(next[t as usize]) + 2, (FACE, g))
+        };
+        let bf = bside[f as usize];
+        let (tw2, o2) = if bf != NONE && hu == prev[bf as usize] {
+            (tri(bf) + 2, (FACE, f)) // n₁ → x
+        } else if bf != NONE && hu == next[bf as usize] {
+            (x.hole_corner[(bf ^ 1) as usize], (EDGE, bf >> 1)) // n₂ → t on the boundary
+        } else {
+            (tri(prev[h] ^ 1), (FACE, f))
+        };
+        tw[c] = tw0;
+        tw[c + 2] = tw2;
+        if req.origins {
+            face_origin.push((EDGE, hu >> 1));
+            corner_origin[c] = o0;
+            corner_origin[c + 1] = (EDGE, hu >> 1);
+            corner_origin[c + 2] = o2;
+        }
+    }
+    let vertex_origin = if req.origins {
+        face_origin.extend(x.hole_faces().map(|f| (FACE, f)));
+        (0..nv as u32)
+            .map(|v| (VERTEX, v))
+            .chain(centred.iter().map(|&f| (FACE, f as u32)))
+            .chain(sides.iter().flat_map(|&b| [(EDGE, b >> 1), (EDGE, b >> 1)]))
+            .collect()
+    } else {
+        vec![]
+    };
+    finish(m, req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+}
