@@ -403,7 +403,7 @@ def test_every_scheme_has_a_matrix_and_parents(scheme: str, name: str) -> None:
             assert ((idx[kinds == k] >= 0) & (idx[kinds == k] < n)).all()
 
 
-@pytest.mark.parametrize("scheme", ["catmull_clark", "loop", "doo_sabin", "midpoint", "dual", "honeycomb", "vertex_truncation", "sqrt3"])
+@pytest.mark.parametrize("scheme", ["catmull_clark", "loop", "doo_sabin", "midpoint", "dual", "honeycomb", "vertex_truncation", "sqrt3", "simplest"])
 @pytest.mark.parametrize("fixture", ["disk", "annulus", "cylinder", "genus2_three_holes"])
 def test_open_inputs_keep_chi_and_boundaries(scheme: str, fixture: str) -> None:
     from tests import open_meshes
@@ -417,7 +417,7 @@ def test_open_inputs_keep_chi_and_boundaries(scheme: str, fixture: str) -> None:
     assert len(corr.face_parents) == len(out.face_sizes)
 
 
-@pytest.mark.parametrize("scheme", ["simplest", "sierpinski"])
+@pytest.mark.parametrize("scheme", ["sierpinski"])
 def test_schemes_without_boundary_rules_refuse_open_inputs(scheme: str) -> None:
     from tests import open_meshes
 
@@ -449,3 +449,18 @@ def test_sqrt3_refines_the_boundary_every_second_level() -> None:
     assert (two.face_sizes == 3).all()
     # one level at a time is an odd level each time: the boundary is never refined
     assert one.sqrt3().boundary_edges().shape[0] == nb
+
+
+def test_simplest_keeps_the_boundary_polyline() -> None:
+    """The mid-edge scheme on an open mesh: boundary vertices stay, boundary edges are
+    split at their midpoints (topomesh's convention; the paper has no boundary rule)."""
+    from tests import open_meshes
+
+    m = open_meshes.mesh("annulus")
+    out = m.simplest()
+    assert out.n_boundary_loops == m.n_boundary_loops
+    assert out.boundary_edges().shape[0] == 2 * m.boundary_edges().shape[0]
+    kept = {tuple(p) for p in m.vertices[np.unique(m.boundary_edges())]}
+    mids = {tuple(p) for p in m.vertices[m.boundary_edges()].mean(axis=1)}
+    got = {tuple(p) for p in out.vertices[np.unique(out.boundary_edges())]}
+    assert got == kept | mids

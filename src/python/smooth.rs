@@ -120,7 +120,10 @@ impl PyMesh {
     /// and per old vertex.
     ///
     /// Per level: V' = E, E' = 2E, F' = F + V; every new vertex is
-    /// 4-valent. Parameters, return and errors as :meth:`catmull_clark`.
+    /// 4-valent. Open meshes keep their boundary polyline (boundary
+    /// vertices stay, boundary edges are split at their midpoints: V' = E +
+    /// V_b, E' = 2E + E_b). Parameters, return and errors as
+    /// :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn simplest<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
         levels::run(py, self, iterations, progress, levels::Spec::plain("simplest", predict::simplest), correspondence, schemes::simplest::simplest_level)

@@ -12,12 +12,11 @@
 //!
 //! Point-spheres (a vertex with one face and no edge) carry through every
 //! scheme unchanged ([`with_point_spheres`]). Hole faces (the boundary
-//! loops of an open mesh) are refused by the schemes without boundary rules
-//! (√3, simplest: [`refuse_holes`]) instead of being refined into real
-//! faces; honeycomb and vertex truncation keep them as holes, and the
-//! `*_level` functions of Catmull-Clark, Loop, midpoint, dual and Doo-Sabin
-//! apply boundary rules and keep them (the Python methods call those; the
-//! plain Rust `midpoint`, `dual` and `doo_sabin` still refuse holes).
+//! loops of an open mesh) are kept: honeycomb and vertex truncation keep
+//! them as holes, and the `*_level` functions of Catmull-Clark, Loop,
+//! midpoint, dual, Doo-Sabin, √3 and simplest apply boundary rules (the
+//! Python methods call those; the plain Rust `midpoint`, `dual`,
+//! `doo_sabin`, `sqrt3` and `simplest` refuse holes: [`refuse_holes`]).
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
@@ -232,17 +231,17 @@ impl FaceThenVertexFaces {
     }
 }
 
-/// Refuses a mesh with hole faces (boundary loops): a scheme without
-/// boundary rules would refine the hole like a real face and silently
-/// close it.
+/// Refuses a mesh with hole faces (boundary loops) in the plain closed-mesh
+/// scheme functions, which would refine a hole like a real face and
+/// silently close it; their boundary rules live in the `*_level` functions.
 pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
     let holes = m.n_holes();
     if holes == 0 {
         return Ok(());
     }
     Err(crate::error::MeshError::Precondition(format!(
-        "{scheme}: the mesh has {holes} boundary loop{} (it is open); {scheme} has no boundary rules \
-         and would fill {}, so it refuses open meshes (catmull_clark, loop, doo_sabin, midpoint, dual, honeycomb and vertex_truncation keep holes open)",
+        "{scheme}: the mesh has {holes} boundary loop{} (it is open); the plain {scheme} takes closed meshes only \
+         and would fill {}; its boundary rules are in {scheme}_level (which the Python methods call)",
         if holes == 1 { "" } else { "s" },
         if holes == 1 { "it" } else { "them" }
     )))
@@ -250,7 +249,7 @@ pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
 
 /// Runs `scheme` on `m` with its point-spheres set aside, then appends them
 /// unchanged (same position, one vertex and one face each). Meshes with hole
-/// faces are refused ([`refuse_holes`]): these schemes have no boundary rules.
+/// faces are refused ([`refuse_holes`]): the closed-mesh scheme functions (boundary rules are in their levels).
 pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) -> Result<Mesh>) -> Result<Mesh> {
     refuse_holes(name, m)?;
     crate::cancel::check()?;

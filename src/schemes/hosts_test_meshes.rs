@@ -1,7 +1,8 @@
 //! The corpus every scheme's unit tests run over.
 
-/// Schemes without boundary rules refuse a capped hole instead of
-/// refining the cap into a real face (the hole would close silently).
+/// The plain closed-mesh scheme functions (and Sierpinski and Menger, which
+/// have no boundary rule) refuse a capped hole instead of refining the cap
+/// into a real face (the hole would close silently).
 #[test]
 fn schemes_without_boundary_rules_refuse_holes() {
     use crate::error::MeshError;

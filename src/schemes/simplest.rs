@@ -23,9 +23,17 @@
 //! a row is `½ a + ½ b`. Origins: the midpoint of e → (EDGE, e); the F-face
 //! of f → (FACE, f), the V-face of v → (VERTEX, v); every output edge lies
 //! inside one input face (it cuts a corner of it) → (FACE, that face).
-//! Open meshes are refused (no boundary rule yet: the plain mid-edge rule
-//! at a boundary would average the boundary polygon into itself without
-//! refining it).
+//! Open meshes: the paper has no boundary rule, and the plain mid-edge rule
+//! at a boundary would replace the boundary polygon by its midpoint polygon
+//! at every level (the hole keeps its n sides and shrinks towards a point).
+//! topomesh keeps the boundary polyline instead, the convention of Blender's
+//! *keep boundaries* it also uses for [`super::dual`] (the mid-edge step is a
+//! rectification, dual-like): a boundary vertex stays, as a corner of its
+//! V-face, and boundary edges are split at their midpoints. With E_b
+//! boundary edges, V_b boundary vertices and h holes: V' = E + V_b,
+//! E' = 2E + E_b, F' = F + V (the holes stay holes, each of n sides now
+//! 2n). The boundary is interpolated as a polyline (a crease), the interior
+//! is smoothed as on closed meshes.
 
 use super::hosts::{check_output_size, refuse_holes, with_point_spheres, FaceLayout, VertexLayout, MIN_LEN};
 use super::corner_origins::edge_origins_by_corner;
@@ -38,6 +46,7 @@ use rayon::prelude::*;
 
 /// One level of mid-edge ("simplest") subdivision. See the module docs.
 pub fn simplest(m: &Mesh) -> Result<Mesh> {
+    refuse_holes("simplest", m)?;
     with_point_spheres("simplest", m, step)
 }
 
@@ -93,12 +102,15 @@ fn step(m: &Mesh) -> Result<Mesh> {
 }
 
 /// One level with what `req` asks for (see the module docs); without
-/// requests it is [`simplest`]. Refuses hole faces.
+/// requests it is [`simplest`]. Open meshes keep their boundary polyline
+/// (module docs).
 /// This scheme has no sharpness rules: `req.creases` is ignored and
 /// `Level.creases` is `None` (creases are dropped).
 pub fn simplest_level(m: &Mesh, req: &Request) -> Result<Level> {
-    refuse_holes("simplest", m)?;
     with_point_spheres_level(m, req, |m, req| {
+        if m.n_holes() > 0 {
+            return open_level(m, req);
+        }
         let mesh = step(m)?;
         let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
         let (_, vert, face) = m.halfedge_columns();
@@ -136,6 +148,149 @@ pub fn simplest_level(m: &Mesh, req: &Request) -> Result<Level> {
     })
 }
 
+/// One level on a mesh with hole faces (no point-spheres): boundary
+/// vertices kept, boundary edges split (module docs). Faces are
+/// `[F-faces of real faces | V-faces | holes]`.
+fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
+    use crate::mesh::NONE;
+    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+    check_output_size("simplest", 2 * nh + nh, ne + nv)?;
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let hole = |h: u32| m.f_hole[face[h as usize] as usize];
+    // boundary vertices, in vertex order, after the edge midpoints
+    let mut bidx = vec![NONE; nv];
+    let mut bverts = Vec::new();
+    for h in 0..nh as u32 {
+        let v = vert[h as usize] as usize;
+        if hole(h) && bidx[v] == NONE {
+            bidx[v] = bverts.len() as u32;
+            bverts.push(v as u32);
+        }
+    }
+    // corner numbering
+    let (mut fc, mut vc, mut vx, mut ca) = (vec![NONE; nh], vec![NONE; nh], vec![NONE; nh], vec![NONE; nh]);
+    let mut sizes = Vec::with_capacity(nf + nv);
+    let mut holes = Vec::with_capacity(nf + nv);
+    let mut c = 0u32;
+    let cycle = |f: usize| {
+        let s = m.f_start[f];
+        let mut h = s;
+        let mut out = Vec::new();
+        loop {
+            out.push(h);
+            h = next[h as usize];
+            if h == s {
+                break out;
+            }
+        }
+    };
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        if !m.f_hole[f] {
+            let hs = cycle(f);
+            for &h in &hs {
+                fc[h as usize] = c;
+                c += 1;
+            }
+            sizes.push(hs.len() as u32);
+            holes.push(false);
+        }
+    }
+    for v in 0..nv {
+        crate::cancel::poll(v)?;
+        let start = c;
+        for x in super::creases::ring(m, m.v_out[v]) {
+            vc[x as usize] = c;
+            c += 1;
+            if hole(x) {
+                vx[x as usize] = c; // the kept boundary vertex, after m(x)
+                c += 1;
+            }
+        }
+        sizes.push(c - start);
+        holes.push(false);
+    }
+    let mut hole_faces = Vec::new();
+    for f in 0..nf {
+        if m.f_hole[f] {
+            let hs = cycle(f);
+            for &k in &hs {
+                ca[k as usize] = c; // [w, m(k)]: the two halves of side k
+                c += 2;
+            }
+            sizes.push(2 * hs.len() as u32);
+            holes.push(true);
+            hole_faces.push(f as u32);
+        }
+    }
+    let n = c as usize;
+    let (mut cv, mut tw) = (vec![0u32; n], vec![0u32; n]);
+    let mut co = vec![(0u8, 0u32); if req.origins { n } else { 0 }];
+    let bv = |w: u32| (ne as u32) + bidx[w as usize];
+    for h in 0..nh {
+        crate::cancel::poll(h)?;
+        let hu = h as u32;
+        let mid = hu >> 1;
+        if !hole(hu) {
+            // F-face side m(h) → m(next h), cutting the corner at vert[next h]
+            let i = fc[h] as usize;
+            cv[i] = mid;
+            tw[i] = vc[next[h] as usize];
+            // V-face side m(h) → m(prev h) inside face[h]
+            let j = vc[h] as usize;
+            cv[j] = mid;
+            tw[j] = fc[prev[h] as usize];
+            if req.origins {
+                co[i] = (FACE, face[h]);
+                co[j] = (FACE, face[h]);
+            }
+        } else {
+            // V-face of w = vert[h]: m(h) → w → m(prev h) along the boundary
+            let (j, x) = (vc[h] as usize, vx[h] as usize);
+            cv[j] = mid;
+            tw[j] = ca[h];
+            cv[x] = bv(vert[h]);
+            tw[x] = ca[prev[h] as usize] + 1;
+            // the hole: w → m(h) → (next corner)
+            let a = ca[h] as usize;
+            cv[a] = bv(vert[h]);
+            tw[a] = vc[h];
+            cv[a + 1] = mid;
+            tw[a + 1] = vx[next[h] as usize];
+            if req.origins {
+                co[j] = (EDGE, mid);
+                co[x] = (EDGE, prev[h] >> 1);
+                co[a] = (EDGE, mid);
+                co[a + 1] = (EDGE, mid);
+            }
+        }
+    }
+    let st = Stencils::build(ne + bverts.len(), nv, |i, row| {
+        if i < ne {
+            row.add(vert[2 * i], 0.5);
+            row.add(vert[2 * i + 1], 0.5);
+        } else {
+            row.add(bverts[i - ne], 1.0);
+        }
+    })?;
+    let pos = st.apply_points(&m.pos)?;
+    let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        o.vertex_kind = std::iter::repeat(EDGE).take(ne).chain(std::iter::repeat(VERTEX).take(bverts.len())).collect();
+        o.vertex = (0..ne as u32).chain(bverts.iter().copied()).collect();
+        let real: Vec<u32> = (0..nf as u32).filter(|&f| !m.f_hole[f as usize]).collect();
+        o.face_kind = std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(VERTEX).take(nv)).chain(std::iter::repeat(FACE).take(hole_faces.len())).collect();
+        o.face = real.iter().copied().chain(0..nv as u32).chain(hole_faces.iter().copied()).collect();
+        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils: req.stencils.then_some(st), origins, creases: None })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -165,10 +320,32 @@ mod tests {
     }
 
     #[test]
-    fn level_refuses_holes() {
-        match simplest_level(&cube_with_hole(), &Request { stencils: true, ..Default::default() }) {
-            Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("simplest") && msg.contains("no boundary rules"), "{msg}"),
-            other => panic!("{other:?}"),
+    fn open_meshes_keep_their_boundary_polyline() {
+        for (name, m) in open_meshes() {
+            let (v, e, f) = counts(&m);
+            let nb = (0..m.n_halfedges()).filter(|&h| m.f_hole[m.he_face[h] as usize]).count();
+            let vb = (0..v).filter(|&x| crate::schemes::creases::ring(&m, m.v_out[x]).any(|h| m.f_hole[m.he_face[h as usize] as usize])).count();
+            let lv = simplest_level(&m, &full_request()).unwrap();
+            check_level(name, &m, &lv);
+            let r = &lv.mesh;
+            assert_eq!(counts(r), (e + vb, 2 * e + nb, f + v), "{name}");
+            assert_eq!((open_euler(r), r.n_holes()), (open_euler(&m), m.n_holes()), "{name}");
+            let rb = (0..r.n_halfedges()).filter(|&h| r.f_hole[r.he_face[h] as usize]).count();
+            assert_eq!(rb, 2 * nb, "{name}: boundary edges split");
+            // every boundary point of the output lies on the input's boundary polyline
+            for h in 0..r.n_halfedges() {
+                if r.f_hole[r.he_face[h] as usize] {
+                    let p = r.pos[r.he_vert[h] as usize];
+                    let on = (0..m.n_halfedges()).filter(|&k| m.f_hole[m.he_face[k] as usize]).any(|k| {
+                        let (a, b) = (m.pos[m.he_vert[k] as usize], m.pos[m.he_vert[k ^ 1] as usize]);
+                        (p - a).length() < 1e-12 || (p - b).length() < 1e-12 || (p - (a + b) * 0.5).length() < 1e-12
+                    });
+                    assert!(on, "{name}: boundary point {p} off the input boundary");
+                }
+            }
+            // a second level works on the output (open input again)
+            let two = simplest_level(r, &full_request()).unwrap();
+            check_level(name, r, &two);
         }
     }
 
