@@ -425,11 +425,50 @@ def test_schemes_without_boundary_rules_refuse_open_inputs(scheme: str) -> None:
         run(open_meshes.mesh("disk"), scheme, 1)
 
 
-def test_menger_warns_that_it_drops_data() -> None:
-    c = tm.cube().with_attributes(vertex={"a": np.arange(8.0)})
-    with pytest.warns(tm.GeometryWarning, match="does not carry"):
-        out = c.menger(1)
-    assert out.vertex_attributes == {}
+@pytest.mark.parametrize("name", ["cube", "torus"])
+def test_menger_carries_attributes_and_correspondence(name: str) -> None:
+    """Menger's positions are not linear, but every output element has an origin:
+    face data follows the parent faces, vertex data the transfer (copy from the vertex
+    whose rule placed a point, linear along the edge for trisection points)."""
+    m = MESHES[name]()
+    rng = np.random.default_rng(5)
+    a = rng.random((m.n_vertices, 3))
+    mat = np.arange(len(m.face_sizes)) * 10
+    d = m.with_attributes(vertex={"a": a, "pos": m.vertices}, face={"mat": mat})
+    out, corr = d.menger(2, correspondence=True)
+    assert out == m.menger(2)
+    assert corr.linear is False and len(corr.face_parents) == len(out.face_sizes)
+    np.testing.assert_array_equal(out.face_attributes["mat"], mat[corr.face_parents])
+    np.testing.assert_allclose(out.vertex_attributes["a"], corr.apply(a), atol=1e-12)
+    T = corr.transfer
+    np.testing.assert_allclose(T @ np.ones(m.n_vertices), 1.0)
+    # the input vertices keep their values
+    np.testing.assert_allclose(out.vertex_attributes["a"][: m.n_vertices], a)
+    # one level: carried positions are the owner vertex's, or exact on the edge for trisection points
+    one, c1 = d.menger(1, correspondence=True)
+    carried = one.vertex_attributes["pos"]
+    on_edge = c1.vertex_kinds == 1
+    assert on_edge.sum() == 2 * m.n_edges
+    np.testing.assert_allclose(carried[on_edge], one.vertices[on_edge], atol=1e-12)
+    at_vertex = c1.vertex_kinds == 0
+    np.testing.assert_allclose(carried[at_vertex], m.vertices[c1.vertex_origins[at_vertex]], atol=1e-12)
+    with pytest.raises(MeshError, match=r"^Correspondence.matrix: menger .* not linear"):
+        corr.matrix
+    # every output vertex and face names an input element of the right range
+    lim = {0: m.n_vertices, 1: m.n_edges, 2: len(m.face_sizes)}
+    for kinds, idx in ((corr.vertex_kinds, corr.vertex_origins), (corr.face_kinds, corr.face_origins)):
+        for k, n in lim.items():
+            assert ((idx[kinds == k] >= 0) & (idx[kinds == k] < n)).all()
+    # every input face owns at least its 3n remeshing and pipe quads
+    owned = np.bincount(c1.face_origins[c1.face_kinds == 2], minlength=len(m.face_sizes))
+    assert (owned >= 3 * m.face_sizes).all()
+
+
+def test_menger_refuses_corner_attributes() -> None:
+    c = tm.cube()
+    uv = np.zeros((int(c.face_sizes.sum()), 2))
+    with pytest.raises(MeshError, match=r"^menger: the mesh has corner attributes \(uv\)"):
+        c.with_attributes(corner={"uv": uv}).menger()
 
 
 def test_sqrt3_refines_the_boundary_every_second_level() -> None:

@@ -336,6 +336,7 @@ class Mesh:
     def sierpinski(self, iterations: int = 1, progress: bool = False, *, correspondence: Literal[False] = False) -> Mesh: ...
     @overload
     def sierpinski(self, iterations: int = 1, progress: bool = False, *, correspondence: Literal[True]) -> tuple[Mesh, Correspondence]: ...
+    @overload
     def menger(
         self,
         iterations: int = 1,
@@ -343,7 +344,20 @@ class Mesh:
         absolute: bool = False,
         collapse_angle: float = 90.0,
         progress: bool = False,
+        *,
+        correspondence: Literal[False] = False,
     ) -> Mesh: ...
+    @overload
+    def menger(
+        self,
+        iterations: int = 1,
+        thickness: float = 1.0 / 3.0,
+        absolute: bool = False,
+        collapse_angle: float = 90.0,
+        progress: bool = False,
+        *,
+        correspondence: Literal[True],
+    ) -> tuple[Mesh, Correspondence]: ...
     # --- printing (src/python/printing.rs, topomesh.printing) ---
     def wall_thickness(self) -> npt.NDArray[np.float64]: ...
     def printable(self, min_thickness: float) -> PrintReport: ...

@@ -47,6 +47,11 @@ class Correspondence:
     indices: npt.NDArray[np.int64] = field(repr=False)
     weights: npt.NDArray[np.float64] = field(repr=False)
     shape: tuple[int, int] = (0, 0)
+    #: False for a scheme whose positions are not linear in the input's
+    #: (``menger``): it has no subdivision matrix, only the linear
+    #: :attr:`transfer` that carried vertex attributes.
+    linear: bool = True
+    scheme: str = ""
 
     def __post_init__(self) -> None:
         for name in ("face_parents", "face_kinds", "face_origins", "vertex_kinds", "vertex_origins", "indptr", "indices", "weights"):
@@ -60,6 +65,31 @@ class Correspondence:
         positions are linear in the input's); apply it to a deformed input
         to re-pose the output at matrix-product speed. Duplicate entries
         are summed. Needs SciPy.
+
+        Raises
+        ------
+        MeshError
+            For a scheme whose positions are not linear (``menger``); its
+            attribute transfer is :attr:`transfer`.
+        """
+        if not self.linear:
+            from . import MeshError
+
+            raise MeshError(
+                f"Correspondence.matrix: {self.scheme or 'this scheme'} places points by offsets and plane intersections, "
+                "so its positions are not linear in the input's and it has no subdivision matrix; "
+                "Correspondence.transfer is the linear map that carried vertex attributes"
+            )
+        return self.transfer
+
+    @property
+    def transfer(self) -> Any:
+        """The linear map that carried vertex attributes (``scipy.sparse.csr_array``, output V × input V).
+
+        The subdivision matrix for the linear schemes; for ``menger`` each
+        output vertex takes the value of the input vertex whose rule placed
+        it, and each edge trisection point interpolates its edge's two ends.
+        Needs SciPy.
         """
         try:
             import scipy.sparse as sp
@@ -70,7 +100,7 @@ class Correspondence:
         return s
 
     def apply(self, values: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """``S @ values`` without SciPy: interpolate per-vertex data of the input.
+        """``transfer @ values`` (``S @ values`` for linear schemes) without SciPy: interpolate per-vertex data of the input.
 
         Parameters
         ----------

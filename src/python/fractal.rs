@@ -1,6 +1,6 @@
 //! Fractal schemes: `Mesh.sierpinski` and `topomesh.menger_sponge`.
 
-use super::{big_int, iterate, GeometryWarning};
+use super::{big_int, GeometryWarning};
 use crate::budget::predict;
 use super::mesh::PyMesh;
 use crate::schemes::{menger as mg, menger_sponge as sponge, sierpinski as sp};
@@ -66,12 +66,23 @@ impl PyMesh {
     /// collapse_angle : float, default 90
     ///     Edges with an interior dihedral angle up to this (degrees) collapse.
     /// progress : bool, default False
+    /// correspondence : bool, default False, keyword-only
+    ///     Also return a :class:`topomesh.Correspondence`: parent faces and
+    ///     vertex/face origins as for the smoothing schemes; the positions
+    ///     are not linear in the input's, so it has no subdivision matrix,
+    ///     only the attribute ``transfer``.
     ///
     /// Returns
     /// -------
-    /// Mesh
+    /// Mesh, or (Mesh, Correspondence) with ``correspondence=True``
     ///     Per iteration on a connected mesh: genus ``2g + F - 1``. On the
-    ///     cube the first iteration is the classic level-1 sponge.
+    ///     cube the first iteration is the classic level-1 sponge. Face
+    ///     attributes are inherited from the parent faces (a strip's from a
+    ///     face beside its edge, a vertex face's from a face at its vertex);
+    ///     vertex attributes are copied from the input vertex whose rule
+    ///     placed each point, and interpolated along the edge for the
+    ///     trisection points. Creases are dropped; corner attributes are
+    ///     refused (no face-varying rule).
     ///
     /// Raises
     /// ------
@@ -98,24 +109,21 @@ impl PyMesh {
     ///     still cross (their count is in the message). The check tests
     ///     each vertex's own faces, so no warning is not a proof that the
     ///     result is free of self-intersections.
-    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false))]
-    fn menger(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool) -> PyResult<PyMesh> {
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false))]
+    #[allow(clippy::too_many_arguments)]
+    fn menger<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
-        if !self.data.is_empty() && iterations > 0 {
-            // offsets along normals are not linear in the positions: no stencils to carry data with
-            let msg = "menger: the output does not carry the input's creases and attributes (the offset construction has no subdivision matrix)";
-            PyErr::warn(py, &py.get_type::<GeometryWarning>(), &std::ffi::CString::new(msg).expect("no NUL"), 1)?;
-        }
         // (iteration, vertices still crossing) for every iteration left with crossings
         let left = std::sync::Mutex::new(Vec::<(usize, usize)>::new());
         let done = std::sync::atomic::AtomicUsize::new(0);
-        let out = iterate(py, &self.inner, iterations, progress, "menger", predict::menger, |m| {
+        let spec = super::levels::Spec::nonlinear("menger", predict::menger);
+        let out = super::levels::run(py, self, iterations, progress, spec, correspondence, |m, req| {
             let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            let (mesh, crossing) = mg::menger_checked(m, &o)?;
+            let (lv, crossing) = crate::schemes::menger_level::menger_level(m, &o, req)?;
             if crossing > 0 {
                 left.lock().unwrap_or_else(|e| e.into_inner()).push((k, crossing));
             }
-            Ok(mesh)
+            Ok(lv)
         })?;
         for (k, n) in left.into_inner().unwrap_or_else(|e| e.into_inner()) {
             let msg = format!(

@@ -33,6 +33,10 @@ pub(crate) struct Spec {
     /// The level with vertex data interpolated by the scheme's direct
     /// masks (no stencils built), when it has one.
     pub with_data: Option<DataLevel>,
+    /// Positions are linear in the input's: the level's stencils are the
+    /// subdivision matrix. When false (Menger) they are only the attribute
+    /// transfer, and the correspondence says so.
+    pub linear: bool,
 }
 
 impl Spec {
@@ -53,12 +57,19 @@ impl Spec {
             uses_creases: true,
             face_varying: Some(self::corner_interpolation(name, corner_interpolation)?),
             with_data: Some(with_data),
+            linear: true,
         })
     }
 
     /// A scheme without crease, face-varying or direct-data rules.
     pub fn plain(name: &'static str, predict: crate::budget::Predictor) -> Spec {
-        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None }
+        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, linear: true }
+    }
+
+    /// A scheme whose positions are not linear in the input's: its levels'
+    /// stencils carry attributes but are no subdivision matrix.
+    pub fn nonlinear(name: &'static str, predict: crate::budget::Predictor) -> Spec {
+        Spec { linear: false, ..Spec::plain(name, predict) }
     }
 }
 
@@ -166,7 +177,7 @@ pub(crate) fn run<'py>(
         };
         if req.stencils && lv.stencils.is_none() {
             return Err(crate::MeshError::Precondition(format!(
-                "{}: its positions are not linear in the input's, so it has no subdivision matrix and cannot interpolate vertex attributes",
+                "{}: its level has no stencils, so it has no subdivision matrix and cannot interpolate vertex attributes",
                 st.name
             )));
         }
@@ -254,6 +265,8 @@ pub(crate) fn run<'py>(
     kw.set_item("indices", PyArray1::from_vec(py, matrix.col.iter().map(|&x| x as i64).collect()))?;
     kw.set_item("weights", PyArray1::from_vec(py, matrix.w))?;
     kw.set_item("shape", (out.n_vertices(), input.n_vertices()))?;
+    kw.set_item("linear", spec.linear)?;
+    kw.set_item("scheme", spec.name)?;
     let c = py.import("topomesh.correspondence")?.getattr("Correspondence")?.call((), Some(&kw))?;
     Ok(pyo3::types::PyTuple::new(py, [mesh.into_any(), c])?.into_any())
 }

@@ -834,7 +834,12 @@ fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) -> Result<Inn
 /// Faces left with fewer than three distinct corners are dropped. Also
 /// returns each face's kind: 0 corner quad, 1 edge quad, 2 pipe quad,
 /// 3 strip, 4 miter quad, 5 vertex face.
-fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> (Vec<i64>, Vec<i64>, Vec<u8>) {
+/// Polygons with a tag (which step made them) and their origin (the input
+/// element they belong to, as in [`crate::schemes::level::Origins`]).
+type Emitted = (Vec<i64>, Vec<i64>, Vec<u8>, Vec<(u8, u32)>);
+
+fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> Emitted {
+    use crate::schemes::level::{EDGE, FACE, VERTEX};
     let ng = pl.group_pos.len();
     let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
         let near_tail_of_2e = (h.0 & 1 == 0) == near_tail;
@@ -845,12 +850,14 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
     let mut sizes: Vec<i64> = Vec::new();
     let mut idx: Vec<i64> = Vec::new();
     let mut tags: Vec<u8> = Vec::new();
-    let mut push = |poly: &[u32], tag: u8| {
+    let mut origin: Vec<(u8, u32)> = Vec::new();
+    let mut push = |poly: &[u32], tag: u8, from: (u8, u32)| {
         for d in split_cycle(poly) {
             if d.len() >= 3 {
                 sizes.push(d.len() as i64);
                 idx.extend(d.iter().map(|&x| x as i64));
                 tags.push(tag);
+                origin.push(from);
             }
         }
     };
@@ -858,9 +865,10 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
     for f in m.faces() {
         for h in m.face_halfedges(f) {
             let (pr, nx) = (m.prev(h), m.next(h));
-            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], 0);
-            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())], 1);
-            push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)], 2);
+            let of = (FACE, f.0);
+            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], 0, of);
+            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())], 1, of);
+            push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)], 2, of);
         }
     }
     // inner surface: strips, miter quad pairs, vertex faces
@@ -869,7 +877,7 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
         let t = h.twin();
         match pl.kind[e.idx()] {
             EdgeKind::Collapse => {}
-            EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3),
+            EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3, (EDGE, e.0)),
             EdgeKind::Miter => {
                 if r(h) == r(m.next(t)) && r(m.next(h)) == r(t) {
                     // both ends already one offset corner (every other edge
@@ -877,8 +885,8 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
                     continue;
                 }
                 let (m0, m1) = (mid(e.idx(), 0), mid(e.idx(), 1));
-                push(&[r(h), r(m.next(h)), m1, m0], 4);
-                push(&[m0, m1, r(t), r(m.next(t))], 4);
+                push(&[r(h), r(m.next(h)), m1, m0], 4, (EDGE, e.0));
+                push(&[m0, m1, r(t), r(m.next(t))], 4, (EDGE, e.0));
             }
         }
     }
@@ -897,9 +905,9 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
                 break;
             }
         }
-        push(&poly, 5);
+        push(&poly, 5, (VERTEX, v.0));
     }
-    (sizes, idx, tags)
+    (sizes, idx, tags, origin)
 }
 
 /// A face cycle after welding: consecutive repeats removed, then split
@@ -982,7 +990,7 @@ pub fn menger_counts(m: &Mesh, o: &MengerOptions) -> Result<MengerCounts> {
 
 /// Positions and polygon faces of one iteration, with the number of inner
 /// points used and of faces added by splitting non-planar faces.
-struct Built {
+pub(super) struct Built {
     pos: Vec<DVec3>,
     sizes: Vec<i64>,
     idx: Vec<i64>,
@@ -995,7 +1003,9 @@ struct Built {
     coned: Vec<u32>,
     /// The input vertex whose local rule placed each output vertex
     /// (`u32::MAX` for the input's vertices and the trisection points).
-    owner: Vec<u32>,
+    pub(super) owner: Vec<u32>,
+    /// The input element every output face belongs to (`Origins` kinds).
+    pub(super) face_origin: Vec<(u8, u32)>,
 }
 
 fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> Result<Built> {
@@ -1040,7 +1050,7 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
     }
     // inner points get ids in order of first use
     let base = u32::MAX / 2;
-    let (sizes, mut idx, tags) = emit_faces(m, &pl, &inner, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32, &|i| base + i);
+    let (sizes, mut idx, tags, origin) = emit_faces(m, &pl, &inner, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32, &|i| base + i);
     let mut inner_id = vec![u32::MAX; inner.pos.len()];
     for x in idx.iter_mut() {
         if *x >= base as i64 {
@@ -1077,6 +1087,7 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
     // non-planar input) are split into planar pieces
     let tol = 1e-9 * pl.face_d.iter().cloned().fold(f64::INFINITY, f64::min).max(1e-300);
     let (mut sz2, mut idx2) = (Vec::with_capacity(sizes.len()), Vec::with_capacity(idx.len()));
+    let mut face_origin = Vec::with_capacity(sizes.len());
     let mut k = 0;
     let mut pieces = Vec::new();
     let mut coned: Vec<u32> = Vec::new();
@@ -1100,10 +1111,11 @@ fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> 
         for p in &pieces {
             sz2.push(p.len() as i64);
             idx2.extend(p.iter().map(|&x| x as i64));
+            face_origin.push(origin[fi]);
         }
     }
     let split_extra = sz2.len() - sizes.len();
-    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + coned.len(), split_extra, owner, first_inner: i0 as u32, coned })
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + coned.len(), split_extra, owner, first_inner: i0 as u32, coned, face_origin })
 }
 
 /// Largest distance of the polygon's points from its best-fit plane through
@@ -1158,13 +1170,19 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
 /// self-intersections when this is not zero. Zero does not prove the output
 /// free of them: the check tests each vertex's own triangles only.
 pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
+    let ((_, mesh), crossing) = checked_build(m, o)?;
+    Ok((mesh, crossing))
+}
+
+/// [`menger_checked`] with the polygons it was built from.
+pub(super) fn checked_build(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), usize)> {
     m.refuse_open(
         "menger",
         "the generalized sponge (dissertation ch. VII.3) thickens every face into a wall, a remeshing face joined by \
          a pipe to its inward offset copy, and has no rule for the rim such a wall would need at a boundary; treating \
          the holes as faces would fill them, so open meshes are refused; close the holes with faces first",
     )?;
-    let ((_, mesh), crossing) = build_valid(m, o)?;
+    let ((built, mesh), crossing) = build_valid(m, o)?;
     // a thickness under the face-width bound can still exceed what the body
     // allows (a thin slab of wide faces): an outward input must stay outward
     if !o.relative && m.signed_volume() > 0.0 && !(mesh.signed_volume() > 0.0) {
@@ -1174,7 +1192,7 @@ pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
             mesh.signed_volume()
         )));
     }
-    Ok((mesh, crossing))
+    Ok(((built, mesh), crossing))
 }
 
 /// Rounds of the crossing check (module docs): a vertex found crossing is
