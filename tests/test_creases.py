@@ -503,3 +503,25 @@ def test_simplest_keeps_the_boundary_polyline() -> None:
     mids = {tuple(p) for p in m.vertices[m.boundary_edges()].mean(axis=1)}
     got = {tuple(p) for p in out.vertices[np.unique(out.boundary_edges())]}
     assert got == kept | mids
+
+
+@pytest.mark.parametrize(
+    "op",
+    [
+        lambda m: m.insert_edge(0, 0, 0, 2),
+        lambda m: m.delete_edge(0),
+        lambda m: m.subdivide_edge(0, 0.5),
+        lambda m: m.collapse_edge(0),
+        lambda m: m.create_vertex([0.0, 0.0, 0.0]),
+        lambda m: m.rind(0.1),
+    ],
+    ids=["insert_edge", "delete_edge", "subdivide_edge", "collapse_edge", "create_vertex", "rind"],
+)
+def test_operators_announce_dropped_data(op) -> None:
+    """The local operators keep positions only; a mesh with data says so instead of
+    losing it silently, and a mesh without data stays quiet."""
+    c = tm.cube()
+    op(c)  # no warning (filterwarnings=error)
+    d = c.with_attributes(vertex={"a": np.arange(8.0)})
+    with pytest.warns(tm.GeometryWarning, match=r"does not carry the input's creases and attributes"):
+        op(d)

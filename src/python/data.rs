@@ -24,6 +24,22 @@ pub struct MeshData {
     pub corner: Vec<(String, Py<PyAny>)>,
 }
 
+/// Warns (`GeometryWarning`) that operator `op` returns a mesh without the
+/// input's creases and attributes: the local operators rebuild faces and
+/// edges and carry positions only, and data must never vanish unannounced.
+pub(crate) fn warn_dropped(data: &MeshData, op: &str) -> PyResult<()> {
+    if data.is_empty() {
+        return Ok(());
+    }
+    Python::attach(|py| {
+        let msg = format!(
+            "{op}: the result does not carry the input's creases and attributes (the operators keep positions only); \
+             attach them again with with_creases / with_attributes, or call without_data() first to silence this"
+        );
+        PyErr::warn(py, &py.get_type::<super::GeometryWarning>(), &std::ffi::CString::new(msg).expect("no NUL"), 1)
+    })
+}
+
 impl MeshData {
     pub fn is_empty(&self) -> bool {
         self.creases.is_none() && self.vertex.is_empty() && self.face.is_empty() && self.corner.is_empty()

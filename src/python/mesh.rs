@@ -446,6 +446,7 @@ impl PyMesh {
     /// point-sphere at ``p``. Returns ``(mesh, vertex, face)``.
     /// V+1, F+1, components+1, genus unchanged.
     fn create_vertex(&self, point: [f64; 3]) -> PyResult<(PyMesh, usize, usize)> {
+        super::data::warn_dropped(&self.data, "create_vertex")?;
         let mut m = self.inner.clone();
         let (v, f) = m.create_vertex(DVec3::from_array(point)).map_err(err)?;
         Ok((PyMesh::wrap(m), v.idx(), f.idx()))
@@ -455,6 +456,7 @@ impl PyMesh {
     /// vertex takes index ``v`` and the last face the point-sphere's face
     /// index. Raises :class:`MeshError` if ``v`` has edges.
     fn delete_vertex(&self, #[pyo3(from_py_with = super::sat_i64)] vertex: i64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "delete_vertex")?;
         if vertex < 0 || vertex as usize >= self.inner.n_vertices() {
             return Err(arg_err(format!("vertex {vertex} out of range (mesh has {} vertices)", self.inner.n_vertices())));
         }
@@ -471,6 +473,7 @@ impl PyMesh {
     /// component: they merge (F−1, genus+1). Two components: they join
     /// (F−1, components−1).
     fn insert_edge(&self, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<(PyMesh, usize)> {
+        super::data::warn_dropped(&self.data, "insert_edge")?;
         let c1 = self.corner(face1, position1)?;
         let c2 = self.corner(face2, position2)?;
         let mut m = self.inner.clone();
@@ -482,6 +485,7 @@ impl PyMesh {
     /// :meth:`insert_edge`). Different faces on its sides merge (F−1); the
     /// same face on both sides separates (F+1, genus−1 or components+1).
     fn delete_edge(&self, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "delete_edge")?;
         if edge < 0 || edge as usize >= self.inner.n_edges() {
             return Err(arg_err(format!("edge {edge} out of range (mesh has {} edges)", self.inner.n_edges())));
         }

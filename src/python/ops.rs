@@ -56,6 +56,7 @@ impl PyMesh {
     /// components −k for the k ∈ {0, 1, 2} point-spheres removed. The last
     /// edge takes index ``edge``; a removed vertex's index goes to the last vertex.
     fn delete_edge_with_cleanup(&self, py: Python<'_>, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "delete_edge_with_cleanup")?;
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
         py.detach(|| m.delete_edge_with_cleanup(e)).map_err(err)?;
@@ -71,6 +72,7 @@ impl PyMesh {
     /// now runs from the new vertex to b; the new last edge runs from a to it.
     #[pyo3(signature = (edge, t = 0.5))]
     fn subdivide_edge(&self, #[pyo3(from_py_with = super::sat_i64)] edge: i64, t: f64) -> PyResult<(PyMesh, usize)> {
+        super::data::warn_dropped(&self.data, "subdivide_edge")?;
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
         let s = m.subdivide_edge(e, t).map_err(err)?;
@@ -99,6 +101,7 @@ impl PyMesh {
     ///     crossing check ``menger`` uses), with the number of crossing
     ///     triangle pairs.
     fn create_pipe(&self, py: Python<'_>, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "create_pipe")?;
         let c1 = corner_of(&self.inner, face1, position1)?;
         let c2 = corner_of(&self.inner, face2, position2)?;
         let mut m = self.inner.clone();
@@ -113,6 +116,7 @@ impl PyMesh {
     ///
     /// V+N, E+N, F+2, components +1 (one point: a point-sphere, front = back).
     fn create_face_manifold(&self, py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<(PyMesh, usize, usize)> {
+        super::data::warn_dropped(&self.data, "create_face_manifold")?;
         let pts = super::convert::positions(py, points)?;
         let mut m = self.inner.clone();
         let fm = m.create_face_manifold(&pts).map_err(err)?;
@@ -128,6 +132,7 @@ impl PyMesh {
     /// E+2. One face: it splits in three (F+2). Two faces: F unchanged and
     /// genus +1 (one component) or components −1.
     fn connect_edges(&self, #[pyo3(from_py_with = super::sat_i64)] face1: i64, #[pyo3(from_py_with = super::sat_i64)] position1: i64, #[pyo3(from_py_with = super::sat_i64)] face2: i64, #[pyo3(from_py_with = super::sat_i64)] position2: i64) -> PyResult<(PyMesh, usize)> {
+        super::data::warn_dropped(&self.data, "connect_edges")?;
         let h1 = halfedge_of(&self.inner, face1, position1, "connect_edges")?;
         let h2 = halfedge_of(&self.inner, face2, position2, "connect_edges")?;
         let mut m = self.inner.clone();
@@ -142,6 +147,7 @@ impl PyMesh {
     /// two-gons on the edge (each vanishes; a triangle beside it becomes a
     /// two-gon). Raises :class:`MeshError` for a self-loop.
     fn collapse_edge(&self, py: Python<'_>, #[pyo3(from_py_with = super::sat_i64)] edge: i64) -> PyResult<(PyMesh, usize)> {
+        super::data::warn_dropped(&self.data, "collapse_edge")?;
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
         let c = py.detach(|| m.collapse_edge(e)).map_err(err)?;
@@ -194,6 +200,7 @@ impl PyMesh {
         weights: Option<(f64, f64)>,
         corners: Option<(i64, Option<i64>)>,
     ) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "add_handle")?;
         let m0 = &self.inner;
         let corners = corners.unwrap_or((0, None));
         let c1 = halfedge_of(m0, face_a, corners.0, "add_handle")?;
@@ -260,6 +267,7 @@ impl PyMesh {
     ///     A thickness that is not positive, or one that flips an inner face
     ///     (named); a mesh with point-spheres.
     fn rind(&self, py: Python<'_>, thickness: f64) -> PyResult<PyRind> {
+        super::data::warn_dropped(&self.data, "rind")?;
         let r = py.detach(|| self.inner.rind(thickness)).map_err(err)?;
         Ok(PyRind { inner: r })
     }
