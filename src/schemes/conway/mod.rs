@@ -356,17 +356,24 @@ pub fn conway(notation: &str, seed: Option<&Mesh>) -> Result<Mesh> {
         }
         (None, Some(m)) => m,
     };
-    check_chain(notation, start, &nt.ops)?;
+    apply_all(&format!("conway {notation:?}"), start, &nt.ops)
+}
+
+/// Applies `ops` in order to `m` (a copy of `m` for none), after checking
+/// the whole chain against the memory budget and the id limit; `name`
+/// names the call in errors.
+pub fn apply_all(name: &str, m: &Mesh, ops: &[Op]) -> Result<Mesh> {
+    check_chain(name, m, ops)?;
     let mut cur: Option<Mesh> = None;
-    for op in &nt.ops {
+    for op in ops {
         crate::cancel::check()?;
-        cur = Some(op.apply(cur.as_ref().unwrap_or(start))?);
+        cur = Some(op.apply(cur.as_ref().unwrap_or(m))?);
     }
-    Ok(cur.unwrap_or_else(|| start.clone()))
+    Ok(cur.unwrap_or_else(|| m.clone()))
 }
 
 /// Refuses a chain whose predicted largest step exceeds the budget or the id limit.
-fn check_chain(notation: &str, m: &Mesh, ops: &[Op]) -> Result<()> {
+fn check_chain(name: &str, m: &Mesh, ops: &[Op]) -> Result<()> {
     use crate::budget::{check, level_bytes, Counts};
     let mut c = (m.n_vertices() as u64, m.n_edges() as u64, m.n_faces() as u64);
     let mut worst = 0u64;
@@ -375,14 +382,14 @@ fn check_chain(notation: &str, m: &Mesh, ops: &[Op]) -> Result<()> {
         let max = crate::mesh::MAX_ELEMENTS as u64;
         if n.0 > max || n.1.saturating_mul(2) > max || n.2 > max {
             return Err(MeshError::Memory(format!(
-                "conway {notation:?}: a step would have about {} vertices, {} edges and {} faces, more than 31-bit ids allow",
+                "{name}: a step would have about {} vertices, {} edges and {} faces, more than 31-bit ids allow",
                 n.0, n.1, n.2
             )));
         }
         worst = worst.max(level_bytes(&Counts::plain(c.0, c.1, c.2), &Counts::plain(n.0, n.1, n.2)));
         c = n;
     }
-    check(&format!("conway {notation:?}"), "its largest step", worst)
+    check(name, "its largest step", worst)
 }
 
 /// Reflect (`r`, polyhedronisme `reflect`): every position through the
