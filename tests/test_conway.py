@@ -302,3 +302,33 @@ def test_operator_table():
     for o in OPS:
         assert callable(getattr(topomesh.Mesh, o["method"]))
         assert o["takes_n"] == (o["letter"] in "tknzl")
+
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+SMALL = {"T": topomesh.tetrahedron, "C": topomesh.cube, "P3": lambda: topomesh.conway("P3"), "torus": lambda: topomesh.torus(4, 3), "self_loop": self_loop_cube, "two_gon": two_gon_cube}
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.sampled_from(sorted(SMALL)), st.lists(st.sampled_from([o["letter"] for o in OPS]), min_size=1, max_size=3))
+def test_random_chains_follow_the_table(seed, letters):
+    """A random chain of operators: the counts follow the table step by step
+    (applied right to left), and χ, genus and components are kept."""
+    m = SMALL[seed]()
+    v, e, f = m.n_vertices, m.n_edges, m.n_faces
+    table = {o["letter"]: o["counts"] for o in OPS}
+    for letter in reversed(letters):
+        v, e, f = (formula(s, v, e, f) for s in table[letter])
+    r = m.conway("".join(letters))
+    r.validate()
+    assert (r.n_vertices, r.n_edges, r.n_faces) == (v, e, f)
+    assert (r.euler_characteristic, r.genus, r.n_components) == (m.euler_characteristic, m.genus, m.n_components)
+
+
+def test_big_seed_is_checked_against_the_budget():
+    try:
+        topomesh.set_memory_budget(1 << 20)
+        with pytest.raises(MeshError, match="budget"):
+            topomesh.conway("P1000000")
+    finally:
+        topomesh.set_memory_budget(None)

@@ -39,9 +39,12 @@ impl Seed {
         }
     }
 
-    /// Builds the seed.
+    /// Builds the seed (checked against the memory budget first).
     pub fn build(self) -> Result<Mesh> {
         use crate::primitives as p;
+        let (v, e, f) = self.counts();
+        let c = crate::budget::Counts::plain(v as u64, e as u64, f as u64);
+        crate::budget::check("conway", &format!("the seed {self:?}"), crate::budget::build_bytes(&c))?;
         match self {
             Seed::Tetrahedron => Ok(p::tetrahedron()),
             Seed::Cube => Ok(p::cube()),
