@@ -290,8 +290,9 @@ def test_canonicalize(notation):
     d = b - a
     t = a - d * (np.einsum("ij,ij->i", d, a) / np.einsum("ij,ij->i", d, d))[:, None]
     assert np.allclose(np.linalg.norm(t, axis=1), 1.0, atol=1e-5)
-    with pytest.raises(MeshError, match="tol"):
-        m.canonicalize(tol=-1.0)
+    for bad in (-1.0, 2.0, float("nan")):
+        with pytest.raises(MeshError, match="tol"):
+            m.canonicalize(tol=bad)
     with pytest.raises(MeshError, match="iterations"):
         m.canonicalize(iterations=-1)
 

@@ -137,7 +137,8 @@ impl PyMesh {
     /// iterations : int, default 200
     ///     At most this many steps (>= 0).
     /// tol : float, default 1e-8
-    ///     Stop once no vertex moves more than this in a step (>= 0).
+    ///     Stop once no vertex moves more than this in a step, in [0, 1]
+    ///     (positions are scaled to unit size first).
     ///
     /// Returns
     /// -------

@@ -135,12 +135,13 @@ impl Topology {
 /// polyhedron). The input is first centred and scaled so its edges' mean
 /// distance from the origin is 1.
 ///
-/// Errors: a mesh with boundary loops, `tol` negative or not finite, or
+/// Errors: a mesh with boundary loops, `tol` outside [0, 1], or
 /// positions that stop being finite (the iteration diverged: the message
 /// names the step).
 pub fn canonicalize(m: &Mesh, iterations: usize, tol: f64) -> Result<(Mesh, f64)> {
-    if !(tol.is_finite() && tol >= 0.0) {
-        return Err(MeshError::InvalidArgument(format!("canonicalize: tol = {tol} must be finite and >= 0")));
+    // positions are scaled to unit size first, so a step above 1 is no convergence
+    if !(0.0..=1.0).contains(&tol) {
+        return Err(MeshError::InvalidArgument(format!("canonicalize: tol = {tol} is outside [0, 1] (positions are scaled to unit size)")));
     }
     crate::schemes::hosts::refuse_holes("canonicalize", m)?;
     let topo = Topology::of(m);
