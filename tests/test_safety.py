@@ -272,6 +272,11 @@ def _base_calls():
         "IFS.polyline": (chaikin.polyline, {"levels": 2}),
         "IFS.chaos_game": (chaikin.chaos_game, {"n_points": 10, "seed": 0}),
         "IFS.mesh": (ifs.loop(np.random.default_rng(4).random((19, 3))).mesh, {"levels": 1}),
+        # issue 16: Conway operators
+        "conway": (topomesh.conway, {"notation": "tC", "seed": None}),
+        "Mesh.conway": (cube.conway, {"notation": "t"}),
+        **{f"Mesh.{op}": (getattr(cube, op), {"n": 4}) for op in ("kis", "truncate", "needle", "zip", "loft")},
+        "Mesh.canonicalize": (lambda **kw: cube.canonicalize(**kw)[0], {"iterations": 5, "tol": 1e-8}),
     }
 
 

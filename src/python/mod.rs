@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 
 mod alloc;
 mod boundary;
+mod conway;
 mod data;
 mod levels;
 mod display;
@@ -290,6 +291,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     ifs::register(m)?;
     fractal::register(m)?;
     io::register(m)?;
+    conway::register(m)?;
     m.add_function(wrap_pyfunction!(set_memory_budget, m)?)?;
     m.add_function(wrap_pyfunction!(memory_budget, m)?)?;
     // rust-numpy imports NumPy's C API (and checks its version, in Python)

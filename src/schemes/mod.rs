@@ -21,3 +21,4 @@ pub mod sierpinski;
 pub mod menger_sponge;
 pub mod menger;
 pub mod menger_level;
+pub mod conway;
