@@ -20,3 +20,4 @@ pub mod sqrt3;
 pub mod sierpinski;
 pub mod menger_sponge;
 pub mod menger;
+pub mod topmod;
