@@ -38,16 +38,23 @@ pub fn linear_vertex_insertion(m: &Mesh) -> Result<Mesh> {
 /// into quads (`quads`) or centroid-fan triangles. See the module docs.
 /// Point-sphere and hole faces cannot be selected.
 pub fn subdivide_faces(m: &Mesh, faces: &[usize], quads: bool) -> Result<Mesh> {
-    crate::schemes::hosts::refuse_holes("subdivide_faces", m)?;
+    let sel = selection("subdivide_faces", m, faces)?;
+    with_point_spheres("subdivide_faces", m, |m| faces_step("subdivide_faces", m, &sel, quads))
+}
+
+/// Checks a face selection (in range, no point-sphere, no hole) and
+/// renumbers it to the faces left once point-spheres are set aside
+/// ([`with_point_spheres`]).
+pub(crate) fn selection(name: &str, m: &Mesh, faces: &[usize]) -> Result<Vec<usize>> {
+    crate::schemes::hosts::refuse_holes(name, m)?;
     for &f in faces {
         if f >= m.n_faces() {
-            return Err(MeshError::InvalidArgument(format!("subdivide_faces: face {f} out of range (the mesh has {} faces)", m.n_faces())));
+            return Err(MeshError::InvalidArgument(format!("{name}: face {f} out of range (the mesh has {} faces)", m.n_faces())));
         }
         if m.face_halfedge(crate::FaceId(f as u32)).is_none() {
-            return Err(MeshError::InvalidArgument(format!("subdivide_faces: face {f} is a point-sphere (it has no edge to subdivide)")));
+            return Err(MeshError::InvalidArgument(format!("{name}: face {f} is a point-sphere (it has no edge)")));
         }
     }
-    // point-spheres are set aside: renumber the selection to the remaining faces
     let mut fmap = vec![NONE; m.n_faces()];
     let mut k = 0u32;
     for f in 0..m.n_faces() {
@@ -56,8 +63,7 @@ pub fn subdivide_faces(m: &Mesh, faces: &[usize], quads: bool) -> Result<Mesh> {
             k += 1;
         }
     }
-    let sel: Vec<usize> = faces.iter().map(|&f| fmap[f] as usize).collect();
-    with_point_spheres("subdivide_faces", m, |m| faces_step("subdivide_faces", m, &sel, quads))
+    Ok(faces.iter().map(|&f| fmap[f] as usize).collect())
 }
 
 fn faces_step(name: &str, m: &Mesh, faces: &[usize], quads: bool) -> Result<Mesh> {
