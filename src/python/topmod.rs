@@ -44,6 +44,8 @@ predictor!(p_dual_pentagon_preserving, |v, e, f| (v, s(e, 2), a(f, e)), (a(v, s(
 predictor!(p_dual_1264, |v, e, f| (s(e, 4), s(e, 6), a(a(f, e), v)), (s(e, 4), s(e, 6), a(a(f, e), v)));
 predictor!(p_1264, |v, e, f| (a(a(v, e), f), s(e, 6), s(e, 4)), (a(a(v, e), f), s(e, 6), s(e, 4)));
 predictor!(p_checker, |v, e, f| (a(v, s(e, 4)), s(e, 9), a(f, s(e, 4))), (a(v, s(e, 4)), s(e, 9), a(f, s(e, 4))));
+predictor!(p_dome, |v, e, f| (a(v, s(e, 59)), s(e, 116), a(f, s(e, 56))), (a(v, s(e, 59)), s(e, 116), a(f, s(e, 56))));
+predictor!(p_fractal, |v, e, f| (a(a(v, e), f), s(e, 6), s(e, 4)), (a(a(v, e), f), s(e, 6), s(e, 4)));
 predictor!(p_doo_sabin_bc, |v, e, f| (s(e, 4), s(e, 8), a(a(f, s(e, 3)), v)), (s(e, 4), s(e, 8), a(a(f, s(e, 3)), v)));
 
 fn unit(call: &str, name: &str, x: f64) -> PyResult<f64> {
@@ -452,6 +454,57 @@ impl PyMesh {
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn doo_sabin_bc(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
         iterate(py, &self.inner, iterations, progress, "doo_sabin_bc", p_doo_sabin_bc, compose::doo_sabin_bc)
+    }
+
+    /// Dome remeshing (TopMod's ``domeSubdivide``): every edge cut in four,
+    /// then seven Doo-Sabin extrusions of every face (lengths 0, 0.3, 0.18,
+    /// 0.1, 0.05, 0.025, 0.01 × ``length``, scales 1.6, 1.7, 1.6, 1.4, 1.2,
+    /// 1.1, 0.01 × ``scale``).
+    ///
+    /// Per iteration V' = V + 59E, E' = 116E, F' = F + 56E (an n-gon's top is
+    /// a 4n-gon, 56E quads).
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// length : float, default 1.0
+    ///     In [0, 2].
+    /// scale : float, default 1.0
+    ///     In (0, 2].
+    /// progress : bool, default False
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    #[pyo3(signature = (iterations = 1, length = 1.0, scale = 1.0, progress = false))]
+    fn dome(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        let l = finite_in("dome", "length", length, 0.0, 2.0)?;
+        if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
+            return Err(arg_err(format!("dome: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
+        }
+        iterate(py, &self.inner, iterations, progress, "dome", p_dome, |m| ex::dome(m, l, scale))
+    }
+
+    /// Fractal remeshing (TopMod's ``fractalSubdivide``): corners cut off at
+    /// the edge midpoints, each face's midpoint polygon fanned to a centre
+    /// raised along the normal by ``offset`` times TopMod's height.
+    ///
+    /// Per iteration V' = V + E + F, E' = 6E, F' = 4E (all triangles).
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// offset : float, default 1.0
+    ///     In [0, 2].
+    /// progress : bool, default False
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    #[pyo3(signature = (iterations = 1, offset = 1.0, progress = false))]
+    fn fractal(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        let o = finite_in("fractal", "offset", offset, 0.0, 2.0)?;
+        iterate(py, &self.inner, iterations, progress, "fractal", p_fractal, |m| ls::fractal(m, o))
     }
 
     /// Subdivide the selected faces (TopMod's ``subdivideFaces``): into quads

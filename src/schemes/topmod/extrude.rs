@@ -201,18 +201,12 @@ pub fn extrude(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
     with_point_spheres("extrude", m, |m| extrude_step(m, &sel, ex))
 }
 
+/// Every step's (kind, length, scale, twist, band), then the cap: a fan
+/// with its centre's offset, doubled or not.
+type Steps = Vec<(Kind, f64, f64, f64, Band)>;
+
 fn extrude_step(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
-    let i = In::new(m)?;
-    let mut selected = vec![false; i.nf];
-    let mut order = Vec::new();
-    for &f in faces {
-        if !selected[f] {
-            selected[f] = true;
-            order.push(f);
-        }
-    }
-    // every step's (kind, length, scale, twist, band), then the cap
-    let (steps, cap): (Vec<(Kind, f64, f64, f64, Band)>, Option<(f64, bool)>) = match ex.kind {
+    let (steps, cap): (Steps, Option<(f64, bool)>) = match ex.kind {
         Kind::Cubical | Kind::DooSabin => (vec![(ex.kind, ex.length, ex.scale, ex.twist, Band::Quads); ex.segments], None),
         Kind::Octahedral => (vec![(ex.kind, ex.length, ex.scale, ex.twist, Band::Triangles); ex.segments], None),
         Kind::Stellate => (vec![], Some((ex.length, false))),
@@ -222,11 +216,54 @@ fn extrude_step(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
             (s.iter().map(|&(l, k)| (Kind::DooSabin, l * ex.length, k * ex.scale, ex.twist / 5.0, Band::Quads)).collect(), Some((0.01 * ex.length, false)))
         }
     };
+    rings(m, faces, &steps, cap)
+}
+
+/// TopMod's dome remeshing (`domeSubdivide(obj, length, sf)` in
+/// `DLFLSubdiv.cc`): every edge cut in four (`subdivideAllEdges(obj, 4)`),
+/// then seven Doo-Sabin extrusions of every face with lengths 0, 0.3, 0.18,
+/// 0.1, 0.05, 0.025, 0.01 × `length` and scales 1.6, 1.7, 1.6, 1.4, 1.2,
+/// 1.1, 0.01 × `scale`. V' = V + 59E, E' = 116E, F' = F + 56E; histogram:
+/// an n-gon gives a 4n-gon (its top) and 56E quads. `length` in [0, 2],
+/// `scale` in (0, 2] (TopMod's ranges; defaults 1).
+pub fn dome(m: &Mesh, length: f64, scale: f64) -> Result<Mesh> {
+    if !(length.is_finite() && (0.0..=2.0).contains(&length)) {
+        return Err(MeshError::InvalidArgument(format!("dome: length = {length} must be in [0, 2]")));
+    }
+    if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
+        return Err(MeshError::InvalidArgument(format!("dome: scale = {scale} must be in (0, 2]")));
+    }
+    let split = super::linear::split_edges(m, 4)?;
+    let s = [(0.0, 1.6), (0.3, 1.7), (0.18, 1.6), (0.1, 1.4), (0.05, 1.2), (0.025, 1.1), (0.01, 0.01)];
+    let steps: Steps = s.iter().map(|&(l, k)| (Kind::DooSabin, l * length, k * scale, 0.0, Band::Quads)).collect();
+    with_point_spheres("dome", &split, |m| {
+        let all: Vec<usize> = (0..m.n_faces()).collect();
+        rings(m, &all, &steps, None)
+    })
+}
+
+fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>) -> Result<Mesh> {
+    let i = In::new(m)?;
+    let mut selected = vec![false; i.nf];
+    let mut order = Vec::new();
+    for &f in faces {
+        if !selected[f] {
+            selected[f] = true;
+            order.push(f);
+        }
+    }
     let (mut dv, mut de) = (0usize, 0usize);
     for &f in &order {
-        let (a, b, _, _) = ex.kind.added(i.fl.degree(f), ex.segments);
-        dv += a;
-        de += b;
+        let n = i.fl.degree(f);
+        for &(_, _, _, _, band) in steps {
+            dv += n;
+            de += if band == Band::Quads { 2 * n } else { 3 * n };
+        }
+        match cap {
+            Some((_, false)) => (dv, de) = (dv + 1, de + n),
+            Some((_, true)) => (dv, de) = (dv + n + 1, de + 4 * n),
+            None => {}
+        }
     }
     let n_keys = i.ne + de;
     let mut o = Out::new(i.positions(dv), n_keys, i.nf, 2 * (i.ne + de));
@@ -251,7 +288,7 @@ fn extrude_step(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
         let mut ring: Vec<u32> = hs.iter().map(|&h| i.vert[h as usize]).collect();
         let mut rkey: Vec<u32> = hs.iter().map(|&h| h >> 1).collect();
         let mut pts: Vec<DVec3> = hs.iter().map(|&h| i.p(h as usize)).collect();
-        for &(kind, length, scale, twist, band) in &steps {
+        for &(kind, length, scale, twist, band) in steps {
             let q = step_ring(kind, &pts, length, scale, twist);
             let base = o.pos.len() as u32;
             o.pos.extend_from_slice(&q);
@@ -382,6 +419,19 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn dome_counts() {
+        super::super::tests::check("dome", |m| dome(m, 1.0, 1.0), |_, (v, e, f)| (v + 59 * e, 116 * e, f + 56 * e), |m, (_, e, _)| {
+            let mut h = std::collections::BTreeMap::new();
+            for (n, c) in super::super::tests::hist_of(m) {
+                *h.entry(4 * n).or_insert(0) += c;
+            }
+            *h.entry(4).or_insert(0) += 56 * e;
+            h
+        });
+        assert!(dome(&crate::primitives::cube(), 3.0, 1.0).is_err());
     }
 
     #[test]

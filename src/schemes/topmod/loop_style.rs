@@ -146,6 +146,64 @@ pub fn root4(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
     })
 }
 
+/// TopMod's fractal remeshing (`fractalSubdivide(obj, offset)`): edges
+/// split at their midpoints, every corner cut off as in [`loop_style`], and
+/// the midpoints' polygon of each face fanned to a centre raised along the
+/// face's unit normal by `offset·√max(0, l₂² − l₁²)`, with TopMod's
+/// lengths l₂ = |m₀ − m₁| (adjacent midpoints) and l₁ = half the distance
+/// from m₀ to the corner n steps further round the split face.
+/// V' = V + E + F, E' = 6E, F' = 4E, all triangles. `offset` in [0, 2]
+/// (TopMod's range, default 1). Vertex layout: old vertices, midpoints,
+/// centres.
+pub fn fractal(m: &Mesh, offset: f64) -> Result<Mesh> {
+    if !(offset.is_finite() && (0.0..=2.0).contains(&offset)) {
+        return Err(MeshError::InvalidArgument(format!("fractal: offset = {offset} must be in [0, 2]")));
+    }
+    with_point_spheres("fractal", m, |m| {
+        let i = In::new(m)?;
+        let (v, nh) = (i.nv, i.nh);
+        let mut pos = i.positions(i.ne + i.nf);
+        for e in 0..i.ne {
+            pos.push((i.p(2 * e) + i.q(2 * e)) * 0.5);
+        }
+        let normals = i.normals();
+        let mut cyc = Vec::new();
+        for f in 0..i.nf {
+            // the split face [v₀, m₀, v₁, m₁, …] as TopMod walks it
+            cyc.clear();
+            for &h in i.fl.corners(f) {
+                cyc.push(i.p(h as usize));
+                cyc.push(pos[v + (h as usize >> 1)]);
+            }
+            let n2 = cyc.len();
+            let c = cyc.iter().sum::<DVec3>() / n2 as f64;
+            let l1 = (cyc[1] - cyc[(1 + n2 / 2) % n2]).length() / 2.0;
+            let l2 = (cyc[1] - cyc[3 % n2]).length();
+            let d = (l2 * l2 - l1 * l1).max(0.0).sqrt() * offset;
+            pos.push(c + d * normals[f]);
+        }
+        let mid = |h: usize| (v + (h >> 1)) as u32;
+        // keys: [0, H) the half of edge(h) at tail(h), [H, 2H) the inner side
+        // of corner h, [2H, 3H) the spoke centre–m(h)
+        let mut o = Out::new(pos, 3 * nh, 2 * nh, 6 * nh);
+        for f in 0..i.nf {
+            let c = (v + i.ne + f) as u32;
+            for &h in i.fl.corners(f) {
+                let (h, p, nx) = (h as usize, i.prev[h as usize] as usize, i.next[h as usize]);
+                o.c(mid(p), (p ^ 1) as u32);
+                o.c(i.vert[h], h as u32);
+                o.c(mid(h), (nh + p) as u32);
+                o.end();
+                o.c(mid(h), (nh + h) as u32);
+                o.c(mid(nx as usize), 2 * nh as u32 + nx);
+                o.c(c, (2 * nh + h) as u32);
+                o.end();
+            }
+        }
+        o.finish("fractal")
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -166,6 +224,14 @@ mod tests {
         let b = crate::schemes::loop_subdivision::loop_subdivision(&t).unwrap();
         assert_eq!((a.n_vertices(), a.n_edges(), a.n_faces()), (b.n_vertices(), b.n_edges(), b.n_faces()));
         assert!(loop_style(&t, 1.5).is_err());
+    }
+
+    #[test]
+    fn fractal_counts() {
+        check("fractal", |m| fractal(m, 1.0), |_, (v, e, f)| (v + e + f, 6 * e, 4 * e), |_, (_, e, _)| std::collections::BTreeMap::from([(3, 4 * e)]));
+        // the cube's centres rise: the volume grows with the offset
+        let c = crate::primitives::cube();
+        assert!(fractal(&c, 1.0).unwrap().signed_volume() > fractal(&c, 0.0).unwrap().signed_volume() + 1e-6);
     }
 
     #[test]

@@ -35,6 +35,8 @@
 //! | Dual 12.6.4 / 12.6.4 | [`twelve_six_four::dual_12_6_4`], [`compose::remesh_12_6_4`] |
 //! | Checkerboard / Dual | [`checkerboard::checkerboard`], [`compose::dual_checkerboard`] |
 //! | Doo-Sabin (BC) | [`compose::doo_sabin_bc`] |
+//! | Dome | [`extrude::dome`] |
+//! | Fractal | [`loop_style::fractal`] |
 //! | Extrusions | [`extrude`] |
 
 pub(crate) mod build;
