@@ -533,9 +533,10 @@ impl PyMesh {
     #[pyo3(signature = (faces, quads = true))]
     fn subdivide_faces(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, quads: bool) -> PyResult<PyMesh> {
         let sel = faces_arg("subdivide_faces", faces)?;
+        // upper bounds: N corners selected, at most N edges split, k <= N
         let c = Counts::of(&self.inner);
-        let n = sel.len() as u64 * 64;
-        check_once(py, "subdivide_faces", &self.inner, plain(c.v + c.e + sel.len() as u64, c.e.saturating_mul(2) + n, c.f + n))?;
+        let n: u64 = sel.iter().filter(|&&f| f < self.inner.n_faces()).map(|&f| self.inner.face_degree(crate::FaceId(f as u32)) as u64).sum();
+        check_once(py, "subdivide_faces", &self.inner, plain(a(c.v, s(n, 2)), a(c.e, s(n, 2)), a(c.f, n)))?;
         let m = &self.inner;
         Ok(PyMesh::wrap(run_interruptible(py, || linear::subdivide_faces(m, &sel, quads))?))
     }
