@@ -83,7 +83,7 @@ impl PyMesh {
     /// iterations : int, default 1
     ///     Number of steps (>= 0).
     /// offset : float, default 0.0
-    ///     Distance of each centre from its face's plane, in [-10, 10].
+    ///     Distance of each centre from its face's plane, outwards, in [0, 10].
     /// progress : bool, default False
     ///     Show a tqdm progress bar.
     ///
@@ -97,7 +97,7 @@ impl PyMesh {
     ///     A parameter out of range, an open mesh, or the memory budget.
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        let d = finite_in("stellate", "offset", offset, -10.0, 10.0)?;
+        let d = finite_in("stellate", "offset", offset, 0.0, 10.0)?;
         iterate(py, &self.inner, iterations, progress, "stellate", p_stellate, |m| st::stellate(m, d))
     }
 
@@ -111,7 +111,7 @@ impl PyMesh {
     /// ----------
     /// iterations : int, default 1
     /// offset : float, default 0.0
-    ///     In [-10, 10] (TopMod's UI: [0, 1]).
+    ///     In [0, 10] (TopMod's UI: [0, 1]).
     /// progress : bool, default False
     ///
     /// Returns
@@ -119,7 +119,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn double_stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        let d = finite_in("double_stellate", "offset", offset, -10.0, 10.0)?;
+        let d = finite_in("double_stellate", "offset", offset, 0.0, 10.0)?;
         iterate(py, &self.inner, iterations, progress, "double_stellate", p_double_stellate, |m| st::double_stellate(m, d))
     }
 
@@ -563,11 +563,11 @@ impl PyMesh {
     /// kind : str, default "cubical"
     /// length : float or None, default None
     ///     Distance per step along the face normal; ``None`` is TopMod's
-    ///     default (2, and 1 for ``"dome"``). Finite, in [-1e6, 1e6].
+    ///     default (2, and 1 for ``"dome"``). In [0, 1e6].
     /// scale : float, default 1.0
     ///     Scale of each new ring about its centroid, in (0, 10].
     /// twist : float, default 0.0
-    ///     Degrees per step in [-360, 360] (cubical, octahedral), the twist in
+    ///     Degrees per step in [0, 360] (cubical, octahedral; counter-clockwise about the normal), the twist in
     ///     [0, 1] (doo_sabin), the rotation factor in [0, 5] (dome); 0 for the
     ///     stellate kinds.
     /// segments : int, default 1
@@ -587,7 +587,7 @@ impl PyMesh {
     fn extrude(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, kind: &str, length: Option<f64>, scale: f64, twist: f64, #[pyo3(from_py_with = big_int)] segments: i128) -> PyResult<PyMesh> {
         let k = ex::Kind::parse(kind).ok_or_else(|| arg_err(format!("extrude: kind = {kind:?} is not one of {}", ex::Kind::NAMES)))?;
         let segments = super::usize_in("extrude", "segments", segments, 1, 1 << 20)?;
-        let length = finite_in("extrude", "length", length.unwrap_or(k.default_length()), -1e6, 1e6)?;
+        let length = finite_in("extrude", "length", length.unwrap_or(k.default_length()), 0.0, 1e6)?;
         let e = ex::Extrusion { kind: k, length, scale, twist, segments };
         e.check().map_err(err)?;
         let sel = faces_arg("extrude", faces)?;

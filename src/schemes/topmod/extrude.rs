@@ -87,11 +87,11 @@ impl Kind {
 #[derive(Clone, Copy, Debug)]
 pub struct Extrusion {
     pub kind: Kind,
-    /// Distance along the normal per step (any finite value).
+    /// Distance along the normal per step (finite, >= 0).
     pub length: f64,
     /// Scale of each new ring about its centroid, in (0, 10].
     pub scale: f64,
-    /// Degrees of rotation per step (Cubical, Octahedral, in [−360, 360]),
+    /// Degrees of rotation per step (Cubical, Octahedral, in [0, 360]),
     /// the Doo-Sabin twist (DooSabin, in [0, 1]) or TopMod's dome rotation
     /// factor (Dome, in [0, 5]); Stellate kinds take none (0).
     pub twist: f64,
@@ -103,14 +103,14 @@ impl Extrusion {
     /// Checks the ranges of the module docs; errors name the parameter.
     pub fn check(&self) -> Result<()> {
         let bad = |what: &str, x: String, range: &str| Err(MeshError::InvalidArgument(format!("extrude: {what} = {x} must be {range} for kind {:?}", self.kind)));
-        if !self.length.is_finite() {
-            return bad("length", self.length.to_string(), "finite");
+        if !(self.length.is_finite() && self.length >= 0.0) {
+            return bad("length", self.length.to_string(), "finite and >= 0");
         }
         if !(self.scale.is_finite() && self.scale > 0.0 && self.scale <= 10.0) {
             return bad("scale", self.scale.to_string(), "in (0, 10]");
         }
         let (lo, hi) = match self.kind {
-            Kind::Cubical | Kind::Octahedral => (-360.0, 360.0),
+            Kind::Cubical | Kind::Octahedral => (0.0, 360.0),
             Kind::DooSabin => (0.0, 1.0),
             Kind::Dome => (0.0, 5.0),
             Kind::Stellate | Kind::DoubleStellate => (0.0, 0.0),
