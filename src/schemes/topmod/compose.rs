@@ -22,8 +22,8 @@ pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
     dual(&crate::schemes::loop_subdivision::loop_subdivision(&dual(m)?)?)
 }
 
-/// Cubic pentagonalization (`subdivideCubicPentagonal`: pentagonalization
-/// + dual + dual): pentagonalization's counts, positions the centroids of
+/// Cubic pentagonalization (`subdivideCubicPentagonal`: pentagonalization,
+/// dual, dual): pentagonalization's counts, positions the centroids of
 /// centroids.
 pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
     dual(&dual(&super::pentagonal::pentagonalize(m, offset)?)?)
@@ -56,8 +56,8 @@ pub fn dual_checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
     dual(&super::checkerboard::checkerboard(&dual(m)?, thickness)?)
 }
 
-/// Dual hexagon preserving (`subdivideDualHexagonPreserving`: dual + root-4
-/// + dual): V' = V + E, E' = 4E, F' = F + 2E; histogram: the input's face
+/// Dual hexagon preserving (`subdivideDualHexagonPreserving`: dual, root-4,
+/// dual): V' = V + E, E' = 4E, F' = F + 2E; histogram: the input's face
 /// sizes plus 2E triangles (root-4's inner points are 3-valent).
 pub fn dual_hexagon_preserving(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
     dual(&super::loop_style::root4(&dual(m)?, weight, twist)?)
