@@ -17,6 +17,7 @@ mod io;
 pub(crate) mod fractal;
 pub(crate) mod mesh;
 mod refine;
+mod topmod;
 mod repair;
 mod ops;
 mod primitives;

@@ -22,3 +22,4 @@ pub mod menger_sponge;
 pub mod menger;
 pub mod menger_level;
 pub mod conway;
+pub mod topmod;

@@ -1,0 +1,162 @@
+//! TopMod's remeshing schemes that TopMod itself defines as compositions
+//! (`src/MainWindowCallbacks.cc`, the comment "Implemented as …" in each
+//! callback), written once here over the schemes they compose. Counts
+//! follow from the parts': each function's docs give them.
+
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::schemes::dual::dual;
+
+/// Root-3 (`subdivideRoot3`: dual + honeycomb + dual): V' = V + F,
+/// E' = 3E, F' = 2E triangles (the √3 connectivity, honeycomb's points).
+pub fn root3(m: &Mesh) -> Result<Mesh> {
+    dual(&crate::schemes::honeycomb::honeycomb(&dual(m)?, 0.5, None)?)
+}
+
+/// Dual Loop (`subdivideDualLoop`: dual + Loop + dual). Loop fans the dual's
+/// non-triangles first (the input's vertices of valence ≠ 3); with
+/// V₃ vertices of valence 3 and S = Σ valence over the others:
+/// F_t = V₃ + S, E_t = E + S, V_t = F + V − V₃ (the fanned dual), then
+/// V' = 4F_t, E' = 2E_t + 3F_t, F' = V_t + E_t; every vertex 3-valent.
+pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
+    dual(&crate::schemes::loop_subdivision::loop_subdivision(&dual(m)?)?)
+}
+
+/// Cubic pentagonalization (`subdivideCubicPentagonal`: pentagonalization,
+/// dual, dual): pentagonalization's counts, positions the centroids of
+/// centroids.
+pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
+    dual(&dual(&super::pentagonal::pentagonalize(m, offset)?)?)
+}
+
+/// Dual pentagonalization (`subdivideDualPentagonal`: dual +
+/// pentagonalization + dual): V' = 2E, E' = 5E, F' = V + F + 2E; histogram:
+/// the input's face sizes, one k-gon per valence-k vertex and 2E triangles.
+pub fn dual_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
+    dual(&super::pentagonal::pentagonalize(&dual(m)?, offset)?)
+}
+
+/// Dual pentagon preserving (`subdivideDualPentagonPreserving`: dual +
+/// pentagon preserving + dual). With S the valence sum over the input's
+/// vertices of valence ≥ 3: V' = V + S, E' = 2E + 2S, F' = F + E + S.
+pub fn dual_pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
+    dual(&super::pentagonal::pentagon_preserving(&dual(m)?, scale)?)
+}
+
+/// 12.6.4 (`subdivide1264`: dual + dual 12.6.4 + dual): V' = V + E + F,
+/// E' = 6E, F' = 4E triangles.
+pub fn remesh_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
+    dual(&super::twelve_six_four::dual_12_6_4(&dual(m)?, scale)?)
+}
+
+/// Dual checkerboard (`subdivideDualCheckerBoard`: dual + checkerboard +
+/// dual): V' = V + 4E, E' = 9E, F' = F + 4E; histogram: the input's face
+/// sizes plus 4E quads (checkerboard's new vertices are 4-valent).
+pub fn dual_checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
+    dual(&super::checkerboard::checkerboard(&dual(m)?, thickness)?)
+}
+
+/// Dual hexagon preserving (`subdivideDualHexagonPreserving`: dual, root-4,
+/// dual): V' = V + E, E' = 4E, F' = F + 2E; histogram: the input's face
+/// sizes plus 2E triangles (root-4's inner points are 3-valent).
+pub fn dual_hexagon_preserving(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
+    dual(&super::loop_style::root4(&dual(m)?, weight, twist)?)
+}
+
+/// Doo-Sabin BC (`dooSabinSubdivideBC`: every edge split at its midpoint,
+/// then Doo-Sabin): with the split mesh's H' = 4E, V' = 4E, E' = 8E,
+/// F' = F + 2E + (V + E); histogram: an n-gon gives a 2n-gon, 2E quads, a
+/// valence-k vertex a k-gon and each midpoint a two-gon.
+pub fn doo_sabin_bc(m: &Mesh) -> Result<Mesh> {
+    crate::schemes::doo_sabin::doo_sabin(&super::linear::split_edges(m, 2)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use super::super::tests::{check, hist_of};
+    use std::collections::BTreeMap;
+
+    fn valences(m: &Mesh) -> BTreeMap<usize, usize> {
+        let mut h = m.valence_histogram();
+        h.remove(&0);
+        h
+    }
+
+    #[test]
+    fn root3_counts() {
+        check("root3", root3, |_, (v, e, f)| (v + f, 3 * e, 2 * e), |_, (_, e, _)| BTreeMap::from([(3, 2 * e)]));
+    }
+
+    #[test]
+    fn dual_loop_counts() {
+        let want = |m: &Mesh, (v, e, f): (usize, usize, usize)| {
+            let vh = valences(m);
+            let v3 = vh.get(&3).copied().unwrap_or(0);
+            let s: usize = vh.iter().filter(|(&k, _)| k != 3).map(|(&k, &c)| k * c).sum();
+            let (ft, et, vt) = (v3 + s, e + s, f + v - v3);
+            (4 * ft, 2 * et + 3 * ft, vt + et)
+        };
+        super::super::tests::check_counts("dual_loop", dual_loop, want, |_, r| {
+            // the dual of Loop's triangles: every vertex 3-valent
+            assert!(valences(r).keys().all(|&k| k == 3));
+        });
+    }
+
+    #[test]
+    fn pentagonal_compositions() {
+        check("cubic_pentagonalize", |m| cubic_pentagonalize(m, 0.0), |_, (v, e, f)| (v + 2 * e + f, 5 * e, 2 * e), |_, (_, e, _)| BTreeMap::from([(5, 2 * e)]));
+        check("dual_pentagonalize", |m| dual_pentagonalize(m, 0.0), |_, (v, e, f)| (2 * e, 5 * e, v + f + 2 * e), |m, (_, e, _)| {
+            let mut h = hist_of(m);
+            for (k, c) in valences(m) {
+                *h.entry(k).or_insert(0) += c;
+            }
+            *h.entry(3).or_insert(0) += 2 * e;
+            h
+        });
+    }
+
+    #[test]
+    fn twelve_six_four_and_checkerboard() {
+        check("remesh_12_6_4", |m| remesh_12_6_4(m, 0.7), |_, (v, e, f)| (v + e + f, 6 * e, 4 * e), |_, (_, e, _)| BTreeMap::from([(3, 4 * e)]));
+        check("dual_checkerboard", |m| dual_checkerboard(m, 0.33), |_, (v, e, f)| (v + 4 * e, 9 * e, f + 4 * e), |m, (_, e, _)| {
+            let mut h = hist_of(m);
+            *h.entry(4).or_insert(0) += 4 * e;
+            h
+        });
+    }
+
+    #[test]
+    fn hexagon_and_doo_sabin_bc() {
+        check("dual_hexagon_preserving", |m| dual_hexagon_preserving(m, 0.0, 0.0), |_, (v, e, f)| (v + e, 4 * e, f + 2 * e), |m, (_, e, _)| {
+            let mut h = hist_of(m);
+            *h.entry(3).or_insert(0) += 2 * e;
+            h
+        });
+        check("doo_sabin_bc", doo_sabin_bc, |_, (v, e, f)| (4 * e, 8 * e, f + 3 * e + v), |m, (_, e, _)| {
+            let mut h = BTreeMap::new();
+            for (n, c) in hist_of(m) {
+                *h.entry(2 * n).or_insert(0) += c;
+            }
+            *h.entry(4).or_insert(0) += 2 * e;
+            for (k, c) in valences(m) {
+                *h.entry(k).or_insert(0) += c;
+            }
+            *h.entry(2).or_insert(0) += e;
+            h
+        });
+    }
+
+    #[test]
+    fn dual_pentagon_preserving_runs() {
+        // counts: pentagon_preserving's on the dual (checked there), dualised
+        for (name, m) in super::super::tests::meshes() {
+            let d = dual(&m).unwrap();
+            let p = super::super::pentagonal::pentagon_preserving(&d, 0.75).unwrap();
+            let r = dual_pentagon_preserving(&m, 0.75).unwrap();
+            r.validate().unwrap();
+            assert_eq!((r.n_vertices(), r.n_edges(), r.n_faces()), (p.n_faces(), p.n_edges(), p.n_vertices()), "{name}");
+            assert_eq!(r.genus(), m.genus(), "{name}");
+        }
+    }
+}
