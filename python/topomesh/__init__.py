@@ -33,6 +33,7 @@ from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
 from topomesh.correspondence import Correspondence  # noqa: E402
+from topomesh.catalog import catalog  # noqa: E402
 
 __all__ = [
     "Correspondence",
@@ -42,6 +43,7 @@ __all__ = [
     "PrintReport",
     "RepairReport",
     "Rind",
+    "catalog",
     "conway",
     "conway_operators",
     "cube",

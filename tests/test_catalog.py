@@ -1,0 +1,70 @@
+"""topomesh.catalog(): every entry runs, and its stated counts hold on real meshes."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+import topomesh as tm
+from topomesh import MeshError
+
+MESHES = {"cube": tm.cube, "icosahedron": tm.icosahedron, "torus": lambda: tm.torus(6, 4), "genus2": lambda: tm.genus_surface(2)}
+
+
+def _counts(m: tm.Mesh) -> dict[str, int]:
+    return {"V": m.n_vertices, "E": m.n_edges, "F": len(m.face_sizes), "H": 2 * m.n_edges}
+
+
+def _evaluable(formula: str) -> bool:
+    return re.fullmatch(r"\d*[VEFH](?:[+-]\d*[VEFH])*", formula) is not None
+
+
+def test_every_entry_names_a_method() -> None:
+    entries = tm.catalog()
+    assert {e["family"] for e in entries} == {"scheme", "topmod", "conway"}
+    for e in entries:
+        assert callable(getattr(tm.Mesh, e["method"], None)), e
+    # names are unique within a family
+    for fam in ("scheme", "topmod", "conway"):
+        names = [e["name"] for e in tm.catalog(fam)]
+        assert len(names) == len(set(names))
+
+
+@pytest.mark.parametrize("mesh", sorted(MESHES))
+def test_stated_counts_hold(mesh: str) -> None:
+    m = MESHES[mesh]()
+    before = _counts(m)
+    checked = 0
+    bad = []
+    for e in tm.catalog():
+        if not all(_evaluable(e[k]) for k in "VEF") or e["method"] in ("subdivide_faces", "extrude"):
+            continue
+        # the formulas are for the plain rule; a conway "t" with n, etc. takes no argument here
+        out = getattr(m, e["method"])()
+        got = _counts(out)
+        tri = bool((m.face_sizes == 3).all())
+        if e.get("input") == ("no triangles" if tri else "triangles") or (e.get("input") == "no triangles" and (m.face_sizes == 3).any()):
+            continue  # counts stated for another kind of input
+        want = {k: eval(re.sub(r"(\d)([VEFH])", r"\1*\2", e[k]), {}, dict(before)) for k in "VEF"}
+        if (got["V"], got["E"], got["F"]) != (want["V"], want["E"], want["F"]):
+            bad.append((e["name"], mesh, (got["V"], got["E"], got["F"]), want))
+        checked += 1
+    assert not bad
+    assert checked >= 30
+
+
+def test_topmod_entries_are_the_docs_list() -> None:
+    page = (Path(__file__).resolve().parents[1] / "docs" / "schemes" / "topmod.md").read_text()
+    block = page.split("## Machine-readable list", 1)[1].split("```json", 1)[1].split("```", 1)[0]
+    docs = json.loads(block)
+    ours = [{k: v for k, v in e.items() if k != "family"} for e in tm.catalog("topmod")]
+    assert ours == docs
+
+
+def test_family_filter_and_error() -> None:
+    assert all(e["family"] == "conway" for e in tm.catalog("conway"))
+    with pytest.raises(MeshError, match=r"^catalog: family = 'x'; expected one of"):
+        tm.catalog("x")
