@@ -22,6 +22,7 @@ pub mod handle;
 mod pipe;
 pub mod rind;
 mod subdivide;
+pub mod tools;
 
 pub use collapse::Collapse;
 pub use face_manifold::FaceManifold;
