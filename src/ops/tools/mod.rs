@@ -9,5 +9,6 @@ pub(crate) mod builder;
 mod object;
 mod wireframe;
 pub mod hull;
+mod multi_handle;
 
 pub use object::Planarized;
