@@ -10,5 +10,6 @@ mod object;
 mod wireframe;
 pub mod hull;
 mod multi_handle;
+mod cut;
 
 pub use object::Planarized;
