@@ -26,7 +26,7 @@ pub mod tools;
 
 pub use collapse::Collapse;
 pub use face_manifold::FaceManifold;
-pub use handle::Handle;
+pub use handle::{Handle, HandleShape};
 pub use pipe::Pipe;
 pub use rind::Rind;
 pub use subdivide::EdgeSplit;
