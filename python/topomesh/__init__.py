@@ -31,6 +31,7 @@ from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
 from topomesh.correspondence import Correspondence  # noqa: E402
+from topomesh._core import convex_hull, dual_convex_hull  # noqa: E402
 
 __all__ = [
     "Correspondence",

@@ -18,6 +18,7 @@ pub(crate) mod mesh;
 mod refine;
 mod repair;
 mod ops;
+mod tools;
 mod primitives;
 mod printing;
 mod smooth;
@@ -287,6 +288,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GeometryWarning", m.py().get_type::<GeometryWarning>())?;
     mesh::register(m)?;
     ops::register(m)?;
+    tools::register(m)?;
     ifs::register(m)?;
     fractal::register(m)?;
     io::register(m)?;

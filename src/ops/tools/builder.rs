@@ -7,7 +7,7 @@
 //! never a broken mesh.
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{FaceId, Mesh};
+use crate::mesh::Mesh;
 use glam::DVec3;
 use rustc_hash::FxHashMap;
 
@@ -23,11 +23,6 @@ pub(crate) struct Builder {
 impl Builder {
     pub fn with_positions(pos: Vec<DVec3>) -> Builder {
         Builder { pos, ..Default::default() }
-    }
-
-    pub fn add_vertex(&mut self, p: DVec3) -> u32 {
-        self.pos.push(p);
-        self.pos.len() as u32 - 1
     }
 
     /// A face through `verts` in order; side j runs verts[j] → verts[j+1]
@@ -46,14 +41,6 @@ impl Builder {
         let v: Vec<u32> = (0..n).map(|j| verts[(n - j) % n]).collect();
         let t: Vec<u64> = (0..n).map(|j| tags[(2 * n - j - 1) % n]).collect();
         self.face(&v, &t);
-    }
-
-    pub fn mark_last_hole(&mut self) {
-        *self.holes.last_mut().expect("a face") = true;
-    }
-
-    pub fn n_faces(&self) -> usize {
-        self.sizes.len()
     }
 
     /// Pairs the sides and builds; `what` names the tool in errors.
@@ -93,7 +80,6 @@ impl Builder {
             }
         }
         debug_assert!(m.validate().is_ok(), "{what}: {:?}", m.validate());
-        let _ = FaceId(0);
         Ok(m)
     }
 }

@@ -149,14 +149,29 @@ impl Mesh {
         }
         let (hub, flip) = if cavity { (hub.reversed()?, true) } else { (hub, false) };
         let mut m = self.disjoint_union(&hub)?;
-        let (voff, hoff) = (self.n_vertices() as u32, self.n_halfedges() as u32);
-        let _ = voff;
-        for (i, hs) in corners.iter().enumerate() {
-            let hc = hub_corner[i].unwrap();
-            // reversed() keeps each corner's half-edge id but it then leaves
-            // the other end: the corner at the same vertex is its twin's next
-            let hc = if flip { hub_reversed_corner(&hub, hc) } else { hc };
-            m.create_pipe(Corner::Halfedge(hs[0]), Corner::Halfedge(HalfedgeId(hc.0 + hoff)))?;
+        let voff = self.n_vertices() as u32;
+        // hub vertex of each moved point
+        let mut hub_vertex = vec![u32::MAX; pts.len()];
+        for (hv, &s) in src.iter().enumerate() {
+            hub_vertex[s] = voff + hv as u32;
+        }
+        let _ = (hub_corner, flip);
+        // sides are found by their end vertices, whose ids pipes never change
+        let side = |m: &Mesh, a: u32, b: u32| -> Option<HalfedgeId> {
+            m.vertex_halfedges(crate::mesh::VertexId(a)).find(|&h| m.head(h).0 == b)
+        };
+        let mut first = 0usize;
+        for hs in corners.iter() {
+            let n = hs.len();
+            let (v0, v1) = (self.vertex(hs[0]).0, self.vertex(hs[1 % n]).0);
+            // the hub's copy runs the other way round (the faces look at each other)
+            let (w0, wl) = (hub_vertex[first], hub_vertex[first + n - 1]);
+            first += n;
+            let c1 = side(&m, v0, v1).expect("selected face side");
+            let c2 = side(&m, w0, wl)
+                .filter(|&h| m.face_degree(m.face(h)) == n)
+                .ok_or_else(|| MeshError::Invariant("multi_face_handle: the hub face of a selected face is not where expected".into()))?;
+            m.create_pipe(Corner::Halfedge(c1), Corner::Halfedge(c2))?;
         }
         Ok(m)
     }
@@ -210,11 +225,6 @@ impl Mesh {
     }
 }
 
-/// In a reversed mesh, the corner at the vertex where half-edge `h`
-/// started before the reversal.
-fn hub_reversed_corner(m: &Mesh, h: HalfedgeId) -> HalfedgeId {
-    m.next(h)
-}
 
 #[cfg(test)]
 mod tests {

@@ -11,7 +11,7 @@
 //! whatever the number of elements they change.
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{EdgeId, FaceId, FaceStart, HalfedgeId, Mesh, VertexId};
+use crate::mesh::{EdgeId, FaceStart, HalfedgeId, Mesh, VertexId};
 use glam::{DMat3, DVec3};
 
 /// What [`Mesh::planarize`] did.
@@ -411,8 +411,7 @@ impl Mesh {
                 dir = if d1 == DVec3::ZERO { DVec3::X } else { d1.any_orthonormal_vector() };
             }
             let e2: EdgeId = h2.edge();
-            let t = if h2 == e2.halfedge() { 0.5 } else { 0.5 };
-            let s = self.subdivide_edge(e2, t)?;
+            let s = self.subdivide_edge(e2, 0.5)?; // both ends placed below
             let (o1, o2) = match offset {
                 Some(x) => (x, x),
                 None => (0.1 * l1, 0.1 * l2),
@@ -486,7 +485,6 @@ impl Mesh {
         }
         let mut m = Mesh::from_corner_twins(pos, &sizes, &verts, &twin)?;
         m.f_hole = self.f_hole.clone();
-        let _ = FaceId(0);
         Ok(m)
     }
 }
