@@ -57,5 +57,7 @@ __all__ = [
     "set_memory_budget",
     "tetrahedron",
     "torus",
+    "convex_hull",
+    "dual_convex_hull",
 ]
 __version__ = "0.1.0"
