@@ -230,3 +230,17 @@ def test_convex_hull_points():
         topomesh.convex_hull([[0, 0, 0], [1, 0, 0], [0, 1, 0]])
     with pytest.raises(MeshError):
         topomesh.convex_hull([[0, 0, float("nan")]] * 5)
+
+
+def test_open_meshes_refused_or_kept():
+    pts = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    sq = topomesh.Mesh.from_polygons(pts, [[0, 1, 2, 3]])
+    assert not sq.is_closed
+    for call in (lambda m: m.wireframe(0.1), lambda m: m.cut_vertices(0)):
+        with pytest.raises(MeshError, match="boundary"):
+            call(sq)
+    s = sq.subdivide_all_edges(1)
+    assert (s.n_vertices, s.n_edges, s.n_boundary_loops) == (8, 8, 1)
+    r = s.remove_valence2_vertices()
+    assert r.n_boundary_loops == 1
+    r.validate()
