@@ -26,7 +26,6 @@ impl Mesh {
         let (mut sizes, mut verts, mut twin, mut holes) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (m, voff) in [(self, 0u32), (other, self.n_vertices() as u32)] {
             let mut base = vec![0u32; m.n_halfedges()];
-            let first = verts.len();
             for f in m.faces() {
                 holes.push(m.is_hole(f));
                 match m.face_halfedge(f) {
@@ -50,7 +49,6 @@ impl Mesh {
             for h in m.halfedges() {
                 twin[base[h.idx()] as usize] = base[h.twin().idx()];
             }
-            let _ = first;
         }
         let mut u = Mesh::from_corner_twins(pos, &sizes, &verts, &twin)?;
         u.f_hole = holes;
@@ -147,7 +145,7 @@ impl Mesh {
                 faces[0], faces[i]
             )));
         }
-        let (hub, flip) = if cavity { (hub.reversed()?, true) } else { (hub, false) };
+        let hub = if cavity { hub.reversed()? } else { hub };
         let mut m = self.disjoint_union(&hub)?;
         let voff = self.n_vertices() as u32;
         // hub vertex of each moved point
@@ -155,7 +153,6 @@ impl Mesh {
         for (hv, &s) in src.iter().enumerate() {
             hub_vertex[s] = voff + hv as u32;
         }
-        let _ = (hub_corner, flip);
         // sides are found by their end vertices, whose ids pipes never change
         let side = |m: &Mesh, a: u32, b: u32| -> Option<HalfedgeId> {
             m.vertex_halfedges(crate::mesh::VertexId(a)).find(|&h| m.head(h).0 == b)
