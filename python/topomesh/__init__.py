@@ -34,6 +34,7 @@ from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
 from topomesh.correspondence import Correspondence  # noqa: E402
 from topomesh.catalog import catalog  # noqa: E402
+from topomesh._core import convex_hull, dual_convex_hull  # noqa: E402
 
 __all__ = [
     "Correspondence",
@@ -62,5 +63,7 @@ __all__ = [
     "set_memory_budget",
     "tetrahedron",
     "torus",
+    "convex_hull",
+    "dual_convex_hull",
 ]
 __version__ = "0.1.0"

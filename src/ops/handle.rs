@@ -38,6 +38,62 @@ pub struct Handle {
     pub segments: Vec<Vec<HalfedgeId>>,
 }
 
+/// TopMod's pinch and twist of a handle (`hermiteConnectFaces`,
+/// `include/dlflaux/DLFLConnect.cc`, the only description; TopMod's UI
+/// shows these but its default handle tool passes none of them): each
+/// section is scaled by a quadratic Bézier in t₂ from 1 at the ends to
+/// `pinch` at `center` (t₂ = (t / center)^(1/width) before it,
+/// (1 − (t − center)/(1 − center))^(1/width) after), and the second face's
+/// angles gain `extra_twists` full turns.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct HandleShape {
+    /// Section scale at the centre (1: no pinch; TopMod's range −10..10,
+    /// here (0, 10]: zero or negative would collapse or flip sections).
+    pub pinch: f64,
+    /// Where along the handle (0, 1) the pinch is strongest.
+    pub center: f64,
+    /// TopMod's "pinch width" (bubble), in [0.001, 10]: above 1 the pinch
+    /// spreads along the handle, below 1 it narrows.
+    pub width: f64,
+    /// Extra full turns of the sections from the first face to the second.
+    pub extra_twists: u32,
+}
+
+impl Default for HandleShape {
+    fn default() -> Self {
+        HandleShape { pinch: 1.0, center: 0.5, width: 1.0, extra_twists: 0 }
+    }
+}
+
+impl HandleShape {
+    fn check(&self) -> Result<()> {
+        let bad = |name: &str, x: f64, range: &str| {
+            Err(MeshError::InvalidArgument(format!("add_handle: {name} = {x} must be in {range}")))
+        };
+        if !(self.pinch.is_finite() && self.pinch > 0.0 && self.pinch <= 10.0) {
+            return bad("pinch", self.pinch, "(0, 10]");
+        }
+        if !(self.center > 0.0 && self.center < 1.0) {
+            return bad("pinch_center", self.center, "(0, 1)");
+        }
+        if !(self.width >= 0.001 && self.width <= 10.0) {
+            return bad("pinch_width", self.width, "[0.001, 10]");
+        }
+        if self.extra_twists > 100 {
+            return bad("extra_twists", self.extra_twists as f64, "0..=100");
+        }
+        Ok(())
+    }
+
+    /// The section scale at t (TopMod's `pinch_scaling`).
+    pub fn scaling(&self, t: f64) -> f64 {
+        let c = self.center;
+        let u = if t <= c { t / c } else { 1.0 - (t - c) / (1.0 - c) };
+        let u = u.clamp(0.0, 1.0).powf(1.0 / self.width);
+        (1.0 - u) * (1.0 - u) + 2.0 * (1.0 - u) * u * self.pinch + u * u * self.pinch
+    }
+}
+
 fn hermite(t: f64) -> ([f64; 4], [f64; 4]) {
     let (t2, t3) = (t * t, t * t * t);
     (
@@ -143,6 +199,13 @@ impl Mesh {
     /// face, `segments` = 0, non-finite weights or weights of opposite signs,
     /// coincident face centroids, a degenerate (zero-area) face.
     pub fn add_handle(&mut self, c1: HalfedgeId, c2: HalfedgeId, segments: usize, w1: f64, w2: f64) -> Result<Handle> {
+        self.add_handle_shaped(c1, c2, segments, w1, w2, HandleShape::default())
+    }
+
+    /// [`Mesh::add_handle`] with TopMod's pinch and twist parameters
+    /// ([`HandleShape`]); the default shape is `add_handle` itself.
+    pub fn add_handle_shaped(&mut self, c1: HalfedgeId, c2: HalfedgeId, segments: usize, w1: f64, w2: f64, shape: HandleShape) -> Result<Handle> {
+        shape.check()?;
         super::check_halfedge(self, c1)?;
         super::check_halfedge(self, c2)?;
         let (f1, f2) = (self.face(c1), self.face(c2));
@@ -206,10 +269,12 @@ impl Mesh {
             let (p, d) = curve(t);
             let dir = if d.length() > 1e-12 { d.normalize() } else { nr };
             let rot = DQuat::from_rotation_arc(nr, dir);
+            let pinch = shape.scaling(t);
+            let turns = std::f64::consts::TAU * shape.extra_twists as f64;
             let pts: Vec<DVec3> = (0..n)
                 .map(|j| {
-                    let r = (1. - t) * rad1[j] + t * rad2[j];
-                    let th = (1. - t) * th1[j] + t * th2[j];
+                    let r = pinch * ((1. - t) * rad1[j] + t * rad2[j]);
+                    let th = (1. - t) * th1[j] + t * (th2[j] + turns);
                     p + rot * (r * (th.cos() * x_axis + th.sin() * y_axis))
                 })
                 .collect();
@@ -360,6 +425,32 @@ mod tests {
                 let (w, positive) = star_winding(section);
                 assert!((w - 1.0).abs() < 1e-9 && positive, "twist {twist}: winding {w}");
             }
+        }
+    }
+
+    #[test]
+    fn pinch_and_twists() {
+        let base = grid_cube(3);
+        let a = face_at(&base, [0., 0., 1.]);
+        let b = face_at(&base, [0., 0., -1.]);
+        let b = base.aligned_handle_corner(a, b, -1.0, -1.0).unwrap();
+        let mut plain = base.clone();
+        plain.add_handle(a, b, 4, -1.0, -1.0).unwrap();
+        let mut same = base.clone();
+        same.add_handle_shaped(a, b, 4, -1.0, -1.0, super::HandleShape::default()).unwrap();
+        assert_eq!(plain, same);
+        let mut m = base.clone();
+        let shape = super::HandleShape { pinch: 0.5, center: 0.5, width: 1.0, extra_twists: 1 };
+        m.add_handle_shaped(a, b, 4, -1.0, -1.0, shape).unwrap();
+        assert_eq!(counts(&m), counts(&plain));
+        // the middle section (t = 1/2) is half as wide as the plain one
+        let nv = base.n_vertices();
+        let mid = |m: &Mesh| m.positions()[nv + 4..nv + 8].iter().map(|p| (p.x * p.x + p.y * p.y).sqrt()).sum::<f64>();
+        assert!((mid(&m) / mid(&plain) - 0.5).abs() < 1e-9);
+        for bad in [super::HandleShape { pinch: 0.0, ..shape }, super::HandleShape { center: 1.0, ..shape }, super::HandleShape { width: 0.0, ..shape }] {
+            let mut c = base.clone();
+            assert!(c.add_handle_shaped(a, b, 4, -1.0, -1.0, bad).is_err());
+            assert_eq!(c, base);
         }
     }
 

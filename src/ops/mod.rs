@@ -22,10 +22,11 @@ pub mod handle;
 mod pipe;
 pub mod rind;
 mod subdivide;
+pub mod tools;
 
 pub use collapse::Collapse;
 pub use face_manifold::FaceManifold;
-pub use handle::Handle;
+pub use handle::{Handle, HandleShape};
 pub use pipe::Pipe;
 pub use rind::Rind;
 pub use subdivide::EdgeSplit;

@@ -65,11 +65,19 @@ impl Rind {
         if let Some(v) = normals.iter().position(|n| *n == DVec3::ZERO) {
             return Err(MeshError::Precondition(format!("rind: vertex {v} has no averaged normal (its faces cancel)")));
         }
-        let nv = source.n_vertices();
-        let nf = source.n_faces();
         // positions: outer copy, then inner copy moved inward
         let mut pos = source.positions().to_vec();
         pos.extend(source.positions().iter().zip(&normals).map(|(&p, &n)| p - thickness * n));
+        Rind::from_shell(source, pos, &format!("thickness {thickness}"))
+    }
+
+    /// The rind of `source` with the given positions: `pos` holds the outer
+    /// copy's vertices, then the inner copy's (2V entries). `how` names the
+    /// offset in the flip error. Used by [`Rind::new`] and rind by scaling.
+    pub(crate) fn from_shell(source: &Mesh, pos: Vec<DVec3>, how: &str) -> Result<Rind> {
+        let nv = source.n_vertices();
+        let nf = source.n_faces();
+        debug_assert_eq!(pos.len(), 2 * nv);
         // corners: outer faces as they are, then each inner face reversed
         // (v0, vN−1, …, v1); the inner corner at vi is the reversed side of
         // prev(hi). Corner ids: outer corner of h, inner corner of the
@@ -118,7 +126,7 @@ impl Rind {
             }
             if n_in.dot(n_out) <= 0.0 || reversed {
                 return Err(MeshError::Precondition(format!(
-                    "rind: thickness {thickness} flips the inner twin of face {} (the offset passes through it); use a smaller thickness",
+                    "rind: {how} flips the inner twin of face {} (the offset passes through it); use a smaller offset",
                     f.0
                 )));
             }

@@ -20,6 +20,7 @@ mod refine;
 mod topmod;
 mod repair;
 mod ops;
+mod tools;
 mod primitives;
 mod printing;
 mod smooth;
@@ -289,6 +290,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GeometryWarning", m.py().get_type::<GeometryWarning>())?;
     mesh::register(m)?;
     ops::register(m)?;
+    tools::register(m)?;
     ifs::register(m)?;
     fractal::register(m)?;
     io::register(m)?;

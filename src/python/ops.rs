@@ -190,7 +190,14 @@ impl PyMesh {
     ///     When the handle passes through the body (the exact crossing check
     ///     ``menger`` uses, on the handle's faces), with the number of
     ///     crossing triangle pairs.
-    #[pyo3(signature = (face_a, face_b, segments = 4, weights = None, corners = None))]
+    /// pinch, pinch_center, pinch_width : float, default 1.0, 0.5, 1.0
+    ///     TopMod's pinch: sections scaled from 1 at the ends to ``pinch``
+    ///     at ``pinch_center`` (in (0, 1)), by a quadratic Bézier whose
+    ///     spread ``pinch_width`` (in [0.001, 10]) sets; ``pinch`` in (0, 10].
+    /// extra_twists : int, default 0
+    ///     Extra full turns of the sections from ``face_a`` to ``face_b``
+    ///     (0 to 100).
+    #[pyo3(signature = (face_a, face_b, segments = 4, weights = None, corners = None, pinch = 1.0, pinch_center = 0.5, pinch_width = 1.0, extra_twists = 0))]
     fn add_handle(
         &self,
         py: Python<'_>,
@@ -199,8 +206,14 @@ impl PyMesh {
         #[pyo3(from_py_with = super::sat_i64)] segments: i64,
         weights: Option<(f64, f64)>,
         corners: Option<(i64, Option<i64>)>,
+        pinch: f64,
+        pinch_center: f64,
+        pinch_width: f64,
+        #[pyo3(from_py_with = super::big_int)] extra_twists: i128,
     ) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "add_handle")?;
+        let extra_twists = super::usize_in("add_handle", "extra_twists", extra_twists, 0, 100)? as u32;
+        let shape = crate::ops::HandleShape { pinch, center: pinch_center, width: pinch_width, extra_twists };
         let m0 = &self.inner;
         let corners = corners.unwrap_or((0, None));
         let c1 = halfedge_of(m0, face_a, corners.0, "add_handle")?;
@@ -227,7 +240,7 @@ impl PyMesh {
         };
         let c2 = if corners.1.is_none() { m0.aligned_handle_corner(c1, c2, w1, w2).map_err(err)? } else { c2 };
         let mut m = m0.clone();
-        py.detach(|| m.add_handle(c1, c2, segments as usize, w1, w2)).map_err(err)?;
+        py.detach(|| m.add_handle_shaped(c1, c2, segments as usize, w1, w2, shape)).map_err(err)?;
         warn_new_crossings(py, "add_handle", m0, &m)?;
         Ok(PyMesh::wrap(m))
     }
@@ -276,7 +289,7 @@ impl PyMesh {
 /// Runs the shared crossing check (`geometry::crossing`) on the faces an
 /// operator made and raises a `GeometryWarning` with the count when they
 /// pass through the rest of the surface.
-fn warn_new_crossings(py: Python<'_>, op: &str, before: &crate::Mesh, after: &crate::Mesh) -> PyResult<()> {
+pub(crate) fn warn_new_crossings(py: Python<'_>, op: &str, before: &crate::Mesh, after: &crate::Mesh) -> PyResult<()> {
     let n = super::run_interruptible(py, || {
         let n = crate::geometry::crossing::crossings_of_new_faces(before, after);
         crate::cancel::check().map(|()| n)
@@ -297,7 +310,7 @@ fn warn_new_crossings(py: Python<'_>, op: &str, before: &crate::Mesh, after: &cr
 /// ``0..F``, inner ``F..2F``), whatever later operations renumber.
 #[pyclass(name = "Rind", module = "topomesh", frozen)]
 pub struct PyRind {
-    inner: Rind,
+    pub(crate) inner: Rind,
 }
 
 #[pymethods]

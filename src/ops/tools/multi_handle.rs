@@ -1,0 +1,284 @@
+//! Multi-face handle (TopMod's `multiConnectFaces` with the convex-hull
+//! algorithm, `include/dlflaux/DLFLMultiConnect.cc`, the only
+//! description) and rind by scaling (`createCrustWithScaling`,
+//! `include/dlflaux/DLFLCrust.cc`).
+//!
+//! Multi-face handle: the vertices of the k selected faces, each moved
+//! `extrude` along its face's unit normal and scaled by `scale` about their
+//! centroid, span a convex hull, the hub; every selected face whose moved
+//! copy is a face of the hub is joined to it by CreatePipe. On one
+//! component: V + Σnᵢ, the hub's E and F added, then each pipe E + nᵢ,
+//! F − 2; the first pipe joins the hub (components −1), each further one
+//! adds a handle: genus + k − 1.
+
+use super::hull::convex_hull;
+use crate::error::{MeshError, Result};
+use crate::mesh::{Corner, FaceId, HalfedgeId, Mesh};
+use crate::ops::Rind;
+use glam::DVec3;
+
+impl Mesh {
+    /// The disjoint union of this mesh and `other` (other's vertices and
+    /// faces numbered after this one's).
+    pub(crate) fn disjoint_union(&self, other: &Mesh) -> Result<Mesh> {
+        let mut pos = self.positions().to_vec();
+        pos.extend_from_slice(other.positions());
+        let (mut sizes, mut verts, mut twin, mut holes) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (m, voff) in [(self, 0u32), (other, self.n_vertices() as u32)] {
+            let mut base = vec![0u32; m.n_halfedges()];
+            for f in m.faces() {
+                holes.push(m.is_hole(f));
+                match m.face_halfedge(f) {
+                    None => {
+                        sizes.push(1);
+                        verts.push(m.face_vertices(f).next().expect("point-sphere vertex").0 + voff);
+                        twin.push(u32::MAX);
+                    }
+                    Some(_) => {
+                        let mut k = 0;
+                        for h in m.face_halfedges(f) {
+                            base[h.idx()] = verts.len() as u32;
+                            verts.push(m.vertex(h).0 + voff);
+                            twin.push(0);
+                            k += 1;
+                        }
+                        sizes.push(k);
+                    }
+                }
+            }
+            for h in m.halfedges() {
+                twin[base[h.idx()] as usize] = base[h.twin().idx()];
+            }
+        }
+        let mut u = Mesh::from_corner_twins(pos, &sizes, &verts, &twin)?;
+        u.f_hole = holes;
+        Ok(u)
+    }
+
+    /// **Multi-face handle** through a convex hub (module docs): `faces`
+    /// (at least two, distinct, not holes) are each joined to the hull of
+    /// their vertices moved `extrude` along their normals and scaled by
+    /// `scale` about the centroid. A hub outside the solid (the faces look
+    /// at it) is a solid blob; a hub behind the first face (negative
+    /// `extrude`, inside the solid) is turned inside out into a cavity, as
+    /// TopMod does.
+    ///
+    /// Errors: fewer than two faces, repeats, out of range, point-spheres;
+    /// a non-positive or non-finite `scale`; a moved face that is not a
+    /// face of the hub (its vertices hidden inside, or merged with
+    /// another's: choose a larger `extrude` or fewer faces); a hull without
+    /// volume.
+    pub fn multi_face_handle(&self, faces: &[usize], scale: f64, extrude: f64) -> Result<Mesh> {
+        if faces.len() < 2 {
+            return Err(MeshError::InvalidArgument(format!("multi_face_handle: {} faces given; at least 2 are needed", faces.len())));
+        }
+        if !(scale.is_finite() && scale > 0.0) || !extrude.is_finite() {
+            return Err(MeshError::InvalidArgument(format!(
+                "multi_face_handle: scale = {scale} must be finite and positive, extrude = {extrude} finite"
+            )));
+        }
+        let nf = self.n_faces();
+        for (i, &f) in faces.iter().enumerate() {
+            if f >= nf {
+                return Err(MeshError::InvalidArgument(format!("multi_face_handle: face {f} out of range (mesh has {nf} faces)")));
+            }
+            if faces[..i].contains(&f) {
+                return Err(MeshError::InvalidArgument(format!("multi_face_handle: face {f} is selected twice")));
+            }
+            let fid = FaceId::new(f);
+            if self.is_hole(fid) || self.face_halfedge(fid).is_none() {
+                return Err(MeshError::Precondition(format!("multi_face_handle: face {f} is a hole or a point-sphere")));
+            }
+        }
+        // moved copies: point k of face i is its k-th corner from the first
+        let mut pts = Vec::new();
+        let mut owner = Vec::new();
+        let mut corners: Vec<Vec<HalfedgeId>> = Vec::new();
+        for (i, &f) in faces.iter().enumerate() {
+            let fid = FaceId::new(f);
+            let n = self.face_newell(fid).normalize_or_zero();
+            if n == DVec3::ZERO {
+                return Err(MeshError::Precondition(format!("multi_face_handle: face {f} has no normal (zero area)")));
+            }
+            let hs: Vec<HalfedgeId> = self.face_halfedges(fid).collect();
+            for &h in &hs {
+                pts.push(self.position(self.vertex(h)) + extrude * n);
+                owner.push(i);
+            }
+            corners.push(hs);
+        }
+        let c = pts.iter().sum::<DVec3>() / pts.len() as f64;
+        for p in pts.iter_mut() {
+            *p = c + (*p - c) * scale;
+        }
+        let (hub, src) = convex_hull(&pts)?;
+        // the hub face of each selected face: all of its moved corners, nothing else
+        let mut hub_corner = vec![None; faces.len()];
+        for hf in hub.faces() {
+            let vs: Vec<usize> = hub.face_vertices(hf).map(|v| src[v.idx()]).collect();
+            let i = owner[vs[0]];
+            if vs.len() == corners[i].len() && vs.iter().all(|&s| owner[s] == i) {
+                // the hub corner at the copy of the face's first corner
+                let first = (0..owner.len()).find(|&s| owner[s] == i).unwrap();
+                let h = hub.face_halfedges(hf).find(|&h| src[hub.vertex(h).idx()] == first).unwrap();
+                hub_corner[i] = Some(h);
+            }
+        }
+        if let Some(i) = hub_corner.iter().position(|c| c.is_none()) {
+            return Err(MeshError::Precondition(format!(
+                "multi_face_handle: the moved copy of face {} is not a face of the hub (its corners are hidden inside the hull or share a plane with another face's); use a larger extrude or other faces",
+                faces[i]
+            )));
+        }
+        // a hub behind the faces is a cavity (TopMod looks at the first face
+        // only; faces on both sides of the hub would pipe through it)
+        let hub_c = hub.positions().iter().sum::<DVec3>() / hub.n_vertices() as f64;
+        let behind = |i: usize| {
+            let n = self.face_newell(FaceId::new(faces[i]));
+            let fc = corners[i].iter().map(|&h| self.position(self.vertex(h))).sum::<DVec3>() / corners[i].len() as f64;
+            n.dot(fc - hub_c) > 0.0
+        };
+        let cavity = behind(0);
+        if let Some(i) = (1..faces.len()).find(|&i| behind(i) != cavity) {
+            return Err(MeshError::Precondition(format!(
+                "multi_face_handle: faces {} and {} face the hub from opposite sides (one looks at it, the other away)",
+                faces[0], faces[i]
+            )));
+        }
+        let hub = if cavity { hub.reversed()? } else { hub };
+        let mut m = self.disjoint_union(&hub)?;
+        let voff = self.n_vertices() as u32;
+        // hub vertex of each moved point
+        let mut hub_vertex = vec![u32::MAX; pts.len()];
+        for (hv, &s) in src.iter().enumerate() {
+            hub_vertex[s] = voff + hv as u32;
+        }
+        // sides are found by their end vertices, whose ids pipes never change
+        let side = |m: &Mesh, a: u32, b: u32| -> Option<HalfedgeId> {
+            m.vertex_halfedges(crate::mesh::VertexId(a)).find(|&h| m.head(h).0 == b)
+        };
+        let mut first = 0usize;
+        for hs in corners.iter() {
+            let n = hs.len();
+            let (v0, v1) = (self.vertex(hs[0]).0, self.vertex(hs[1 % n]).0);
+            // the hub's copy runs the other way round (the faces look at each other)
+            let (w0, wl) = (hub_vertex[first], hub_vertex[first + n - 1]);
+            first += n;
+            let c1 = side(&m, v0, v1).expect("selected face side");
+            let c2 = side(&m, w0, wl)
+                .filter(|&h| m.face_degree(m.face(h)) == n)
+                .ok_or_else(|| MeshError::Invariant("multi_face_handle: the hub face of a selected face is not where expected".into()))?;
+            m.create_pipe(Corner::Halfedge(c1), Corner::Halfedge(c2))?;
+        }
+        Ok(m)
+    }
+
+    /// The mesh with every face's orientation reversed: half-edge h keeps
+    /// its id and edge but runs the other way.
+    pub(crate) fn reversed(&self) -> Result<Mesh> {
+        let mut m = self.clone();
+        for h in 0..m.n_halfedges() {
+            let hh = HalfedgeId::new(h);
+            m.he_vert[h] = self.head(hh).0;
+        }
+        std::mem::swap(&mut m.he_next, &mut m.he_prev);
+        for v in self.vertices() {
+            if let Some(h) = self.vertex_halfedge(v) {
+                m.v_out[v.idx()] = h.twin().0;
+            }
+        }
+        m.validate()?;
+        Ok(m)
+    }
+
+    /// **Rind by scaling** (TopMod's `createCrustWithScaling`): the offset
+    /// shell is a copy scaled by `scale` about the vertex centroid — inside
+    /// for 0 < scale < 1 (the copy is the inner shell); for scale > 1 the
+    /// scaled copy is the outer shell and the mesh itself the inner one
+    /// (TopMod's negative factor s ∈ [−1, 0) is scale = −1/s here). Faces
+    /// and punching as [`Mesh::rind`].
+    pub fn rind_by_scaling(&self, scale: f64) -> Result<Rind> {
+        if !(scale.is_finite() && scale > 0.0) || scale == 1.0 {
+            return Err(MeshError::InvalidArgument(format!(
+                "rind_by_scaling: scale = {scale} must be finite, positive and not 1 (below 1 the copy is inside, above 1 outside)"
+            )));
+        }
+        if let Some(f) = self.faces().find(|&f| self.face_halfedge(f).is_none()) {
+            return Err(MeshError::Precondition(format!("rind_by_scaling: face {} is a point-sphere; it has no rind", f.0)));
+        }
+        let nv = self.n_vertices();
+        let c = self.positions().iter().sum::<DVec3>() / nv.max(1) as f64;
+        let scaled = |p: DVec3, s: f64| c + (p - c) * s;
+        let mut pos = Vec::with_capacity(2 * nv);
+        if scale < 1.0 {
+            pos.extend_from_slice(self.positions());
+            pos.extend(self.positions().iter().map(|&p| scaled(p, scale)));
+        } else {
+            pos.extend(self.positions().iter().map(|&p| scaled(p, scale)));
+            pos.extend_from_slice(self.positions());
+        }
+        let src = if scale < 1.0 { self.clone() } else { let mut s = self.clone(); for p in s.positions_mut() { *p = scaled(*p, scale); } s };
+        Rind::from_shell(&src, pos, &format!("scale {scale}"))
+    }
+}
+
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::testing::*;
+    use crate::primitives;
+
+    fn face_at(m: &crate::Mesh, p: [f64; 3]) -> usize {
+        let cs = m.face_centroids();
+        (0..m.n_faces()).find(|&i| (cs[i] - glam::DVec3::from_array(p)).length() < 1e-9).unwrap()
+    }
+
+    #[test]
+    fn three_cubes_join_at_a_hub() {
+        // faces looking at a common point: the hub is a solid blob
+        let mut m = primitives::cube();
+        for t in [[-3., 0., 0.], [3., 0., 0.], [0., 4., 0.]] {
+            let mut c = primitives::cube();
+            for p in c.positions_mut() {
+                *p += glam::DVec3::from_array(t);
+            }
+            m = m.disjoint_union(&c).unwrap();
+        }
+        let sel = [face_at(&m, [-2., 0., 0.]), face_at(&m, [2., 0., 0.]), face_at(&m, [0., 3., 0.])];
+        let (v, _, _, c, g) = counts(&m);
+        assert_eq!(c, 4);
+        let r = m.multi_face_handle(&sel, 1.0, 0.5).unwrap();
+        assert_eq!(counts(&r).0, v + 12);
+        assert_eq!((counts(&r).3, counts(&r).4), (c - 2, g));
+        assert!(m.multi_face_handle(&sel[..1], 1.0, 0.5).is_err());
+        assert!(m.multi_face_handle(&[sel[0], sel[0]], 1.0, 0.5).is_err());
+        // the faces themselves (no extrusion) span the hub too
+        assert!(m.multi_face_handle(&sel, 1.0, 0.0).is_ok());
+    }
+
+    #[test]
+    fn cavity_through_a_cube() {
+        let m = grid_cube(3);
+        let (_, _, _, c, g) = counts(&m);
+        let sel = [face_at(&m, [0., 0., 1.]), face_at(&m, [0., 0., -1.]), face_at(&m, [1., 0., 0.])];
+        let r = m.multi_face_handle(&sel, 0.5, -0.5).unwrap();
+        assert_eq!((counts(&r).3, counts(&r).4), (c, g + 2));
+        // the hub lies inside the cube
+        assert!(r.positions()[m.n_vertices()..].iter().all(|p| p.abs().max_element() < 1.0));
+    }
+
+    #[test]
+    fn rind_by_scaling_shells() {
+        let m = primitives::dodecahedron();
+        for s in [0.8, 1.25] {
+            let r = m.rind_by_scaling(s).unwrap();
+            let (v, e, f, c, g) = counts(r.mesh());
+            assert_eq!((v, e, f, c, g), (40, 60, 24, 2, 0));
+            let mut p = r.clone();
+            p.punch(&[0, 3]).unwrap();
+            assert_eq!(counts(p.mesh()).4, 1);
+        }
+        assert!(m.rind_by_scaling(1.0).is_err());
+        assert!(m.rind_by_scaling(-0.5).is_err());
+    }
+}

@@ -1,0 +1,246 @@
+"""TopMod tools of issue 16: object tools, wireframe, multi-face handle,
+rind by scaling, pinch, conical cuts and convex hulls."""
+
+import numpy as np
+import pytest
+
+import topomesh
+from topomesh import MeshError
+
+trimesh = pytest.importorskip("trimesh")
+
+
+def counts(m):
+    m.validate()
+    return (m.n_vertices, m.n_edges, m.n_faces, m.genus)
+
+
+def check_watertight(m, genus):
+    t = m.to_trimesh()
+    assert t.is_watertight
+    assert (2 - t.euler_number) // 2 == genus
+
+
+SHAPES = [topomesh.cube, topomesh.dodecahedron, topomesh.tetrahedron, topomesh.octahedron, topomesh.icosahedron]
+
+
+@pytest.mark.parametrize("make", SHAPES + [lambda: topomesh.torus(6, 4), lambda: topomesh.genus_surface(3)])
+def test_wireframe_genus_formula(make):
+    m = make()
+    v, e, f, g = counts(m)
+    w = m.wireframe(0.05)
+    assert counts(w) == (4 * e, 10 * e, 2 * v + 4 * e, e - v + 1)
+    assert e - v + 1 == 2 * g + f - 1
+    w2 = m.wireframe(0.05, width=0.02)
+    assert counts(w2) == counts(w)
+    if m.n_components == 1 and make in SHAPES:
+        check_watertight(w, e - v + 1)
+        assert len(w.self_intersections()) == 0
+
+
+def test_wireframe_errors_and_input_untouched():
+    m = topomesh.cube()
+    before = m.vertices.copy()
+    for bad in [0.0, -1.0, float("nan")]:
+        with pytest.raises(MeshError, match="thickness"):
+            m.wireframe(bad)
+    with pytest.raises(MeshError, match="width"):
+        m.wireframe(0.1, width=-1.0)
+    assert np.array_equal(m.vertices, before)
+
+
+def test_object_tools_counts():
+    m = topomesh.dodecahedron()
+    v, e, f, g = counts(m)
+    s = m.subdivide_all_edges(2)
+    assert counts(s) == (v + 2 * e, 3 * e, f, g)
+    assert s.face_sizes.tolist() == [15] * f
+    r = s.remove_valence2_vertices()
+    assert counts(r) == counts(m)
+    assert np.allclose(r.vertices, m.vertices)
+    sp = topomesh.cube().subdivide_all_edges(1).split_valence2_vertices()
+    assert counts(sp) == (8 + 24, 36, 6, 0)
+    with pytest.raises(MeshError, match="n = 0"):
+        m.subdivide_all_edges(0)
+
+
+def test_cleanup_two_gons():
+    c = topomesh.cube()
+    m, _ = c.insert_edge(0, 0, 0, 1)  # a two-gon beside the first side
+    assert 2 in m.face_sizes.tolist()
+    r = m.cleanup_two_gons()
+    assert counts(r) == counts(c)
+    assert 2 not in r.face_sizes.tolist()
+
+
+def test_planarize_residual_decreases():
+    rng = np.random.default_rng(1)
+    base = topomesh.cube().subdivide_all_edges(1)
+    m = base.with_vertices(base.vertices + rng.normal(scale=0.05, size=base.vertices.shape))
+    before = m.vertices.copy()
+    r0 = m.planarity_residual()
+    prev = r0
+    cur = m
+    for _ in range(4):
+        cur, res = cur.planarize(iterations=3, tol=0.0)
+        assert res < prev
+        prev = res
+    assert counts(cur) == counts(m)
+    assert np.array_equal(m.vertices, before)
+    _, res = m.planarize(iterations=500, tol=1e-8)
+    assert res <= 1e-8 < r0
+    with pytest.raises(MeshError, match="iterations"):
+        m.planarize(iterations=-1)
+    with pytest.raises(MeshError, match="tol"):
+        m.planarize(tol=float("nan"))
+
+
+def test_spherize():
+    m = topomesh.cube().subdivide_all_edges(1).spherize(radius=2.0)
+    c = m.vertices.mean(axis=0)
+    assert np.allclose(np.linalg.norm(m.vertices - c, axis=1), 2.0)
+    with pytest.raises(MeshError, match="radius"):
+        topomesh.cube().spherize(radius=0.0)
+
+
+def test_rind_by_scaling():
+    m = topomesh.dodecahedron()
+    r = m.rind_by_scaling(0.8)
+    assert counts(r.mesh) == (40, 60, 24, 0)
+    p = r.punch([0, 5])
+    assert p.mesh.genus == 1 and p.mesh.n_components == 1
+    check_watertight(p.mesh, 1)
+    with pytest.raises(MeshError, match="scale"):
+        m.rind_by_scaling(1.0)
+
+
+def _face_at(m, p):
+    c = m.face_centroids
+    return int(np.argmin(np.linalg.norm(c - np.asarray(p), axis=1)))
+
+
+def test_handle_pinch_keywords():
+    m = topomesh.Mesh.from_polygons(*_grid_cube(3))
+    top, bottom = _face_at(m, [0, 0, 1]), _face_at(m, [0, 0, -1])
+    h0 = m.add_handle(top, bottom, segments=4, weights=(-1.0, -1.0))
+    h1 = m.add_handle(top, bottom, segments=4, weights=(-1.0, -1.0), pinch=1.0, pinch_center=0.5, pinch_width=1.0, extra_twists=0)
+    assert np.array_equal(h0.vertices, h1.vertices)
+    h2 = m.add_handle(top, bottom, segments=4, weights=(-1.0, -1.0), pinch=0.5)
+    assert counts(h2) == counts(h0) and h2.genus == 1
+    nv = m.n_vertices
+    mid0 = np.linalg.norm(h0.vertices[nv + 4 : nv + 8, :2], axis=1)
+    mid2 = np.linalg.norm(h2.vertices[nv + 4 : nv + 8, :2], axis=1)
+    assert np.allclose(mid2, 0.5 * mid0)
+    h3 = m.add_handle(top, bottom, segments=8, weights=(-1.0, -1.0), extra_twists=1)
+    assert h3.genus == 1
+    for kw, val in [("pinch", 0.0), ("pinch_center", 1.0), ("pinch_width", 0.0), ("extra_twists", -1)]:
+        with pytest.raises(MeshError, match=kw):
+            m.add_handle(top, bottom, **{kw: val})
+
+
+def test_multi_face_handle_cavity():
+    # a 3x3-grid cube: three centre faces joined inside through a cavity hub
+    g = topomesh.Mesh.from_polygons(*_grid_cube(3))
+    sel = [_face_at(g, [0, 0, 1]), _face_at(g, [0, 0, -1]), _face_at(g, [1, 0, 0])]
+    r = g.multi_face_handle(sel, scale=0.5, extrude=-0.5)
+    assert r.genus == 2 and r.n_components == 1
+    r.validate()
+    check_watertight(r, 2)
+    assert len(r.self_intersections()) == 0
+    with pytest.raises(MeshError, match="at least 2"):
+        g.multi_face_handle([sel[0]])
+    with pytest.raises(MeshError, match="twice"):
+        g.multi_face_handle([sel[0], sel[0]])
+    with pytest.raises(MeshError, match="out of range"):
+        g.multi_face_handle([0, 10**6])
+
+
+def _grid_cube(n):
+    pts, index, faces = [], {}, []
+
+    def vid(p):
+        if p not in index:
+            index[p] = len(pts)
+            pts.append([c * 2.0 / n - 1.0 for c in p])
+        return index[p]
+
+    for axis in range(3):
+        for side in (0, n):
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            for i in range(n):
+                for j in range(n):
+                    quad = []
+                    for di, dj in [(0, 0), (1, 0), (1, 1), (0, 1)]:
+                        p = [0, 0, 0]
+                        p[axis], p[u], p[v] = side, i + di, j + dj
+                        quad.append(vid(tuple(p)))
+                    faces.append(quad[::-1] if side == 0 else quad)
+    return np.array(pts), faces
+
+
+def test_cuts():
+    c = topomesh.cube()
+    t = c.cut_vertices(list(range(8)), offset=0.25)
+    assert counts(t) == (24, 36, 14, 0)
+    check_watertight(t, 0)
+    assert sorted(t.face_sizes.tolist()) == [3] * 8 + [8] * 6
+    e = c.cut_edges(0, offset=0.25)
+    assert counts(e) == (10, 15, 7, 0)
+    f = c.cut_faces([0], offset=0.25)
+    assert counts(f) == (8, 12, 6, 0)
+    d = topomesh.dodecahedron().cut_vertices(range(20), offset=0.3)
+    assert counts(d) == (60, 90, 32, 0)
+    assert len(d.self_intersections()) == 0
+    for call, arg in [(c.cut_vertices, 8), (c.cut_edges, 12), (c.cut_faces, 6)]:
+        with pytest.raises(MeshError, match="out of range"):
+            call(arg)
+    with pytest.raises(MeshError, match="offset"):
+        c.cut_vertices(0, offset=0.0)
+    with pytest.raises(MeshError, match="twice"):
+        c.cut_faces([1, 1])
+
+
+@pytest.mark.parametrize("make", SHAPES)
+def test_convex_hull_of_platonic_solids(make):
+    m = make()
+    h = topomesh.convex_hull(m)
+    assert counts(h) == counts(m)
+    assert sorted(h.face_sizes.tolist()) == sorted(m.face_sizes.tolist())
+    check_watertight(h, 0)
+    d = topomesh.dual_convex_hull(m.vertices)
+    assert counts(d) == (m.n_faces, m.n_edges, m.n_vertices, 0)
+    check_watertight(d, 0)
+
+
+def test_convex_hull_points():
+    rng = np.random.default_rng(3)
+    pts = rng.normal(size=(500, 3))
+    h = topomesh.convex_hull(pts)
+    check_watertight(h, 0)
+    ref = trimesh.convex.convex_hull(pts)
+    assert h.n_vertices == len(ref.vertices)
+    assert abs(h.to_trimesh().volume - ref.volume) < 1e-9 * ref.volume
+    # grid points: six squares, interior and edge points dropped
+    g, _ = _grid_cube(4)
+    h = topomesh.convex_hull(np.vstack([g, [[0, 0, 0]]]))
+    assert counts(h) == (8, 12, 6, 0)
+    with pytest.raises(MeshError, match="one plane"):
+        topomesh.convex_hull([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    with pytest.raises(MeshError, match="at least 4"):
+        topomesh.convex_hull([[0, 0, 0], [1, 0, 0], [0, 1, 0]])
+    with pytest.raises(MeshError):
+        topomesh.convex_hull([[0, 0, float("nan")]] * 5)
+
+
+def test_open_meshes_refused_or_kept():
+    pts = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
+    sq = topomesh.Mesh.from_polygons(pts, [[0, 1, 2, 3]])
+    assert not sq.is_closed
+    for call in (lambda m: m.wireframe(0.1), lambda m: m.cut_vertices(0)):
+        with pytest.raises(MeshError, match="boundary"):
+            call(sq)
+    s = sq.subdivide_all_edges(1)
+    assert (s.n_vertices, s.n_edges, s.n_boundary_loops) == (8, 8, 1)
+    r = s.remove_valence2_vertices()
+    assert r.n_boundary_loops == 1
+    r.validate()
