@@ -31,6 +31,7 @@ from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
 from topomesh.correspondence import Correspondence  # noqa: E402
+from topomesh._core import block_cache, set_block_cache  # noqa: E402  (issue 19)
 
 __all__ = [
     "Correspondence",
@@ -40,6 +41,7 @@ __all__ = [
     "PrintReport",
     "RepairReport",
     "Rind",
+    "block_cache",
     "cube",
     "dodecahedron",
     "explore",
@@ -53,6 +55,7 @@ __all__ = [
     "printable",
     "repair",
     "save",
+    "set_block_cache",
     "set_memory_budget",
     "tetrahedron",
     "torus",

@@ -25,6 +25,8 @@ __all__ = [
     "genus_surface",
     "memory_budget",
     "set_memory_budget",
+    "set_block_cache",
+    "block_cache",
     "icosahedron",
     "ifs_bezier",
     "ifs_bspline",
@@ -472,3 +474,7 @@ def _write_obj(
 def _read_obj(
     path: str | PathLike[str],
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64], int, int, dict[str, Any]]: ...
+
+# --- allocator block cache (issue 19) ---
+def set_block_cache(nbytes: int) -> int: ...
+def block_cache() -> tuple[int, int]: ...

@@ -18,6 +18,7 @@ pub(crate) mod mesh;
 mod refine;
 mod repair;
 mod ops;
+mod perf;
 mod primitives;
 mod printing;
 mod smooth;
@@ -290,6 +291,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     ifs::register(m)?;
     fractal::register(m)?;
     io::register(m)?;
+    perf::register(m)?;
     m.add_function(wrap_pyfunction!(set_memory_budget, m)?)?;
     m.add_function(wrap_pyfunction!(memory_budget, m)?)?;
     // rust-numpy imports NumPy's C API (and checks its version, in Python)
