@@ -91,7 +91,7 @@ case, warm, repeat = sys.argv[1], sys.argv[2] == "1", int(sys.argv[3])
 if case == "loop":
     import trimesh
     s = trimesh.creation.icosphere(subdivisions=6)
-    m = topomesh.Mesh(s.vertices, s.faces)
+    m = topomesh.Mesh.from_polygons(s.vertices, s.faces)
     run = lambda: m.loop(1)
 elif case == "catmull_clark":
     m = topomesh.torus(400, 250)

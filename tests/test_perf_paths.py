@@ -108,3 +108,28 @@ def test_results_same_with_and_without_cache():
     cold = topomesh.torus(40, 30).loop(2).vertices
     np.testing.assert_array_equal(warm[0], cold)
     np.testing.assert_array_equal(warm[1], cold)
+
+
+@pytest.mark.parametrize(
+    "make",
+    [lambda: topomesh.icosahedron().loop(2), lambda: topomesh.tetrahedron(), lambda: topomesh.torus(12, 8).loop(1),
+     lambda: topomesh.cube(), lambda: topomesh.tetrahedron().sierpinski(2)],
+    ids=["loop-sphere", "tetrahedron", "loop-torus", "quads", "self-loops"],
+)
+def test_triangles_fast_path_matches_triangulate(make):
+    m = make()
+    _, tris, faces = m.triangulate()
+    t, f = m.triangles(return_faces=True)
+    assert t.dtype == np.int64 and t.shape == tris.shape
+    np.testing.assert_array_equal(t, tris)
+    np.testing.assert_array_equal(f, faces)
+    np.testing.assert_array_equal(m.triangles(), tris)
+
+
+def test_triangles_fast_path_is_the_faces():
+    m = topomesh.icosahedron().loop(1)
+    np.testing.assert_array_equal(m.triangles(), m.face_indices.reshape(-1, 3))
+    # an open triangle mesh (hole faces) still leaves the holes out
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.2]], float)
+    o = topomesh.Mesh.from_polygons(v, [[0, 1, 2], [1, 3, 2]])
+    np.testing.assert_array_equal(o.triangles(), [[0, 1, 2], [1, 3, 2]])

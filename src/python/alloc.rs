@@ -13,6 +13,7 @@
 //!   in `madvise` or `always` mode) maps their 2 MiB-aligned interior with 2
 //!   MiB pages: one fault instead of 512. This helps every call, the first
 //!   one included, and keeps nothing resident after a call.
+//!   `TOPOMESH_HUGE_PAGES=0` in the environment turns the advice off.
 //! * **Block cache** (off by default): keeps up to a set number of bytes of
 //!   large freed blocks for the next request of a similar size, which also
 //!   saves the zeroing of fresh pages when operations repeat (iterations,
@@ -59,6 +60,14 @@ pub(crate) struct BlockCache {
 static GLOBAL: BlockCache =
     BlockCache { cache: Mutex::new(Cache { blocks: [(0, 0); SLOTS], total: 0 }), limit: AtomicUsize::new(0) };
 
+/// Whether large blocks get the huge-page advice (`TOPOMESH_HUGE_PAGES=0`
+/// turns it off, for comparisons).
+static HUGE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+
+pub(crate) fn set_huge_pages(on: bool) {
+    HUGE.store(on, Ordering::Relaxed);
+}
+
 /// Sets the block cache limit in bytes (0 turns it off and frees what it
 /// holds); returns the previous limit.
 pub(crate) fn set_block_cache(bytes: usize) -> usize {
@@ -76,7 +85,7 @@ pub(crate) fn block_cache() -> (usize, usize) {
 /// Advises the kernel to back the 2 MiB-aligned interior of a fresh block
 /// with huge pages. Advice only: a refusal changes nothing.
 fn advise_huge(p: *mut u8, size: usize) {
-    if p.is_null() || size < HUGE_MIN {
+    if p.is_null() || size < HUGE_MIN || !HUGE.load(Ordering::Relaxed) {
         return;
     }
     let start = (p as usize).next_multiple_of(HUGE_PAGE);

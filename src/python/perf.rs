@@ -44,6 +44,9 @@ fn block_cache() -> (usize, usize) {
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| v.trim() == "0") {
+        super::alloc::set_huge_pages(false);
+    }
     if let Ok(s) = std::env::var("TOPOMESH_BLOCK_CACHE") {
         let b = crate::budget::parse_size(&s).ok_or_else(|| {
             arg_err(format!("TOPOMESH_BLOCK_CACHE = {s:?} must be a size in bytes, such as 268435456 or 256M"))
