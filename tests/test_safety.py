@@ -186,7 +186,7 @@ except KeyboardInterrupt:
         ("topomesh.torus(1400, 1400)", "m.honeycomb(1)"),
         ("topomesh.torus(1400, 1400)", "m.sierpinski(1)"),
         ("topomesh.torus(200, 200)", "m.menger(1)"),
-        ("None", "topomesh.menger_sponge(5)"),
+        ("None", "[topomesh.menger_sponge(5).n_faces for _ in range(20)]"),  # one call now takes ~0.5 s
         ("topomesh.torus(1000, 1000)", "m.self_intersections()"),
         ("topomesh.torus(2000, 2000)", "topomesh.Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices)"),
     ],

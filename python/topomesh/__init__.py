@@ -35,6 +35,7 @@ from topomesh.explore import explore  # noqa: E402
 from topomesh.correspondence import Correspondence  # noqa: E402
 from topomesh.catalog import catalog  # noqa: E402
 from topomesh._core import convex_hull, dual_convex_hull  # noqa: E402
+from topomesh._core import block_cache, set_block_cache  # noqa: E402  (issue 19)
 
 __all__ = [
     "Correspondence",
@@ -44,6 +45,7 @@ __all__ = [
     "PrintReport",
     "RepairReport",
     "Rind",
+    "block_cache",
     "catalog",
     "conway",
     "conway_operators",
@@ -60,6 +62,7 @@ __all__ = [
     "printable",
     "repair",
     "save",
+    "set_block_cache",
     "set_memory_budget",
     "tetrahedron",
     "torus",

@@ -1,29 +1,48 @@
-//! The extension module's global allocator: the system allocator plus a
-//! small cache of large freed blocks.
+//! The extension module's global allocator: the system allocator, with
+//! transparent huge pages asked for on large blocks, plus an opt-in cache of
+//! large freed blocks.
 //!
 //! Every scheme and every construction allocates its output columns and
 //! temporaries fresh. glibc serves blocks above its mmap threshold with a
 //! new `mmap` and returns them with `munmap` on free, so every call pays a
 //! page fault per 4 KiB page it touches: half the time of a Loop step on an
-//! 82k-triangle sphere, measured. Keeping a few large freed blocks for the
-//! next request of a similar size removes those faults when operations
-//! repeat (iterations, pipelines, benchmarks).
+//! 82k-triangle sphere, measured.
 //!
-//! Bounds: blocks of at least [`MIN_BLOCK`] bytes, at most [`SLOTS`] of them
-//! and [`MAX_CACHED`] bytes in total; a cached block is reused only for a
-//! request of at least half its size, and a large request that no cached
-//! block fits empties the cache (see [`BlockCache::take`]). Only topomesh's own (Rust)
-//! allocations go through here; Python's and NumPy's are untouched.
+//! * **Huge pages** (always): blocks of at least [`HUGE_MIN`] bytes are
+//!   advised `MADV_HUGEPAGE`, so the kernel (where transparent huge pages are
+//!   in `madvise` or `always` mode) maps their 2 MiB-aligned interior with 2
+//!   MiB pages: one fault instead of 512. This helps every call, the first
+//!   one included, and keeps nothing resident after a call.
+//!   `TOPOMESH_HUGE_PAGES=0` in the environment turns the advice off.
+//! * **Block cache** (off by default): keeps up to a set number of bytes of
+//!   large freed blocks for the next request of a similar size, which also
+//!   saves the zeroing of fresh pages when operations repeat (iterations,
+//!   pipelines, warm benchmarks). Turned on by `topomesh.set_block_cache(bytes)`
+//!   or the environment variable `TOPOMESH_BLOCK_CACHE` (bytes, or a size such
+//!   as `256M`) read when the module loads; at most [`MAX_CACHED`] bytes.
+//!   Bounds: blocks of at least [`MIN_BLOCK`] bytes, at most [`SLOTS`] of
+//!   them; a cached block is reused only for a request of at least half its
+//!   size, and a large request that no cached block fits empties the cache
+//!   (see [`BlockCache::take`]). Setting the limit to 0 frees what it holds.
+//!
+//! Only topomesh's own (Rust) allocations go through here; Python's and
+//! NumPy's are untouched.
 
 use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 const MIN_BLOCK: usize = 1 << 20;
 const SLOTS: usize = 32;
-const MAX_CACHED: usize = 256 << 20;
+/// Largest block cache limit accepted.
+pub(crate) const MAX_CACHED: usize = 1 << 30;
 /// Blocks with a larger alignment bypass the cache (the system allocator
 /// serves them differently).
 const MAX_ALIGN: usize = 16;
+/// Smallest block advised to use huge pages: below it the 2 MiB-aligned
+/// interior is at most half the block.
+const HUGE_MIN: usize = 4 << 20;
+const HUGE_PAGE: usize = 2 << 20;
 
 struct Cache {
     /// (address, size) of cached blocks; size 0 marks a free slot.
@@ -33,15 +52,74 @@ struct Cache {
 
 pub(crate) struct BlockCache {
     cache: Mutex<Cache>,
+    /// Bytes the cache may hold (0: off).
+    limit: AtomicUsize,
 }
 
 #[global_allocator]
-static GLOBAL: BlockCache = BlockCache { cache: Mutex::new(Cache { blocks: [(0, 0); SLOTS], total: 0 }) };
+static GLOBAL: BlockCache =
+    BlockCache { cache: Mutex::new(Cache { blocks: [(0, 0); SLOTS], total: 0 }), limit: AtomicUsize::new(0) };
+
+/// Whether large blocks get the huge-page advice (`TOPOMESH_HUGE_PAGES=0`
+/// turns it off, for comparisons).
+static HUGE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+
+pub(crate) fn set_huge_pages(on: bool) {
+    HUGE.store(on, Ordering::Relaxed);
+}
+
+/// Sets the block cache limit in bytes (0 turns it off and frees what it
+/// holds); returns the previous limit.
+pub(crate) fn set_block_cache(bytes: usize) -> usize {
+    let old = GLOBAL.limit.swap(bytes.min(MAX_CACHED), Ordering::Relaxed);
+    GLOBAL.trim(bytes);
+    old
+}
+
+/// The block cache limit in bytes and the bytes it holds now.
+pub(crate) fn block_cache() -> (usize, usize) {
+    let held = GLOBAL.cache.lock().map(|c| c.total).unwrap_or(0);
+    (GLOBAL.limit.load(Ordering::Relaxed), held)
+}
+
+/// Advises the kernel to back the 2 MiB-aligned interior of a fresh block
+/// with huge pages. Advice only: a refusal changes nothing.
+fn advise_huge(p: *mut u8, size: usize) {
+    if p.is_null() || size < HUGE_MIN || !HUGE.load(Ordering::Relaxed) {
+        return;
+    }
+    let start = (p as usize).next_multiple_of(HUGE_PAGE);
+    let end = (p as usize + size) & !(HUGE_PAGE - 1);
+    if end > start {
+        // SAFETY: the range lies inside a block this allocator just got
+        // from the system; madvise(MADV_HUGEPAGE) changes no contents.
+        unsafe { libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE) };
+    }
+}
 
 impl BlockCache {
     #[inline]
-    fn cacheable(layout: &Layout) -> bool {
-        layout.size() >= MIN_BLOCK && layout.align() <= MAX_ALIGN
+    fn cacheable(&self, layout: &Layout) -> bool {
+        layout.size() >= MIN_BLOCK && layout.align() <= MAX_ALIGN && self.limit.load(Ordering::Relaxed) != 0
+    }
+
+    /// Frees cached blocks until at most `limit` bytes are held.
+    fn trim(&self, limit: usize) {
+        if let Ok(mut c) = self.cache.lock() {
+            for i in 0..SLOTS {
+                if c.total <= limit {
+                    break;
+                }
+                let (p, s) = c.blocks[i];
+                if s != 0 {
+                    // SAFETY: a cached block was allocated by System and is
+                    // owned by the cache alone; System's free ignores the size.
+                    unsafe { System.dealloc(p as *mut u8, Layout::from_size_align_unchecked(s, 1)) };
+                    c.blocks[i] = (0, 0);
+                    c.total -= s;
+                }
+            }
+        }
     }
 
     /// A cached block of `size..=2 * size` bytes (the smallest), removed
@@ -86,17 +164,19 @@ impl BlockCache {
 // for a smaller layout can be freed or resized with that layout.
 unsafe impl GlobalAlloc for BlockCache {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if Self::cacheable(&layout) {
+        if self.cacheable(&layout) {
             if let Some(p) = self.take(layout.size()) {
                 return p;
             }
         }
         // SAFETY: forwarded with the caller's layout.
-        unsafe { System.alloc(layout) }
+        let p = unsafe { System.alloc(layout) };
+        advise_huge(p, layout.size());
+        p
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        if Self::cacheable(&layout) {
+        if self.cacheable(&layout) {
             if let Some(p) = self.take(layout.size()) {
                 // SAFETY: the block holds at least layout.size() bytes.
                 unsafe { std::ptr::write_bytes(p, 0, layout.size()) };
@@ -104,13 +184,15 @@ unsafe impl GlobalAlloc for BlockCache {
             }
         }
         // SAFETY: forwarded with the caller's layout.
-        unsafe { System.alloc_zeroed(layout) }
+        let p = unsafe { System.alloc_zeroed(layout) };
+        advise_huge(p, layout.size());
+        p
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        if Self::cacheable(&layout) {
+        if self.cacheable(&layout) {
             if let Ok(mut c) = self.cache.lock() {
-                if c.total + layout.size() <= MAX_CACHED {
+                if c.total + layout.size() <= self.limit.load(Ordering::Relaxed) {
                     if let Some(i) = c.blocks.iter().position(|&(_, s)| s == 0) {
                         c.blocks[i] = (ptr as usize, layout.size());
                         c.total += layout.size();
@@ -126,6 +208,10 @@ unsafe impl GlobalAlloc for BlockCache {
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         // SAFETY: ptr was allocated by System (directly or via the cache),
         // whose realloc does not depend on the old layout's size.
-        unsafe { System.realloc(ptr, layout, new_size) }
+        let p = unsafe { System.realloc(ptr, layout, new_size) };
+        if new_size > layout.size() {
+            advise_huge(p, new_size);
+        }
+        p
     }
 }

@@ -390,6 +390,24 @@ impl PyMesh {
     /// ``return_faces=True`` also returns the source face of every triangle.
     #[pyo3(signature = (return_faces = false))]
     fn triangles<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
+        // all-triangle meshes: the faces themselves, straight into one buffer (issue 19)
+        if py.detach(|| self.inner.triangles_are_faces()) {
+            let nf = self.inner.n_faces();
+            // SAFETY: every entry is written below before the array is returned.
+            let arr = unsafe { PyArray2::<i64>::new(py, [nf, 3], false) };
+            {
+                use numpy::PyArrayMethods;
+                let mut rw = arr.readwrite();
+                let out = rw.as_slice_mut().map_err(|e| arg_err(e.to_string()))?;
+                py.detach(|| self.inner.write_triangle_faces(out));
+            }
+            let tris = arr.into_any();
+            return if return_faces {
+                Ok((tris, i64_array(py, 0..nf as i64)).into_pyobject(py)?.into_any())
+            } else {
+                Ok(tris)
+            };
+        }
         let (t, f) = super::run_interruptible(py, || {
             let t = self.inner.triangles();
             crate::cancel::check().map(|()| t)

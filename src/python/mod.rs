@@ -21,6 +21,7 @@ mod topmod;
 mod repair;
 mod ops;
 mod tools;
+mod perf;
 mod primitives;
 mod printing;
 mod smooth;
@@ -295,6 +296,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fractal::register(m)?;
     io::register(m)?;
     conway::register(m)?;
+    perf::register(m)?;
     m.add_function(wrap_pyfunction!(set_memory_budget, m)?)?;
     m.add_function(wrap_pyfunction!(memory_budget, m)?)?;
     // rust-numpy imports NumPy's C API (and checks its version, in Python)

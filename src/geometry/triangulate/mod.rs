@@ -526,6 +526,7 @@ fn triangulate_with(m: &Mesh, grouped: bool) -> Triangulation {
     Triangulation { points, tris: t2, tri_face: f2 }
 }
 
+mod plain;
 mod redo;
 
 #[cfg(test)]

@@ -1,72 +1,14 @@
-//! The classic cubic Menger sponge as one closed manifold polygon mesh.
-//!
-//! The level-`n` sponge is the cube `[-1, 1]³` cut into `3ⁿ` cells per side,
-//! keeping the cell `(x, y, z)` when at no base-3 digit position two or more
-//! of `x, y, z` have the digit 1 (`20ⁿ` cells). The mesh is the boundary of
-//! that solid: every unit square between a kept cell and a removed cell or
-//! the outside, oriented outward. Coplanar unit squares are **kept** (not
-//! merged), so every face is a quad and every vertex a grid point; the
-//! dissertation lists this sponge as future work (ch. VIII).
-//!
-//! # Manifoldness
-//!
-//! Two kept cells meeting only along a grid edge (with the other two cells
-//! around it removed) would give an edge with four boundary squares; cells
-//! meeting only at a corner would pinch a vertex. Neither occurs: a brute
-//! force scan of every 2×2 edge window and 2×2×2 vertex window finds none for
-//! levels 1–4, and the builder re-checks every edge it pairs (it returns an
-//! error on a diagonal contact) while [`Mesh::from_corner_twins`] checks every
-//! vertex umbrella, at every level. So no vertex duplication is needed.
-//!
-//! # Counts and genus
-//!
-//! Faces: the 20 level-`(n−1)` blocks are glued along 24 shared faces, each a
-//! level-`(n−1)` Sierpinski carpet of `8ⁿ⁻¹` squares seen from both sides, so
-//! `Fₙ = 20 Fₙ₋₁ − 48·8ⁿ⁻¹`, `F₀ = 6`, i.e. `Fₙ = 2·20ⁿ + 4·8ⁿ`; `Eₙ = 2Fₙ`.
-//!
-//! Genus, derived independently of the mesh: the solid `Sₙ` is a compact
-//! 3-manifold with connected boundary, so `genus(∂Sₙ) = 1 − χ(Sₙ)`. Count
-//! `χ(Sₙ)` on the cubical complex by inclusion–exclusion over the 20 blocks:
-//! every open cell of the level-1 arrangement shared by `m ≥ 2` blocks is
-//! counted `m − 1` times too often. In the level-1 arrangement the shared
-//! cells are 24 squares (m = 2), edges with `Σ(m − 1) = 96` and vertices with
-//! `Σ(m − 1) = 96`. At level `n` a shared square carries an open carpet with
-//! `χ = χ(Cₙ₋₁) = 1 − (8ⁿ⁻¹ − 1)/7` (its boundary circle has χ = 0), a shared
-//! edge an open segment (χ = −1), a shared vertex a point (χ = 1):
-//!
-//! ```text
-//! χ(Sₙ) = 20 χ(Sₙ₋₁) − 24 χ(Cₙ₋₁) + 96 − 96,   χ(S₀) = 1
-//!       = −(3/19)·20ⁿ − (2/7)·8ⁿ + 192/133
-//! genusₙ = (21·20ⁿ + 38·8ⁿ − 59) / 133  =  0, 5, 81, 1409, 26433, 514625, …
-//! Vₙ = Fₙ + 2 − 2·genusₙ
-//! ```
-//!
-//! (The multiplicities 24/96/96 and `χ(S₁..₃) = −4, −80, −1408` were checked
-//! by counting the cells of the union of cubes directly.)
-//!
-//! # Cost
-//!
-//! Linear in the `27ⁿ` cells (level 5: 14.3 M cells, 6.5 M quads): one byte of
-//! face mask and one face offset per cell, one vertex id per grid point; the
-//! faces, their corners and their twins are filled in parallel per slab.
+//! The grid-scan builder the sponge had before its output-time one (test
+//! reference only): it scans all `27ⁿ` cells for exposed faces and all
+//! `(3ⁿ + 1)³` grid points for vertices, then pairs corners by their
+//! neighbour cells and builds through [`Mesh::from_corner_twins`], which
+//! checks twins and vertex umbrellas. The tests compare the two.
 
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
+use super::{menger_sponge_faces, MAX_LEVEL};
 use glam::DVec3;
 use rayon::prelude::*;
-
-/// Highest level built (level 6 would need ~10 GB).
-pub const MAX_LEVEL: u32 = 5;
-
-/// Faces of the level-`n` sponge: `2·20ⁿ + 4·8ⁿ`.
-pub fn menger_sponge_faces(level: u32) -> u64 {
-    2 * 20u64.pow(level) + 4 * 8u64.pow(level)
-}
-
-/// Genus of the level-`n` sponge's surface: `(21·20ⁿ + 38·8ⁿ − 59)/133`.
-pub fn menger_sponge_genus(level: u32) -> u64 {
-    (21 * 20u64.pow(level) + 38 * 8u64.pow(level) - 59) / 133
-}
 
 struct Grid {
     n: usize,
@@ -122,10 +64,8 @@ fn quad(c: [i64; 3], d: usize) -> [[i64; 3]; 4] {
     }
 }
 
-/// The classic Menger sponge of `level` (0 = the cube `[-1, 1]³`) as one
-/// connected, outward-oriented closed manifold of unit quads. See the module
-/// docs for the counts; levels above [`MAX_LEVEL`] are refused.
-pub fn menger_sponge(level: u32) -> Result<Mesh> {
+/// The sponge of `level` built by the grid scan.
+pub(super) fn menger_sponge_grid(level: u32) -> Result<Mesh> {
     if level > MAX_LEVEL {
         return Err(MeshError::InvalidArgument(format!(
             "menger_sponge: level {level} is too large (at most {MAX_LEVEL}; level 6 has 128 M faces)"
@@ -337,30 +277,5 @@ impl<T> SyncPtr<T> {
     /// `i` is in bounds and no other thread writes slot `i`.
     unsafe fn write(self, i: usize, v: T) {
         unsafe { self.0.add(i).write(v) }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn counts_genus_volume() {
-        let genera = [0u64, 5, 81, 1409, 26433];
-        for level in 0..=3u32 {
-            let m = menger_sponge(level).unwrap();
-            m.validate().unwrap();
-            assert_eq!(m.n_faces() as u64, menger_sponge_faces(level));
-            assert_eq!(m.n_edges(), 2 * m.n_faces());
-            assert_eq!(m.n_components(), 1);
-            assert_eq!(m.genus() as u64, menger_sponge_genus(level));
-            assert_eq!(menger_sponge_genus(level), genera[level as usize]);
-            assert_eq!(m.n_vertices() as i64, m.n_faces() as i64 + 2 - 2 * m.genus());
-            let vol = 8.0 * (20.0f64 / 27.0).powi(level as i32);
-            assert!((m.signed_volume() - vol).abs() < 1e-9 * vol, "level {level}: {}", m.signed_volume());
-            assert_eq!(m.face_size_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
-        }
-        assert_eq!(menger_sponge_genus(4), genera[4]);
-        assert!(menger_sponge(MAX_LEVEL + 1).is_err());
     }
 }

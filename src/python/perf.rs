@@ -1,0 +1,59 @@
+//! Performance knobs (issue 19): the allocator's block cache.
+
+use super::{arg_err, big_int, int_in};
+use pyo3::prelude::*;
+
+/// Sets how many bytes of large freed blocks topomesh's allocator may keep
+/// for reuse (the block cache; off by default).
+///
+/// Large blocks are always asked to use transparent huge pages, which
+/// removes most page faults of a first call. The cache only helps calls
+/// that repeat the same sizes (warm benchmarks, iterations over one mesh):
+/// it saves zeroing fresh pages, at the price of keeping up to ``nbytes``
+/// resident between calls. The environment variable
+/// ``TOPOMESH_BLOCK_CACHE`` (bytes or a size such as ``"256M"``) sets it
+/// when the module loads.
+///
+/// Parameters
+/// ----------
+/// nbytes : int
+///     Limit in bytes, 0 to 2**30; 0 turns the cache off and frees what it
+///     holds.
+///
+/// Returns
+/// -------
+/// int
+///     The previous limit.
+#[pyfunction]
+fn set_block_cache(nbytes: &Bound<'_, PyAny>) -> PyResult<usize> {
+    let v = big_int(nbytes).map_err(|_| arg_err(format!("set_block_cache: nbytes = {nbytes} must be an integer")))?;
+    let b = int_in("set_block_cache", "nbytes", v, 0, super::alloc::MAX_CACHED as i64)? as usize;
+    Ok(super::alloc::set_block_cache(b))
+}
+
+/// The block cache's limit and the bytes it holds now (see
+/// :func:`set_block_cache`).
+///
+/// Returns
+/// -------
+/// tuple of (int, int)
+///     ``(limit, held)`` in bytes.
+#[pyfunction]
+fn block_cache() -> (usize, usize) {
+    super::alloc::block_cache()
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| v.trim() == "0") {
+        super::alloc::set_huge_pages(false);
+    }
+    if let Ok(s) = std::env::var("TOPOMESH_BLOCK_CACHE") {
+        let b = crate::budget::parse_size(&s).ok_or_else(|| {
+            arg_err(format!("TOPOMESH_BLOCK_CACHE = {s:?} must be a size in bytes, such as 268435456 or 256M"))
+        })?;
+        super::alloc::set_block_cache(b.min(super::alloc::MAX_CACHED as u64) as usize);
+    }
+    m.add_function(wrap_pyfunction!(set_block_cache, m)?)?;
+    m.add_function(wrap_pyfunction!(block_cache, m)?)?;
+    Ok(())
+}
