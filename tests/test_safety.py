@@ -272,7 +272,7 @@ def _base_calls():
         # a tunnel and a straight pipe through a 3 x 3 grid cube: valid calls free of crossings
         "Mesh.from_trimesh": (Mesh.from_trimesh, {"tm": soup_tm, "repair": True, "tolerance": 1e-9}),
         "Mesh.from_pyvista": (Mesh.from_pyvista, {"data": soup_pv, "repair": True, "tolerance": 1e-9}),
-        "Mesh.add_handle": (grid.add_handle, {"face_a": top, "face_b": bottom, "segments": 4, "weights": (-1.0, -1.0)}),
+        "Mesh.add_handle": (grid.add_handle, {"face_a": top, "face_b": bottom, "segments": 4, "weights": (-1.0, -1.0), "pinch": 1.0, "pinch_center": 0.5, "pinch_width": 1.0, "extra_twists": 0}),
         "Mesh.insert_edge": (cube.insert_edge, {"face1": 0, "position1": 0, "face2": 0, "position2": 2}),
         "Mesh.connect_edges": (cube.connect_edges, {"face1": 0, "position1": 0, "face2": 1, "position2": 0}),
         "Mesh.create_pipe": (grid.create_pipe, {"face1": top, "position1": 0, "face2": bottom, "position2": 2}),
@@ -292,6 +292,19 @@ def _base_calls():
         "Mesh.conway": (cube.conway, {"notation": "t"}),
         **{f"Mesh.{op}": (getattr(cube, op), {"n": 4}) for op in ("kis", "truncate", "needle", "zip", "loft")},
         "Mesh.canonicalize": (lambda **kw: cube.canonicalize(**kw)[0], {"iterations": 5, "tol": 1e-8}),
+        # issue 16: tools
+        "Mesh.planarize": (lambda **kw: cube.planarize(**kw)[0], {"iterations": 3, "tol": 1e-9}),
+        "Mesh.spherize": (cube.spherize, {"radius": 1.5}),
+        "Mesh.split_valence2_vertices": (cube.subdivide_all_edges().split_valence2_vertices, {"offset": 0.1}),
+        "Mesh.subdivide_all_edges": (cube.subdivide_all_edges, {"n": 2}),
+        "Mesh.wireframe": (cube.wireframe, {"thickness": 0.1, "width": 0.1}),
+        "Mesh.multi_face_handle": (cube.multi_face_handle, {"faces": [0, 1], "scale": 0.5, "extrude": 0.5}),
+        "Mesh.rind_by_scaling": (cube.rind_by_scaling, {"scale": 0.8}),
+        "Mesh.cut_vertices": (cube.cut_vertices, {"vertices": [0], "offset": 0.25}),
+        "Mesh.cut_edges": (cube.cut_edges, {"edges": [0], "offset": 0.25}),
+        "Mesh.cut_faces": (cube.cut_faces, {"faces": [0], "offset": 0.25}),
+        # issue 19: the allocator's block cache (0 turns it off)
+        "set_block_cache": (_core.set_block_cache, {"nbytes": 0}),
     }
 
 
@@ -305,6 +318,8 @@ NOT_NUMERIC = {
     # crease's sharpness may be inf (infinitely sharp), so it is probed there, not here
     "correspondence", "boundary", "crease_method", "corner_interpolation", "edge_sharpness", "vertex_sharpness",
     "vertex", "face", "corner", "sharpness",
+    # issue 16: index lists and a point
+    "edges", "center",
 }
 
 

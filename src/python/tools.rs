@@ -36,6 +36,10 @@ fn point(call: &str, name: &str, p: Option<(f64, f64, f64)>) -> PyResult<Option<
     }
 }
 
+/// Largest length or scale factor the tools accept (a bound that names the
+/// parameter instead of building a mesh of 1e21-sized coordinates).
+const MAX_LENGTH: f64 = 1e15;
+
 #[pymethods]
 impl PyMesh {
     /// Planarize all faces (TopMod's object tool, made iterative): each
@@ -79,6 +83,9 @@ impl PyMesh {
     #[pyo3(signature = (radius = None, center = None))]
     fn spherize(&self, radius: Option<f64>, center: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
         let c = point("spherize", "center", center)?;
+        if let Some(r) = radius {
+            super::finite_in("spherize", "radius", r, f64::MIN_POSITIVE, MAX_LENGTH)?;
+        }
         let mut m = self.inner.clone();
         m.spherize(c, radius).map_err(err)?;
         Ok(PyMesh::wrap(m))
@@ -141,6 +148,10 @@ impl PyMesh {
     ///     When the tubes cross each other (strips too wide for the faces).
     #[pyo3(signature = (thickness, width = None))]
     fn wireframe(&self, py: Python<'_>, thickness: f64, width: Option<f64>) -> PyResult<PyMesh> {
+        super::finite_in("wireframe", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
+        if let Some(w) = width {
+            super::finite_in("wireframe", "width", w, f64::MIN_POSITIVE, MAX_LENGTH)?;
+        }
         let m = py.detach(|| self.inner.wireframe(thickness, width)).map_err(err)?;
         super::ops::warn_new_crossings(py, "wireframe", &Mesh::new(), &m)?;
         Ok(PyMesh::wrap(m))
@@ -167,7 +178,15 @@ impl PyMesh {
     #[pyo3(signature = (faces, scale = 1.0, extrude = 0.5))]
     fn multi_face_handle(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, scale: f64, extrude: f64) -> PyResult<PyMesh> {
         let fs = index_list("multi_face_handle", "face", faces)?;
-        let m = py.detach(|| self.inner.multi_face_handle(&fs, scale, extrude)).map_err(err)?;
+        super::finite_in("multi_face_handle", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
+        super::finite_in("multi_face_handle", "extrude", extrude, -MAX_LENGTH, MAX_LENGTH)?;
+        let m = py
+            .detach(|| self.inner.multi_face_handle(&fs, scale, extrude))
+            .map_err(|e| match e {
+                // the hub is built from the moved face corners: name the parameters that moved them
+                crate::MeshError::Interrupted => err(e),
+                e => arg_err(format!("multi_face_handle (scale = {scale}, extrude = {extrude}): {e}")),
+            })?;
         super::ops::warn_new_crossings(py, "multi_face_handle", &self.inner, &m)?;
         Ok(PyMesh::wrap(m))
     }
@@ -178,6 +197,7 @@ impl PyMesh {
     /// copy is the outer shell. Returns a :class:`Rind` (faces ``0..F``
     /// outer, ``F..2F`` inner, as :meth:`rind`).
     fn rind_by_scaling(&self, py: Python<'_>, scale: f64) -> PyResult<super::ops::PyRind> {
+        super::finite_in("rind_by_scaling", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
         let r = py.detach(|| self.inner.rind_by_scaling(scale)).map_err(err)?;
         Ok(super::ops::PyRind { inner: r })
     }
