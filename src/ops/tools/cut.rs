@@ -306,7 +306,9 @@ impl Mesh {
             let mut x = s;
             loop {
                 done.insert(x);
-                let (y, t) = cap_next[&x];
+                let Some(&(y, t)) = cap_next.get(&x) else {
+                    return Err(MeshError::Invariant("cut: a cap boundary does not close".into()));
+                };
                 vs.push(x);
                 ts.push(t);
                 x = y;

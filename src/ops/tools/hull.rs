@@ -280,7 +280,11 @@ pub fn convex_hull(points: &[DVec3]) -> Result<(Mesh, Vec<usize>)> {
             }
             idx.push(used[u as usize] as i64);
             size += 1;
-            u = group_sides[&(r, u)];
+            // a merged face whose sides do not chain (coplanar merging gone
+            // inconsistent at extreme coordinates) is an error, not a panic
+            u = *group_sides
+                .get(&(r, u))
+                .ok_or_else(|| MeshError::InvalidArgument("convex_hull: a merged face does not close (points too far apart or nearly coplanar for the hull's precision)".into()))?;
             if u == s {
                 break;
             }
