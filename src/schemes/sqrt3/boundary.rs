@@ -37,7 +37,7 @@
 //! in CGAL, so `sqrt3(iterations=2)` on an open mesh is not two calls of
 //! `sqrt3(iterations=1)` (each of those is an odd step).
 
-use super::sqrt3_alpha;
+use super::kobbelt_row;
 use crate::error::{MeshError, Result};
 use crate::mesh::{Mesh, NONE};
 use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
@@ -141,17 +141,6 @@ impl<'a> Ctx<'a> {
             }
         }
         found
-    }
-}
-
-/// Kobbelt's interior rule for the row of `v`.
-fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut crate::schemes::stencil::Row) {
-    let ring: Vec<u32> = crate::schemes::creases::ring(m, m.v_out[v]).collect();
-    let n = ring.len();
-    let a = sqrt3_alpha(n);
-    row.add(v as u32, 1.0 - a);
-    for h in ring {
-        row.add(vert[(h ^ 1) as usize], a / n as f64);
     }
 }
 

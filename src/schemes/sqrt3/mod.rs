@@ -55,6 +55,18 @@ pub fn sqrt3_alpha(n: usize) -> f64 {
     (4.0 - 2.0 * (std::f64::consts::TAU / n as f64).cos()) / 9.0
 }
 
+/// The stencil row of old vertex `v`: `(1 − αₙ) v + αₙ/n Σ neighbours`
+/// over its n ring ends (a self-loop counts twice).
+pub(super) fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut super::stencil::Row) {
+    let ring: Vec<u32> = super::creases::ring(m, m.v_out[v]).collect();
+    let n = ring.len();
+    let a = sqrt3_alpha(n);
+    row.add(v as u32, 1.0 - a);
+    for h in ring {
+        row.add(vert[(h ^ 1) as usize], a / n as f64);
+    }
+}
+
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
     let (nv, nh, nf) = (m.n_vertices(), m.n_halfedges(), m.n_faces());
@@ -133,13 +145,7 @@ pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
             let fl = FaceLayout::new(m)?;
             Some(Stencils::build(nv + nf, nv, |i, row| {
                 if i < nv {
-                    let ring: Vec<u32> = super::creases::ring(m, m.v_out[i]).collect();
-                    let n = ring.len();
-                    let a = sqrt3_alpha(n);
-                    row.add(i as u32, 1.0 - a);
-                    for h in ring {
-                        row.add(vert[(h ^ 1) as usize], a / n as f64);
-                    }
+                    kobbelt_row(m, vert, i, row);
                 } else {
                     let hs = fl.corners(i - nv);
                     for &h in hs {
