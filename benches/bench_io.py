@@ -33,6 +33,24 @@ def median_time(fn, repeat: int) -> float:
     return statistics.median(ts)
 
 
+def interleaved(t):
+    """``t``'s quads with every other one split into two triangles: face sizes
+    change at every face, the worst case of PLY's variable-length records."""
+    import topomesh
+
+    q = t.face_indices.reshape(-1, 4)
+    split = np.arange(len(q)) % 2 == 0
+    sizes = np.where(split, 3, 4).repeat(np.where(split, 2, 1))
+    tri = q[split][:, [0, 1, 2, 0, 2, 3]]
+    # the flat index list in face order: 6 indices per split quad, 4 per kept one
+    width = np.where(split, 6, 4)
+    starts = np.cumsum(width) - width
+    out = np.empty(int(width.sum()), dtype=np.int64)
+    out[starts[split][:, None] + np.arange(6)] = tri
+    out[starts[~split][:, None] + np.arange(4)] = q[~split]
+    return topomesh.Mesh.from_flat(t.vertices, sizes, out)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
@@ -44,13 +62,16 @@ def main() -> int:
 
     import topomesh
     from topomesh._core import _read_obj
+    from topomesh._ply import _read_ply
 
     quads = topomesh.torus(1000, 1000)  # 1M quads
     t = topomesh.torus(1000, 500)
     tris = topomesh.Mesh.from_polygons(t.vertices, t.triangles())  # 1M triangles
+    mixed = interleaved(topomesh.torus(1000, 700))
     rows = []
     with tempfile.TemporaryDirectory() as d:
-        for label, m in (("1M quads (torus 1000×1000)", quads), ("1M triangles (torus 1000×500)", tris)):
+        for label, m in (("1M quads (torus 1000×1000)", quads), ("1M triangles (torus 1000×500)", tris),
+                         ("1.05M mixed faces (torus 1000×700, every other quad split: 350k quads and 700k triangles interleaved)", mixed)):
             p = os.path.join(d, "m.obj")
             m.save(p)
             size = os.path.getsize(p) / 2**20
@@ -70,16 +91,28 @@ def main() -> int:
                 f = os.path.join(d, "m" + ext)
                 r[f"topomesh save {ext}"] = median_time(lambda: m.save(f), a.repeat)
                 r[f"topomesh load {ext}"] = median_time(lambda: topomesh.load(f), a.repeat)
+            # PLY against trimesh (binary both ways): trimesh reads topomesh's file (it skips the
+            # corner_twins list) and writes its own, which topomesh then reads without twins
+            f = os.path.join(d, "m.ply")
+            g = os.path.join(d, "peer.ply")
+            r["topomesh parse only .ply"] = median_time(lambda: _read_ply(f), a.repeat)
+            r["trimesh load .ply"] = median_time(lambda: trimesh.load(f, process=False), a.repeat)
+            # a like-for-like "usable mesh": trimesh's edge topology (what watertight, Euler and genus need)
+            r["trimesh load .ply + topology"] = median_time(
+                lambda: trimesh.load(f, process=False).is_watertight, a.repeat)
+            r["trimesh export .ply"] = median_time(lambda: tm.export(g), a.repeat)
+            r["topomesh load peer .ply"] = median_time(lambda: topomesh.load(g), a.repeat)
             rows.append((label, size, r))
             print(label, {k: round(v, 3) for k, v in r.items()}, file=sys.stderr)
 
     lines = [
-        "# OBJ load and save, 1M faces",
+        "# OBJ and PLY load and save, 1M faces",
         "",
         "`python benches/bench_io.py` (medians of %d runs, one process, 2 cores). The OBJ file is written by" % a.repeat,
         "topomesh (exact float64: 17 significant digits). topomesh load = parse + `Mesh.from_flat` (validated mesh);",
         "trimesh = `trimesh.load(path, process=False)` (triangulates quads), meshio = `meshio.read`.",
-        "Ratios are peer time / topomesh time (> 1: topomesh is faster).",
+        "Ratios are peer time / topomesh time (> 1: topomesh is faster); the PLY ratios compare with topomesh's",
+        "lossless .ply row (trimesh's binary PLY holds the triangulated faces, float32 positions).",
         "",
     ]
     for label, size, r in rows:
@@ -98,6 +131,11 @@ def main() -> int:
             f"| meshio write | {r['meshio write']:.3f} | {r['meshio write'] / ts:.1f} |",
             f"| topomesh save / load .npz (lossless) | {r['topomesh save .npz']:.3f} / {r['topomesh load .npz']:.3f} | |",
             f"| topomesh save / load .ply (lossless) | {r['topomesh save .ply']:.3f} / {r['topomesh load .ply']:.3f} | |",
+            f"| topomesh parse only .ply (`_read_ply`, arrays before the mesh is built) | {r['topomesh parse only .ply']:.3f} | |",
+            f"| trimesh load of that .ply (arrays) | {r['trimesh load .ply']:.3f} | {r['trimesh load .ply'] / r['topomesh parse only .ply']:.1f} vs parse |",
+            f"| trimesh load of that .ply + `is_watertight` (edge topology) | {r['trimesh load .ply + topology']:.3f} | {r['trimesh load .ply + topology'] / r['topomesh load .ply']:.1f} vs load |",
+            f"| trimesh export .ply | {r['trimesh export .ply']:.3f} | {r['trimesh export .ply'] / r['topomesh save .ply']:.1f} |",
+            f"| topomesh load of trimesh's .ply (no twins) | {r['topomesh load peer .ply']:.3f} | |",
             "",
         ]
     Path(a.out).write_text("\n".join(lines))

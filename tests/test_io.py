@@ -215,12 +215,88 @@ def test_ply_is_read_by_plyfile_and_trimesh(tmp_path):
         assert np.array_equal(np.concatenate(list(ply["face"]["vertex_indices"])), m.face_indices)
         assert np.array_equal(np.concatenate(list(ply["face"]["corner_twins"])), m.corner_twins)
         assert np.array_equal(np.c_[ply["vertex"]["x"], ply["vertex"]["y"], ply["vertex"]["z"]], m.vertices)
-        # uniform faces take the vectorized reader, mixed ones plyfile: both exact
+        # uniform faces take the one-frombuffer reader, mixed ones the record walk: both exact
         assert (tio._read_ply_uniform(p) is not None) == (len(set(m.face_sizes.tolist())) == 1)
     trimesh = pytest.importorskip("trimesh")
     T.icosahedron().save(tmp_path / "i.ply")
     tm = trimesh.load(tmp_path / "i.ply", process=False)
     assert np.array_equal(tm.vertices, T.icosahedron().vertices) and tm.is_watertight
+
+
+def _interleaved(data: bool):
+    """A torus whose faces alternate between quads and pairs of triangles, so
+    the PLY face records change length at almost every face (the byte-scatter
+    layout), with vertex, face and corner data when ``data``."""
+    t = T.torus(12, 8)
+    faces = []
+    for i, f in enumerate(t.face_indices.reshape(-1, 4).tolist()):
+        faces += [list(f)] if i % 2 else [[f[0], f[1], f[2]], [f[0], f[2], f[3]]]
+    sizes = np.array([len(f) for f in faces])
+    m = Mesh.from_flat(t.vertices, sizes, np.concatenate(faces))
+    if data:
+        rng = np.random.default_rng(3)
+        m = m.with_attributes(vertex={"temp": rng.random(m.n_vertices)},
+                              face={"mat": np.arange(len(sizes)) % 5},
+                              corner={"uv": rng.random((int(sizes.sum()), 2))})
+    return m
+
+
+@pytest.mark.parametrize("data", [False, True])
+def test_mixed_size_ply_writes_and_reads_back(tmp_path, monkeypatch, data):
+    """Faces of mixed sizes, interleaved (byte-scatter layout) or in a few
+    runs (run layout): plyfile reads the file, and the core's record walk
+    reads it back exactly, data included."""
+    from plyfile import PlyData
+
+    from topomesh import _ply
+
+    few_runs = T.cube().doo_sabin()  # squares, then triangles: two runs
+    if data:
+        few_runs = few_runs.with_attributes(face={"mat": np.arange(len(few_runs.face_sizes)) % 2})
+    scattered = []
+    real = _ply._scattered_records
+    monkeypatch.setattr(_ply, "_scattered_records", lambda *a: scattered.append(1) or real(*a))
+    for m, expect_scatter in ((_interleaved(data), True), (few_runs, False)):
+        scattered.clear()
+        p = tmp_path / "m.ply"
+        m.save(p)
+        assert bool(scattered) == expect_scatter
+        ply = PlyData.read(str(p))
+        assert np.array_equal(np.concatenate(list(ply["face"]["vertex_indices"])), m.face_indices)
+        assert np.array_equal(np.concatenate(list(ply["face"]["corner_twins"])), m.corner_twins)
+        assert tio._read_ply_uniform(p) is None  # mixed sizes: the record walk reads it
+        back = T.load(p)
+        _same(m, back)
+        for kind in ("vertex_attributes", "face_attributes", "corner_attributes"):
+            a, b = getattr(m, kind), getattr(back, kind)
+            assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+
+
+def test_ply_byte_scatter_equals_run_layout():
+    """The two layouts for mixed face sizes agree byte for byte on a mesh with
+    few runs (where save() takes the run layout)."""
+    from topomesh import _ply
+
+    m = T.cube().doo_sabin()
+    sizes, idx, twins = m.face_sizes, m.face_indices, m.corner_twins
+    lists = [(n, "uchar", "int", a.astype("<i4")[:, None]) for n, a in (("vertex_indices", idx), ("corner_twins", twins))]
+    scal = [("mat", "int", (np.arange(len(sizes)) % 3).astype("<i4"))]
+    order = [("list", lists[0]), ("list", lists[1]), ("scalar", scal[0])]
+    a = _ply._mixed_records(sizes, idx, order)
+    b = _ply._scattered_records(sizes, idx, order)
+    assert a.dtype == b.dtype == np.uint8 and np.array_equal(a, b)
+
+
+def test_truncated_or_padded_mixed_ply_is_an_error(tmp_path):
+    p = tmp_path / "m.ply"
+    _interleaved(False).save(p)
+    data = p.read_bytes()
+    (tmp_path / "cut.ply").write_bytes(data[:-3])
+    with pytest.raises(MeshError, match=r"cut\.ply: .*record \d+ is cut off by the end of the file"):
+        T.load(tmp_path / "cut.ply")
+    (tmp_path / "pad.ply").write_bytes(data + b"\0\0")
+    with pytest.raises(MeshError, match=r"pad\.ply: .*2 bytes after the last face record"):
+        T.load(tmp_path / "pad.ply")
 
 
 @pytest.mark.parametrize("name", NAMES)

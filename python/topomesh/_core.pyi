@@ -13,6 +13,7 @@ from topomesh.printing import PrintReport
 from topomesh.correspondence import Correspondence
 
 __all__ = [
+    "_ply_split_records",
     "_read_obj",
     "_write_obj",
     "IFS",
@@ -569,6 +570,9 @@ def _write_obj(
 def _read_obj(
     path: str | PathLike[str],
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64], int, int, dict[str, Any]]: ...
+def _ply_split_records(
+    data: bytes, start: int, n: int, props: list[tuple[int, bool, int]], element: str
+) -> tuple[list[npt.NDArray[np.uint8]], list[npt.NDArray[np.int64] | None], int]: ...
 
 # --- Conway operators (issue 16) ---
 def conway(notation: str, seed: Mesh | None = None) -> Mesh: ...

@@ -1,7 +1,9 @@
 """PLY for :mod:`topomesh.io`: binary little-endian records laid out and
-read with NumPy (one ``frombuffer`` per element when every face has one
-size), plyfile for any other PLY. The layout is described in the formats
-section of :mod:`topomesh.io`."""
+read with NumPy (one structured array or ``frombuffer`` per element when
+every face has one size; faces of mixed sizes written run by run and read
+after the core's walk of the records, ``_ply_split_records``), plyfile for
+ASCII and big-endian PLY. The layout is described in the formats section of
+:mod:`topomesh.io`."""
 
 from __future__ import annotations
 
@@ -10,7 +12,7 @@ from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-from topomesh._core import Mesh, MeshError
+from topomesh._core import Mesh, MeshError, _ply_split_records
 from topomesh._fileattrs import _ply_fields
 
 if TYPE_CHECKING:
@@ -45,8 +47,61 @@ def _write_ply(tmp: str, mesh: Mesh) -> None:
     header += [f"property {t} {p}" for p, t, _ in scalars]
     header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[2:]]
     header.append("end_header\n")
-    # per-face byte offset of every field inside its record, then the records' starts
     order = [("list", x) for x in lists[:2]] + [("scalar", x) for x in scalars] + [("list", x) for x in lists[2:]]
+    records = _uniform_records(sizes, order)
+    vcols = [verts] + [np.asarray(c, dtype=np.float64)[:, None] for _, c in vextra]
+    with open(tmp, "wb") as f:
+        f.write("\n".join(header).encode("ascii"))
+        f.write(np.ascontiguousarray(np.hstack(vcols), dtype="<f8").tobytes())
+        f.write((records if records is not None else _mixed_records(sizes, idx, order)).view(np.uint8))
+
+
+def _uniform_records(sizes: np.ndarray, order: list) -> np.ndarray | None:
+    """The face records of a mesh whose faces all have one size, as one packed
+    structured array (a few vectorised column copies: 0.05 s for 1M quads
+    against 1.5–3 s for the byte scatter of :func:`_mixed_records`); ``None``
+    when the sizes differ."""
+    if not len(sizes) or (sizes != sizes[0]).any():
+        return None
+    k, nf = int(sizes[0]), len(sizes)
+    fields, values = [], []
+    for j, (kind, x) in enumerate(order):
+        if kind == "scalar":
+            a = np.asarray(x[2])
+            fields.append((f"s{j}", a.dtype.newbyteorder("<")))
+            values.append(a)
+            continue
+        ct, a = x[1], np.asarray(x[3])
+        fields += [(f"n{j}", "<u4" if ct == "uint" else "u1"), (f"l{j}", a.dtype.newbyteorder("<"), (k * a.shape[1],))]
+        values += [k * a.shape[1], a.reshape(nf, k * a.shape[1])]
+    rec = np.empty(nf, dtype=np.dtype(fields))  # packed: PLY records have no padding
+    for name, v in zip(rec.dtype.names, values):
+        rec[name] = v
+    return rec
+
+
+def _mixed_records(sizes: np.ndarray, idx: np.ndarray, order: list) -> np.ndarray:
+    """The face records of faces of several sizes: run by run of equal-sized
+    faces when the runs are few (a scheme's output comes in blocks: Doo-Sabin
+    writes its face, edge and vertex faces in turn), else laid out byte by
+    byte."""
+    if not len(sizes):
+        return np.zeros(0, dtype=np.uint8)
+    bounds = np.concatenate(([0], np.flatnonzero(np.diff(sizes)) + 1, [len(sizes)]))
+    if len(bounds) - 1 <= max(64, len(sizes) // 256):
+        corner = np.concatenate(([0], np.cumsum(sizes)))
+        runs = []
+        for a, b in zip(bounds[:-1].tolist(), bounds[1:].tolist()):
+            ca, cb = int(corner[a]), int(corner[b])
+            part = [(k, (*x[:2], x[2][a:b]) if k == "scalar" else (*x[:3], x[3][ca:cb])) for k, x in order]
+            runs.append(_uniform_records(sizes[a:b], part).view(np.uint8))
+        return np.concatenate(runs)
+    return _scattered_records(sizes, idx, order)
+
+
+def _scattered_records(sizes: np.ndarray, idx: np.ndarray, order: list) -> np.ndarray:
+    """The face records of faces of interleaved sizes, laid out byte by byte."""
+    # per-face byte offset of every field inside its record, then the records' starts
     rec = np.zeros(len(sizes), dtype=np.int64)
     offsets = []
     for kind, x in order:
@@ -74,21 +129,26 @@ def _write_ply(tmp: str, mesh: Mesh) -> None:
         n = a.dtype.itemsize * a.shape[1]  # the bytes of one corner
         dest = np.repeat(pos + cs, sizes) + n * local
         buf[dest[:, None] + np.arange(n)] = a.view(np.uint8).reshape(-1, n)
-    vcols = [verts] + [np.asarray(c, dtype=np.float64)[:, None] for _, c in vextra]
-    with open(tmp, "wb") as f:
-        f.write("\n".join(header).encode("ascii"))
-        f.write(np.ascontiguousarray(np.hstack(vcols), dtype="<f8").tobytes())
-        f.write(buf.tobytes())
+    return buf
 
 
 def _read_ply(path: PathLike):
     """``(vertices, sizes, indices, twins or None, (vertex properties, face
-    properties, list property names, comments))``: the fast NumPy read of
-    binary little-endian files whose faces all have one size, else
-    plyfile's."""
-    fast = _read_ply_uniform(path)
-    if fast is not None:
-        return fast
+    properties, list property names, comments))``: binary little-endian files
+    with NumPy (one ``frombuffer`` per element when every face has one size,
+    else the core's record walk), ASCII and big-endian ones with plyfile."""
+    with open(path, "rb") as f:
+        data = f.read()
+    head = _binary_header(data)
+    if head is not None:
+        fast = _read_uniform(data, *head)
+        if fast is None:
+            try:
+                fast = _read_split(data, *head)
+            except MeshError as e:
+                raise MeshError(f"{os.fspath(path)}: {e}") from None
+        if fast is not None:
+            return fast
     from plyfile import PlyData
 
     ply = PlyData.read(os.fspath(path))
@@ -109,19 +169,26 @@ def _read_ply(path: PathLike):
 
 
 def _read_ply_uniform(path: PathLike):
-    """Binary little-endian PLY with a vertex element of scalar properties
-    (``x y z`` among them) and a face element whose lists have one length
-    each over all faces (every face of one size): read with one
-    ``np.frombuffer`` per element. ``None`` for anything else."""
+    """The one-``frombuffer`` read of a binary little-endian PLY whose faces
+    all have one size, ``None`` for any other file (see :func:`_read_uniform`)."""
     with open(path, "rb") as f:
         data = f.read()
+    head = _binary_header(data)
+    return None if head is None else _read_uniform(data, *head)
+
+
+def _binary_header(data: bytes):
+    """``(body offset, vertex count, vertex properties, face count, face
+    properties, comments)`` of a binary little-endian PLY with a vertex
+    element of scalar properties (``x y z`` among them) followed by a face
+    element with ``vertex_indices``; properties as ``(name, count dtype or
+    None, value dtype)``. ``None`` for anything else (plyfile reads it)."""
     end = data.find(b"end_header\n")
     if not data.startswith(b"ply\n") or end < 0:
         return None
-    rows = [ln.split() for ln in data[:end].decode("ascii", "replace").splitlines()[1:]]
-    comments = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else ""
-                for ln in data[:end].decode("ascii", "replace").splitlines()[1:] if ln.split()[:1] == ["comment"]]
-    rows = [r for r in rows if r and r[0] not in ("comment", "obj_info")]
+    lines = data[:end].decode("ascii", "replace").splitlines()[1:]
+    comments = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else "" for ln in lines if ln.split()[:1] == ["comment"]]
+    rows = [r for r in (ln.split() for ln in lines) if r and r[0] not in ("comment", "obj_info")]
     try:
         if rows[0][1:] != ["binary_little_endian", "1.0"]:
             return None
@@ -140,10 +207,23 @@ def _read_ply_uniform(path: PathLike):
         return None
     if (vname, fname) != ("vertex", "face") or any(c is not None for _, c, _ in vprops) or nf == 0:
         return None
-    names = [p for p, _, _ in fprops]
-    if "vertex_indices" not in names or not {"x", "y", "z"} <= {p for p, _, _ in vprops}:
+    if "vertex_indices" not in [p for p, _, _ in fprops] or not {"x", "y", "z"} <= {p for p, _, _ in vprops}:
         return None
-    body = end + len(b"end_header\n")
+    return end + len(b"end_header\n"), nv, vprops, nf, fprops, comments
+
+
+def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
+    vdt = np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
+    if len(data) < body + nv * vdt.itemsize:
+        return None, None, vdt
+    vrec = np.frombuffer(data, vdt, nv, body)
+    verts = np.column_stack([vrec[c].astype(np.float64) for c in "xyz"]).reshape(nv, 3)
+    return verts, {p: vrec[p] for p in vdt.names}, vdt
+
+
+def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
+    """Faces that all have one size: one ``np.frombuffer`` per element; ``None``
+    when the face records differ in length."""
     vdt = np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
     fstart = body + nv * vdt.itemsize
     # the list lengths of the first face fix the record layout
@@ -158,6 +238,8 @@ def _read_ply_uniform(path: PathLike):
         if pos + c.itemsize > len(data):
             return None
         k = int(np.frombuffer(data, c, 1, pos)[0])
+        if k < 0:
+            return None
         fields += [("\0n" + p, c), (p, t, (k,))]
         pos += c.itemsize + k * t.itemsize
     fdt = np.dtype(fields)
@@ -170,11 +252,35 @@ def _read_ply_uniform(path: PathLike):
     k = fdt["vertex_indices"].shape[0]
     if k == 0:
         return None
-    vrec = np.frombuffer(data, vdt, nv, body)
-    verts = np.column_stack([vrec[c].astype(np.float64) for c in "xyz"]).reshape(nv, 3)
-    vp = {p: vrec[p] for p in vdt.names}
+    verts, vp, _ = _vertex_columns(data, body, nv, vprops)
     fp = {p: faces[p].reshape(-1) if c is not None else faces[p] for p, c, _ in fprops}
     lists = {p for p, c, _ in fprops if c is not None}
     twins = fp["corner_twins"].astype(np.int64) if "corner_twins" in fp else None
     idx = fp["vertex_indices"].astype(np.int64)
     return verts, np.full(nf, k, np.int64), idx, twins, (vp, fp, lists, comments)
+
+
+def _read_split(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
+    """Faces of several sizes: the core walks the records once and hands back
+    one column per property (1M mixed faces in ~0.1 s, where plyfile's
+    per-face decoding took ~20 s). ``None`` when the file is shorter than its
+    vertex element."""
+    verts, vp, vdt = _vertex_columns(data, body, nv, vprops)
+    if verts is None:
+        return None
+    spec = [(0 if c is None else np.dtype(c).itemsize, c is not None and np.dtype(c).kind == "i", np.dtype(t).itemsize)
+            for _, c, t in fprops]
+    values, counts, end = _ply_split_records(data, body + nv * vdt.itemsize, nf, spec, "face")
+    if end != len(data):
+        raise MeshError(f"PLY face element: {len(data) - end} bytes after the last face record")
+    fp = {p: v.view(np.dtype(t).newbyteorder("<")) for (p, _, t), v in zip(fprops, values)}
+    lists = {p for p, c, _ in fprops if c is not None}
+    cnt = dict(zip([p for p, _, _ in fprops], counts))
+    sizes = cnt["vertex_indices"]
+    if sizes is None:
+        return None
+    if "corner_twins" in cnt and not np.array_equal(cnt["corner_twins"], sizes):
+        raise MeshError("PLY face element: corner_twins lists differ in length from vertex_indices")
+    twins = fp["corner_twins"].astype(np.int64) if "corner_twins" in fp else None
+    idx = fp["vertex_indices"].astype(np.int64)
+    return verts, sizes, idx, twins, (vp, fp, lists, comments)

@@ -10,9 +10,11 @@ Formats
 ``.ply``
     Binary little-endian PLY: float64 ``x y z``, a ``vertex_indices`` int32
     list per face and an extra ``corner_twins`` int32 list per face (other
-    readers ignore it), so it is lossless too. Written with NumPy; read with
-    NumPy when every face has one size, else through plyfile (any PLY; one
-    without ``corner_twins`` is read as a polygon list).
+    readers ignore it), so it is lossless too. Written with NumPy; binary
+    little-endian files are read with NumPy (one ``frombuffer`` when every
+    face has one size, else after the core's one-pass walk of the face
+    records), ASCII and big-endian ones through plyfile (any PLY; one without
+    ``corner_twins`` is read as a polygon list).
 ``.obj``, ``.off``
     Polygon lists: they cannot say which sides of a multi-edge or which
     self-loops form an edge. :func:`save` writes a mesh only when reading the

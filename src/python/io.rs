@@ -79,7 +79,38 @@ fn _write_obj(
     .map_err(super::err)
 }
 
+/// Splits the ``n`` binary little-endian records of a PLY element starting at
+/// byte ``start`` of ``data`` (GIL released). ``props`` gives, per property,
+/// ``(count bytes or 0 for a scalar, count signed, value bytes)``. Returns
+/// ``(values, counts, end)``: per property its raw value bytes (uint8) and,
+/// for lists, each record's count (int64; ``None`` for scalars), and the
+/// byte offset after the last record.
+#[pyfunction]
+fn _ply_split_records<'py>(
+    py: Python<'py>,
+    data: &[u8],
+    start: usize,
+    n: usize,
+    props: Vec<(u8, bool, u8)>,
+    element: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    use numpy::IntoPyArray;
+    let props: Vec<crate::io::ply::Property> = props
+        .into_iter()
+        .map(|(c, s, v)| crate::io::ply::Property { count: (c > 0).then_some((c, s)), value_size: v })
+        .collect();
+    let cols = py.detach(|| crate::io::ply::split_records(data, start, n, &props, element)).map_err(super::err)?;
+    let values: Vec<Bound<'py, PyAny>> = cols.values.into_iter().map(|v| v.into_pyarray(py).into_any()).collect();
+    let counts: Vec<Option<Bound<'py, PyAny>>> = props
+        .iter()
+        .zip(cols.counts)
+        .map(|(p, c)| p.count.map(|_| c.into_pyarray(py).into_any()))
+        .collect();
+    Ok((values, counts, cols.end).into_pyobject(py)?.into_any())
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_ply_split_records, m)?)?;
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
     m.add_function(wrap_pyfunction!(_write_obj, m)?)?;
     Ok(())
