@@ -28,7 +28,8 @@ pub(crate) struct Spec {
     /// The scheme reads and carries crease sharpness (Catmull-Clark, Loop).
     pub uses_creases: bool,
     /// How corner (face-varying) attributes are interpolated; None: the
-    /// scheme has no face-varying rules and refuses them.
+    /// scheme has no face-varying rules and carries them with the generic
+    /// corner transfer (`crate::schemes::corner_transfer`).
     pub face_varying: Option<Interpolation>,
     /// The level with vertex data interpolated by the scheme's direct
     /// masks (no stencils built), when it has one.
