@@ -278,7 +278,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -289,7 +289,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[True],
     ) -> tuple[Mesh, Correspondence]: ...
     @overload
@@ -304,7 +304,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -315,7 +315,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[True],
     ) -> tuple[Mesh, Correspondence]: ...
     @overload

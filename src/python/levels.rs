@@ -203,7 +203,7 @@ pub(crate) fn run<'py>(
             let geometry_creases = st.creases.clone();
             for fv in &mut st.corners {
                 let cur = std::mem::replace(fv, FaceVarying { mesh: Mesh::new(), values: vec![], k: 0, creases: None });
-                *fv = cur.with_creases(m, geometry_creases.as_ref(), st.options)?.level(&level, interp, st.options)?;
+                *fv = cur.with_creases(m, geometry_creases.as_ref(), st.options)?.with_plus_corners(m, interp)?.level(&level, interp, st.options)?;
             }
         }
         if transfer {
@@ -388,8 +388,10 @@ pub(crate) fn corner_interpolation(call: &str, s: &str) -> PyResult<Interpolatio
         "all" => Interpolation::All,
         "boundaries" => Interpolation::Boundaries,
         "corners_only" => Interpolation::CornersOnly,
+        "corners_plus1" => Interpolation::CornersPlus1,
+        "corners_plus2" => Interpolation::CornersPlus2,
         "smooth" => Interpolation::Smooth,
-        _ => return Err(super::arg_err(format!("{call}: corner_interpolation = {s:?}; expected \"all\" (linear, OpenSubdiv's default), \"boundaries\", \"corners_only\" or \"smooth\""))),
+        _ => return Err(super::arg_err(format!("{call}: corner_interpolation = {s:?}; expected \"all\" (linear, OpenSubdiv's default), \"boundaries\", \"corners_only\", \"corners_plus1\", \"corners_plus2\" or \"smooth\""))),
     })
 }
 
