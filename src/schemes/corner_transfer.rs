@@ -230,8 +230,21 @@ mod tests {
         out
     }
 
+    fn honeycomb(m: &Mesh, r: &Request) -> Result<super::super::level::Level> {
+        super::super::honeycomb::honeycomb_level(m, 0.5, None, r)
+    }
+    fn truncation(m: &Mesh, r: &Request) -> Result<super::super::level::Level> {
+        super::super::vertex_truncation::vertex_truncation_level(m, super::super::vertex_truncation::Truncation::Polyhedral { ratio: 0.5 }, r)
+    }
+    fn menger(m: &Mesh, r: &Request) -> Result<super::super::level::Level> {
+        super::super::menger_level::menger_level(m, &Default::default(), r).map(|(l, _)| l)
+    }
+
     fn schemes() -> Vec<(&'static str, fn(&Mesh, &Request) -> Result<super::super::level::Level>)> {
         vec![
+            ("honeycomb", honeycomb),
+            ("vertex_truncation", truncation),
+            ("menger", menger),
             ("doo_sabin", super::super::doo_sabin::doo_sabin_level),
             ("midpoint", super::super::midpoint::midpoint_level),
             ("dual", super::super::dual::dual_level),

@@ -327,6 +327,44 @@ mod tests {
         assert_eq!(lv.mesh.n_vertices(), 26);
     }
 
+    /// The cube's cross unfolding (tests/osd/fixtures.py): vertices 0 and 1
+    /// hold three values, 2 and 3 two, the top four one.
+    fn cross_cube() -> (Mesh, Vec<u32>, Vec<f64>) {
+        let faces = [[0u32, 1, 5, 4], [4, 5, 7, 6], [6, 7, 3, 2], [2, 3, 1, 0], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let grid = [[(1, 0), (2, 0), (2, 1), (1, 1)], [(1, 1), (2, 1), (2, 2), (1, 2)], [(1, 2), (2, 2), (2, 3), (1, 3)], [(1, 3), (2, 3), (2, 4), (1, 4)], [(0, 1), (1, 1), (1, 2), (0, 2)], [(3, 1), (3, 2), (2, 2), (2, 1)]];
+        let pos: Vec<DVec3> = (0..8).map(|v| DVec3::new((v & 1) as f64 * 2.0 - 1.0, (v >> 1 & 1) as f64 * 2.0 - 1.0, (v >> 2 & 1) as f64 * 2.0 - 1.0)).collect();
+        let idx: Vec<i64> = faces.iter().flatten().map(|&v| v as i64).collect();
+        let m = Mesh::from_polygons(pos, &[4; 6], &idx, crate::mesh::BuildOptions::default()).unwrap();
+        let mut keys: Vec<(i32, i32)> = Vec::new();
+        let mut ids = Vec::new();
+        for g in grid.iter().flatten() {
+            let k = keys.iter().position(|x| x == g).unwrap_or_else(|| {
+                keys.push(*g);
+                keys.len() - 1
+            });
+            ids.push(k as u32);
+        }
+        let vals = keys.iter().flat_map(|&(i, j)| [i as f64 / 4.0, j as f64 / 4.0]).collect();
+        (m, ids, vals)
+    }
+
+    #[test]
+    fn plus_rules_pin_junctions_and_concave_values() {
+        let (m, ids, vals) = cross_cube();
+        let fv = FaceVarying::new(&m, &ids, &vals, 2, None).unwrap();
+        assert_eq!(fv.mesh.n_vertices(), 14);
+        let pinned = |interp| {
+            let f = fv.clone().with_creases(&m, None, SubdivOptions::default()).unwrap().with_plus_corners(&m, interp).unwrap();
+            f.creases.unwrap().vertex.iter().filter(|&&s| s >= INFINITE).count()
+        };
+        // plus1: the three-value vertices 0 and 1 (6 values); plus2 also the
+        // two-value vertices 2 and 3, each with a one-face value (4 more),
+        // and the top four, where a seam ends (darts: edge 0-4 is cut at 0 only)
+        assert_eq!(pinned(Interpolation::CornersOnly), 0);
+        assert_eq!(pinned(Interpolation::CornersPlus1), 6);
+        assert_eq!(pinned(Interpolation::CornersPlus2), 14);
+    }
+
     #[test]
     fn all_seams_make_every_face_its_own_island() {
         let (m, ids, vals) = cube_all_seams();
