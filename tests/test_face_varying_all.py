@@ -174,3 +174,15 @@ def test_zero_iterations_and_plain_calls_are_unchanged():
     for name in NAMES:
         np.testing.assert_array_equal(run(src, name, 0).corner_attributes["uv"], uv)
         assert run(m, name, 1).corner_attributes == {}
+
+
+@pytest.mark.parametrize("shape", ["disk", "annulus", "quad_grid"])
+def test_loop_limit_normals_are_exact_at_boundaries(shape):
+    """Loop's limit normals at boundary (crease) vertices do not change when the mesh is refined
+    first: the cross tangent is an eigenvector of the plain boundary rules (src/schemes/limit.rs)."""
+    m = open_meshes.mesh(shape)
+    p0, n0 = m.limit_points("loop")
+    p1, n1 = m.loop(1).limit_points("loop")
+    v = m.n_vertices
+    np.testing.assert_allclose(p1[:v], p0, atol=1e-10)
+    assert (np.einsum("ij,ij->i", n0, n1[:v]) > 1 - 1e-9).all()

@@ -157,6 +157,11 @@ impl PyMesh {
     ///
     /// The creases and the boundary rule apply as in the schemes. Semi-sharp
     /// creases are refined away first (1 + ceil(s) levels, internally).
+    /// Normals are exact (unchanged by refining first) everywhere; at Loop's
+    /// crease and boundary vertices with three or more interior edges the
+    /// cross tangent is the one the plain crease rules make (an eigenvector
+    /// of their local subdivision matrix), not OpenSubdiv's mask, which is
+    /// made for Biermann, Levin & Zorin's modified rules.
     ///
     /// Parameters
     /// ----------
