@@ -357,8 +357,8 @@ def test_corner_attributes_follow_seams_and_survive_pickle() -> None:
     np.testing.assert_allclose(got.reshape(24, 4, 2)[:, 2], np.repeat(means, 4, axis=0), atol=1e-12)
     p = pickle.loads(pickle.dumps(m))
     np.testing.assert_array_equal(p.corner_attributes["uv"], uv)
-    with pytest.raises(MeshError, match="corner attributes"):
-        m.doo_sabin()
+    # the schemes without face-varying rules carry them too (tests/test_face_varying_all.py)
+    assert m.doo_sabin().corner_attributes["uv"].shape == (96, 2)
     with pytest.raises(MeshError, match=r"shape \(23, 2\)"):
         c.with_attributes(corner={"uv": uv[:23]})
     with pytest.raises(MeshError, match="outside the table"):
@@ -464,11 +464,12 @@ def test_menger_carries_attributes_and_correspondence(name: str) -> None:
     assert (owned >= 3 * m.face_sizes).all()
 
 
-def test_menger_refuses_corner_attributes() -> None:
+def test_menger_carries_corner_attributes() -> None:
     c = tm.cube()
-    uv = np.zeros((int(c.face_sizes.sum()), 2))
-    with pytest.raises(MeshError, match=r"^menger: the mesh has corner attributes \(uv\)"):
-        c.with_attributes(corner={"uv": uv}).menger()
+    uv = np.c_[np.arange(24) % 4, np.arange(24) // 4].astype(float)
+    out = c.with_attributes(corner={"uv": uv}).menger()
+    assert out.corner_attributes["uv"].shape == (len(out.face_indices), 2)
+    assert set(np.unique(out.corner_attributes["uv"][:, 1])) <= set(range(6))  # no value crosses a face
 
 
 def test_sqrt3_refines_the_boundary_every_second_level() -> None:

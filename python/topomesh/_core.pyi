@@ -279,7 +279,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -290,7 +290,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[True],
     ) -> tuple[Mesh, Correspondence]: ...
     @overload
@@ -305,7 +305,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -316,7 +316,7 @@ class Mesh:
         *,
         boundary: Literal["edge_and_corner", "edge_only"] = "edge_and_corner",
         crease_method: Literal["uniform", "chaikin"] = "uniform",
-        corner_interpolation: Literal["all", "boundaries", "corners_only", "smooth"] = "all",
+        corner_interpolation: Literal["all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"] = "all",
         correspondence: Literal[True],
     ) -> tuple[Mesh, Correspondence]: ...
     @overload

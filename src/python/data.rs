@@ -230,7 +230,9 @@ impl PyMesh {
     ///     value table (n, k) with an index per corner (as OBJ's ``vt``).
     ///     An edge is a seam where its two sides' values differ.
     ///     :meth:`catmull_clark` and :meth:`loop` subdivide them with
-    ///     OpenSubdiv's face-varying rules (``corner_interpolation``).
+    ///     OpenSubdiv's face-varying rules (``corner_interpolation``);
+    ///     every other scheme carries them with its own vertex weights read
+    ///     within one input face's values (never across a seam).
     ///
     /// Returns
     /// -------

@@ -28,7 +28,8 @@ pub(crate) struct Spec {
     /// The scheme reads and carries crease sharpness (Catmull-Clark, Loop).
     pub uses_creases: bool,
     /// How corner (face-varying) attributes are interpolated; None: the
-    /// scheme has no face-varying rules and refuses them.
+    /// scheme has no face-varying rules and carries them with the generic
+    /// corner transfer (`crate::schemes::corner_transfer`).
     pub face_varying: Option<Interpolation>,
     /// The level with vertex data interpolated by the scheme's direct
     /// masks (no stencils built), when it has one.
@@ -83,6 +84,8 @@ struct State<'a> {
     creases: Option<Creases>,
     attrs: Vec<(Vec<f64>, usize)>,
     corners: Vec<FaceVarying>,
+    /// Per-corner rows of the schemes without face-varying rules.
+    corner_rows: Vec<(Vec<f64>, usize)>,
     matrix: Option<Stencils>,
     origins: Option<Origins>,
     name: &'a str,
@@ -123,19 +126,18 @@ pub(crate) fn run<'py>(
     // corner attributes: value ids by exact equality of rows, then their face-varying meshes
     let mut corners = Vec::with_capacity(slf.data.corner.len());
     let mut corner_shapes = Vec::with_capacity(slf.data.corner.len());
+    let mut corner_rows: Vec<(Vec<f64>, usize)> = Vec::new();
     if !slf.data.corner.is_empty() {
-        let Some(interp) = spec.face_varying else {
-            return Err(super::arg_err(format!(
-                "{}: the mesh has corner attributes ({}), which only catmull_clark and loop can subdivide (face-varying rules); drop them with without_data() or with_attributes",
-                spec.name,
-                slf.data.corner.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
-            )));
-        };
-        let _ = interp;
         for (_, a) in &slf.data.corner {
             let a = a.bind(py).cast::<PyArrayDyn<f64>>()?.readonly();
             let shape = a.shape().to_vec();
             let k = if shape.len() == 2 { shape[1] } else { 1 };
+            if spec.face_varying.is_none() {
+                // no face-varying rules: the generic corner transfer (schemes::corner_transfer)
+                corner_rows.push((a.as_slice()?.to_vec(), k));
+                corner_shapes.push(shape.len());
+                continue;
+            }
             let (ids, table) = dedupe(a.as_slice()?, k);
             let cr = if spec.uses_creases { slf.data.creases.as_ref() } else { None };
             corners.push(py.detach(|| FaceVarying::new(input, &ids, &table, k, cr)).map_err(super::err)?);
@@ -150,6 +152,7 @@ pub(crate) fn run<'py>(
         creases: if spec.uses_creases { slf.data.creases.clone() } else { None },
         attrs,
         corners,
+        corner_rows,
         matrix: None,
         origins: None,
         name: spec.name,
@@ -157,9 +160,10 @@ pub(crate) fn run<'py>(
     };
     let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |m, st| {
         let direct = spec.with_data.filter(|_| !st.attrs.is_empty());
+        let transfer = !st.corner_rows.is_empty();
         let req = Request {
-            stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()),
-            origins: st.want_origins,
+            stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()) || transfer,
+            origins: st.want_origins || transfer,
             creases: st.creases.as_ref(),
             options: st.options,
             level: st.level,
@@ -199,10 +203,19 @@ pub(crate) fn run<'py>(
             let geometry_creases = st.creases.clone();
             for fv in &mut st.corners {
                 let cur = std::mem::replace(fv, FaceVarying { mesh: Mesh::new(), values: vec![], k: 0, creases: None });
-                *fv = cur.with_creases(m, geometry_creases.as_ref(), st.options)?.level(&level, interp, st.options)?;
+                *fv = cur.with_creases(m, geometry_creases.as_ref(), st.options)?.with_plus_corners(m, interp)?.level(&level, interp, st.options)?;
             }
         }
-        if let Some(o) = lv.origins {
+        if transfer {
+            let (Some(s), Some(o)) = (&lv.stencils, &lv.origins) else {
+                return Err(crate::MeshError::Precondition(format!("{}: its level has no stencils or origins, so it cannot carry corner attributes", st.name)));
+            };
+            let t = crate::schemes::corner_transfer::corner_stencils(m, &lv.mesh, s, o)?;
+            for (a, k) in &mut st.corner_rows {
+                *a = t.apply(a, *k)?;
+            }
+        }
+        if let (Some(o), true) = (lv.origins, st.want_origins) {
             st.origins = Some(match &st.origins {
                 None => o,
                 Some(prev) => o.compose(prev),
@@ -225,6 +238,13 @@ pub(crate) fn run<'py>(
         let arr = if nd == 2 { arr.reshape([out.n_vertices(), k])?.into_any() } else { arr.into_any() };
         arr.getattr("flags")?.setattr("writeable", false)?;
         data.vertex.push((name.clone(), arr.unbind()));
+    }
+    for (((name, _), (v, k)), &nd) in slf.data.corner.iter().zip(st.corner_rows).zip(&corner_shapes) {
+        let n = v.len() / k.max(1);
+        let arr = PyArray1::from_vec(py, v);
+        let arr = if nd == 2 { arr.reshape([n, k])?.into_any() } else { arr.into_any() };
+        arr.getattr("flags")?.setattr("writeable", false)?;
+        data.corner.push((name.clone(), arr.unbind()));
     }
     for (((name, _), fv), nd) in slf.data.corner.iter().zip(&st.corners).zip(corner_shapes) {
         let rows = py.detach(|| fv.corner_rows()).map_err(super::err)?;
@@ -368,8 +388,10 @@ pub(crate) fn corner_interpolation(call: &str, s: &str) -> PyResult<Interpolatio
         "all" => Interpolation::All,
         "boundaries" => Interpolation::Boundaries,
         "corners_only" => Interpolation::CornersOnly,
+        "corners_plus1" => Interpolation::CornersPlus1,
+        "corners_plus2" => Interpolation::CornersPlus2,
         "smooth" => Interpolation::Smooth,
-        _ => return Err(super::arg_err(format!("{call}: corner_interpolation = {s:?}; expected \"all\" (linear, OpenSubdiv's default), \"boundaries\", \"corners_only\" or \"smooth\""))),
+        _ => return Err(super::arg_err(format!("{call}: corner_interpolation = {s:?}; expected \"all\" (linear, OpenSubdiv's default), \"boundaries\", \"corners_only\", \"corners_plus1\", \"corners_plus2\" or \"smooth\""))),
     })
 }
 

@@ -33,10 +33,13 @@ impl PyMesh {
     ///     boundary vertex with one face is a corner and stays put.
     /// crease_method : {"uniform", "chaikin"}, default "uniform"
     ///     How semi-sharp creases decay (OpenSubdiv's creasing methods).
-    /// corner_interpolation : {"all", "boundaries", "corners_only", "smooth"}, default "all"
+    /// corner_interpolation : {"all", "boundaries", "corners_only", "corners_plus1", "corners_plus2", "smooth"}, default "all"
     ///     Corner attributes (UVs): OpenSubdiv's face-varying choices,
     ///     linear everywhere ("all", its default), linear along seams and
-    ///     boundaries, smooth with seam corners pinned, or smooth.
+    ///     boundaries, smooth with seam corners pinned ("corners_only"),
+    ///     also junctions of three or more UV islands ("corners_plus1",
+    ///     Blender's "Keep Corners, Junctions"), also concave corners and
+    ///     seam ends ("corners_plus2", "… and Concave"), or smooth.
     /// correspondence : bool, default False
     ///     Also return a :class:`topomesh.Correspondence` (parent faces,
     ///     vertex origins, the subdivision matrix ``S``).
@@ -154,6 +157,11 @@ impl PyMesh {
     ///
     /// The creases and the boundary rule apply as in the schemes. Semi-sharp
     /// creases are refined away first (1 + ceil(s) levels, internally).
+    /// Normals are exact (unchanged by refining first) everywhere; at Loop's
+    /// crease and boundary vertices with three or more interior edges the
+    /// cross tangent is the one the plain crease rules make (an eigenvector
+    /// of their local subdivision matrix), not OpenSubdiv's mask, which is
+    /// made for Biermann, Levin & Zorin's modified rules.
     ///
     /// Parameters
     /// ----------

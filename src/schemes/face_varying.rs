@@ -15,6 +15,15 @@
 //!   boundaries follow the crease (B-spline curve) rule;
 //! * `CornersOnly` (`FVAR_LINEAR_CORNERS_ONLY`): as smooth, and corners of
 //!   the face-varying mesh (a run of one face) stay put;
+//! * `CornersPlus1` (`FVAR_LINEAR_CORNERS_PLUS1`, Blender's "Keep Corners,
+//!   Junctions"): as `CornersOnly`, and every value of a vertex stays put
+//!   where more than two values meet (a junction of three or more UV
+//!   islands), or where two meet and either one's run of faces holds an
+//!   infinitely sharp edge;
+//! * `CornersPlus2` (`FVAR_LINEAR_CORNERS_PLUS2`, "… and Concave"): as
+//!   `CornersPlus1`, and both values of a two-value vertex stay put when
+//!   either is a corner (the other island is concave there), and so does
+//!   the one value of an interior vertex where a seam ends (a dart);
 //! * `Boundaries` (`FVAR_LINEAR_BOUNDARIES`): linear along seams and
 //!   boundaries (their vertices are corners, their edge points midpoints);
 //! * `All` (`FVAR_LINEAR_ALL`, OpenSubdiv's default): linear everywhere
@@ -22,6 +31,18 @@
 //!
 //! The geometry's crease sharpness applies to the data too (edges and
 //! vertices map one to one), as in OpenSubdiv.
+//!
+//! The two `CornersPlus` rules are OpenSubdiv's
+//! `FVarLevel::completeTopologyFromFaceValues` (opensubdiv/vtr/fvarLevel.cpp,
+//! 3.x), recomputed at every level on the refined data (a junction's child is
+//! a junction, a seam's new points have two runs of two faces, so this
+//! matches OpenSubdiv's propagation of the tags to child values). Two
+//! differences by design, both outside ordinary UV layouts: a value met in
+//! two disjoint runs at one vertex (a "bowtie" in UV space) counts as two
+//! values here (OpenSubdiv: one, marked non-manifold and sharp), and
+//! OpenSubdiv's *dependent* sharpness (one of two values semi-sharp makes
+//! the other semi-sharp too) is not applied: the other value follows its own
+//! run's rule.
 
 use super::creases::{Boundary, Creases, SubdivOptions, INFINITE};
 use super::hosts::FaceLayout;
@@ -35,6 +56,8 @@ use glam::DVec3;
 pub enum Interpolation {
     Smooth,
     CornersOnly,
+    CornersPlus1,
+    CornersPlus2,
     Boundaries,
     #[default]
     All,
@@ -161,7 +184,8 @@ impl FaceVarying {
                     }
                 }
             }
-            Interpolation::Smooth | Interpolation::CornersOnly => {}
+            // the plus rules' extra corners are in `c.vertex` already (`with_creases`)
+            Interpolation::Smooth | Interpolation::CornersOnly | Interpolation::CornersPlus1 | Interpolation::CornersPlus2 => {}
         }
         let boundary = if interp == Interpolation::Smooth { Boundary::EdgeOnly } else { Boundary::EdgeAndCorner };
         let req = Request { stencils: true, origins: false, creases: Some(&c), options: SubdivOptions { boundary, ..geometry }, level: 0 };
@@ -191,6 +215,78 @@ impl FaceVarying {
             vertex[self.mesh.he_vert[fh as usize] as usize] = eff.vertex[gv];
         }
         self.creases = Some(Creases { edge, vertex });
+        Ok(self)
+    }
+
+    /// Adds the vertices the `CornersPlus1` / `CornersPlus2` rules pin (see
+    /// the module docs) to the data's vertex sharpness, as infinitely sharp;
+    /// `geometry` has the same real faces, corner for corner. Other choices
+    /// leave the data as it is.
+    pub fn with_plus_corners(mut self, geometry: &Mesh, interp: Interpolation) -> Result<FaceVarying> {
+        let plus2 = match interp {
+            Interpolation::CornersPlus1 => false,
+            Interpolation::CornersPlus2 => true,
+            _ => return Ok(self),
+        };
+        let fm = &self.mesh;
+        let gfl = FaceLayout::new(geometry)?;
+        let grc = real_corners(geometry, &gfl);
+        let ffl = FaceLayout::new(fm)?;
+        let frc = real_corners(fm, &ffl);
+        let nf = fm.n_vertices();
+        // geometry vertex and run size (faces) of every face-varying vertex
+        let mut gv = vec![NONE; nf];
+        let mut run = vec![0u32; nf];
+        for (c, &fh) in frc.iter().enumerate() {
+            let w = fm.he_vert[fh as usize] as usize;
+            gv[w] = geometry.he_vert[grc[c] as usize];
+            run[w] += 1;
+        }
+        let mut n_values = vec![0u32; geometry.n_vertices()];
+        for &g in &gv {
+            if g != NONE {
+                n_values[g as usize] += 1;
+            }
+        }
+        let mut g_boundary = vec![false; geometry.n_vertices()];
+        for h in 0..geometry.n_halfedges() {
+            if geometry.f_hole[geometry.he_face[h] as usize] {
+                g_boundary[geometry.he_vert[h] as usize] = true;
+            }
+        }
+        // face-varying boundary vertices, and runs holding an infinitely sharp (inner) edge
+        let mut f_boundary = vec![false; nf];
+        let mut inf_edge = vec![false; nf];
+        let edge = self.creases.as_ref().map(|c| &c.edge);
+        for h in 0..fm.n_halfedges() {
+            let w = fm.he_vert[h] as usize;
+            if fm.f_hole[fm.he_face[h] as usize] {
+                f_boundary[w] = true;
+            } else if !fm.f_hole[fm.he_face[h ^ 1] as usize] && edge.is_some_and(|e| e.get(h >> 1).is_some_and(|&s| s >= INFINITE)) {
+                inf_edge[w] = true;
+            }
+        }
+        // per geometry vertex: whether a two-value vertex's runs pin both
+        let mut pin_pair = vec![false; geometry.n_vertices()];
+        for w in 0..nf {
+            let g = gv[w];
+            if g != NONE && n_values[g as usize] == 2 && (inf_edge[w] || (plus2 && run[w] == 1)) {
+                pin_pair[g as usize] = true;
+            }
+        }
+        let c = self.creases.get_or_insert_with(|| Creases { edge: vec![0.0; fm.n_edges()], vertex: vec![0.0; nf] });
+        c.vertex.resize(nf, 0.0);
+        for w in 0..nf {
+            let g = gv[w];
+            if g == NONE {
+                continue;
+            }
+            let n = n_values[g as usize];
+            let dart = plus2 && n == 1 && f_boundary[w] && !g_boundary[g as usize];
+            if n > 2 || (n == 2 && pin_pair[g as usize]) || dart {
+                c.vertex[w] = INFINITE;
+            }
+        }
         Ok(self)
     }
 
@@ -229,6 +325,44 @@ mod tests {
         // linear data subdivides like positions with every crease infinite: bilinear
         let lv = fv.level(catmull_clark_level, Interpolation::All, SubdivOptions::default()).unwrap();
         assert_eq!(lv.mesh.n_vertices(), 26);
+    }
+
+    /// The cube's cross unfolding (tests/osd/fixtures.py): vertices 0 and 1
+    /// hold three values, 2 and 3 two, the top four one.
+    fn cross_cube() -> (Mesh, Vec<u32>, Vec<f64>) {
+        let faces = [[0u32, 1, 5, 4], [4, 5, 7, 6], [6, 7, 3, 2], [2, 3, 1, 0], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let grid = [[(1, 0), (2, 0), (2, 1), (1, 1)], [(1, 1), (2, 1), (2, 2), (1, 2)], [(1, 2), (2, 2), (2, 3), (1, 3)], [(1, 3), (2, 3), (2, 4), (1, 4)], [(0, 1), (1, 1), (1, 2), (0, 2)], [(3, 1), (3, 2), (2, 2), (2, 1)]];
+        let pos: Vec<DVec3> = (0..8).map(|v| DVec3::new((v & 1) as f64 * 2.0 - 1.0, (v >> 1 & 1) as f64 * 2.0 - 1.0, (v >> 2 & 1) as f64 * 2.0 - 1.0)).collect();
+        let idx: Vec<i64> = faces.iter().flatten().map(|&v| v as i64).collect();
+        let m = Mesh::from_polygons(pos, &[4; 6], &idx, crate::mesh::BuildOptions::default()).unwrap();
+        let mut keys: Vec<(i32, i32)> = Vec::new();
+        let mut ids = Vec::new();
+        for g in grid.iter().flatten() {
+            let k = keys.iter().position(|x| x == g).unwrap_or_else(|| {
+                keys.push(*g);
+                keys.len() - 1
+            });
+            ids.push(k as u32);
+        }
+        let vals = keys.iter().flat_map(|&(i, j)| [i as f64 / 4.0, j as f64 / 4.0]).collect();
+        (m, ids, vals)
+    }
+
+    #[test]
+    fn plus_rules_pin_junctions_and_concave_values() {
+        let (m, ids, vals) = cross_cube();
+        let fv = FaceVarying::new(&m, &ids, &vals, 2, None).unwrap();
+        assert_eq!(fv.mesh.n_vertices(), 14);
+        let pinned = |interp| {
+            let f = fv.clone().with_creases(&m, None, SubdivOptions::default()).unwrap().with_plus_corners(&m, interp).unwrap();
+            f.creases.unwrap().vertex.iter().filter(|&&s| s >= INFINITE).count()
+        };
+        // plus1: the three-value vertices 0 and 1 (6 values); plus2 also the
+        // two-value vertices 2 and 3, each with a one-face value (4 more),
+        // and the top four, where a seam ends (darts: edge 0-4 is cut at 0 only)
+        assert_eq!(pinned(Interpolation::CornersOnly), 0);
+        assert_eq!(pinned(Interpolation::CornersPlus1), 6);
+        assert_eq!(pinned(Interpolation::CornersPlus2), 14);
     }
 
     #[test]

@@ -10,11 +10,17 @@
 //! sharpness); a vertex's limit point is that of its vertex point at every
 //! level, so the result is the input vertices' limit. Normals are
 //! `T1 × T2`, unit length, oriented like the faces around the vertex.
-//! They are exact (unchanged by refining first, tested) everywhere for
-//! Catmull-Clark and at smooth vertices for Loop; at Loop's crease and
-//! boundary vertices the cross tangent is OpenSubdiv's, made for Biermann,
-//! Levin & Zorin's modified boundary rules, so it is an approximation there
-//! (as in OpenSubdiv).
+//! They are exact (unchanged by refining first, tested) everywhere: for
+//! Catmull-Clark and smooth Loop vertices with OpenSubdiv's masks, and at
+//! Loop's crease and boundary vertices with the cross tangent the plain
+//! crease rules make ([`loop_cross_tangent`]: a left eigenvector of the
+//! local subdivision matrix). OpenSubdiv's own Loop crease mask for more
+//! than two interior edges is Biermann, Levin & Zorin's, made for their
+//! modified rules, so its normals there differ from these by design (up to
+//! a few degrees; topomesh subdivides with the plain rules, as OpenSubdiv
+//! does). With six or more interior edges the plain rules' interior mode
+//! outgrows the crease's `½` (the known lack of tangent continuity there,
+//! Biermann, Levin & Zorin 2000, §3); the normal is still the eigenvectors'.
 
 use super::creases::{ring, Creases, LevelSharpness, Rule, SubdivOptions, INFINITE};
 use super::level::{Level, Request};
@@ -69,6 +75,44 @@ pub fn limit_points(m: &Mesh, scheme: LimitScheme, creases: Option<&Creases>, op
     crate::cancel::check()?;
     let (positions, normals) = out.into_iter().unzip();
     Ok(LimitPoints { positions, normals, levels })
+}
+
+/// Weights of Loop's cross-crease tangent at a crease vertex with `k ≥ 1`
+/// interior edges `e₁ … e_k` between its two crease edges (ends `e₀`,
+/// `e_{k+1}`): the symmetric left eigenvector of the local subdivision
+/// matrix of the plain rules (crease vertex `(e₀ + 6v + e_{k+1}) / 8`,
+/// crease edges midpoints, interior edges `3/8 3/8 1/8 1/8`) for its
+/// largest eigenvalue after the crease's `½`:
+/// `λ = 3/8 + ¼ cos θ`, `θ = π / (k + 1)`. Loop's 1-ring maps onto the
+/// refined 1-ring, so `Σ l p` scales by exactly `λ` per level and the
+/// tangent's direction does not change under refinement. The interior
+/// weights are `sin iθ` (the tridiagonal interior block's eigenvector); the
+/// vertex's and ends' follow from the two other columns of `l S = λ l`:
+///
+/// ```text
+/// (1/8) l_v + (1/2 − λ) l_e = −(1/8) l₁        (column e₀)
+/// (3/4 − λ) l_v +      l_e = −(3/8) Σ sin iθ   (column v)
+/// ```
+///
+/// (determinant nonzero: it vanishes only at λ = 1 and ¼). For k = 1 and
+/// 2 this is OpenSubdiv's mask; for k ≥ 3 OpenSubdiv uses Biermann, Levin
+/// & Zorin's mask, made for their modified interior weights near creases,
+/// which is no eigenvector of the plain rules OpenSubdiv subdivides with.
+pub(crate) struct CrossWeights {
+    pub vertex: f64,
+    pub end: f64,
+    pub interior: Vec<f64>,
+}
+
+pub(crate) fn loop_cross_tangent(k: usize) -> CrossWeights {
+    let th = PI / (k + 1) as f64;
+    let lambda = 0.375 + 0.25 * th.cos();
+    let interior: Vec<f64> = (1..=k).map(|i| (i as f64 * th).sin()).collect();
+    let sum: f64 = interior.iter().sum();
+    let (a, b, c, d) = (0.125, 0.5 - lambda, 0.75 - lambda, 1.0);
+    let (r1, r2) = (-0.125 * interior[0], -0.375 * sum);
+    let det = a * d - b * c;
+    CrossWeights { vertex: (r1 * d - b * r2) / det, end: (a * r2 - c * r1) / det, interior }
 }
 
 /// OpenSubdiv's masks at vertex `v` of a refined mesh `m`.
@@ -136,22 +180,15 @@ fn vertex_limit(m: &Mesh, ls: &LevelSharpness, v: usize, scheme: LimitScheme, op
             let pos = pv * (4.0 / 6.0) + (e(ends[0]) + e(ends[1])) / 6.0;
             let t1 = (e(ends[0]) - e(ends[1])) * 1.5;
             let interior = ends[1] - ends[0] - 1;
-            let t2 = match interior {
-                0 => pv * -6.0 + (e(ends[0]) + e(ends[1])) * 3.0,
-                1 => pv * -3.0 + e(ends[0] + 1) * 3.0,
-                2 => {
-                    let r3 = 3f64.sqrt();
-                    pv * -r3 + (e(ends[0]) + e(ends[1])) * (-r3 / 2.0) + (e(ends[0] + 1) + e(ends[0] + 2)) * r3
+            let t2 = if interior == 0 {
+                pv * -6.0 + (e(ends[0]) + e(ends[1])) * 3.0
+            } else {
+                let w = loop_cross_tangent(interior);
+                let mut t = pv * w.vertex + (e(ends[0]) + e(ends[1])) * w.end;
+                for i in 1..=interior {
+                    t += e(ends[0] + i) * w.interior[i - 1];
                 }
-                _ => {
-                    let th = PI / (interior + 1) as f64;
-                    let mut t = (e(ends[0]) + e(ends[1])) * (-3.0 * th.sin());
-                    let c = -6.0 * (th.cos() - 1.0);
-                    for i in 1..=interior {
-                        t += e(ends[0] + i) * (c * (i as f64 * th).sin());
-                    }
-                    t
-                }
+                t
             };
             (pos, t1, t2)
         }
@@ -224,16 +261,7 @@ mod tests {
         let scale = m.positions().iter().map(|p| p.length()).fold(1.0, f64::max);
         for v in 0..m.n_vertices() {
             assert!((a.positions[v] - b.positions[v]).length() < 1e-10 * scale, "{scheme:?} vertex {v}: {} vs {}", a.positions[v], b.positions[v]);
-            // Loop's crease tangents across (Biermann, Levin & Zorin's masks,
-            // made for their modified boundary rules) are not eigenvectors of
-            // the plain Loop boundary rule: only smooth vertices are exact there
-            let sharp = m.vertex_halfedges(crate::mesh::VertexId(v as u32)).any(|h| {
-                let e = h.edge().idx();
-                m.is_hole(m.face(h)) || m.is_hole(m.face(h.twin())) || c.is_some_and(|c| c.edge(e) > 0.0) || c.is_some_and(|c| c.vertex(v) > 0.0)
-            });
-            if scheme == LimitScheme::CatmullClark || !sharp {
-                assert!(a.normals[v].dot(b.normals[v]) > 1.0 - 1e-9, "{scheme:?} normal {v}: {} vs {}", a.normals[v], b.normals[v]);
-            }
+            assert!(a.normals[v].dot(b.normals[v]) > 1.0 - 1e-9, "{scheme:?} normal {v}: {} vs {}", a.normals[v], b.normals[v]);
         }
     }
 
@@ -252,6 +280,39 @@ mod tests {
             c.edge[5] = 1.5;
             c.vertex[6] = INFINITE;
             invariant(&m, s, Some(&c), opts);
+        }
+    }
+
+    /// `l S = λ l` on the local matrix of Loop's plain crease rules, built
+    /// row by row (order: v, e₀ … e_{k+1}).
+    #[test]
+    fn loop_cross_tangent_is_a_left_eigenvector() {
+        for k in 1..=9usize {
+            let n = k + 3;
+            let mut s = vec![vec![0.0; n]; n];
+            s[0][0] = 0.75;
+            s[0][1] = 0.125;
+            s[0][k + 2] = 0.125;
+            for j in [1, k + 2] {
+                s[j][0] = 0.5;
+                s[j][j] = 0.5;
+            }
+            for i in 2..k + 2 {
+                s[i][0] = 0.375;
+                s[i][i] = 0.375;
+                s[i][i - 1] = 0.125;
+                s[i][i + 1] = 0.125;
+            }
+            let w = loop_cross_tangent(k);
+            let mut l = vec![w.vertex, w.end];
+            l.extend(&w.interior);
+            l.push(w.end);
+            let lambda = 0.375 + 0.25 * (PI / (k + 1) as f64).cos();
+            for c in 0..n {
+                let ls: f64 = (0..n).map(|r| l[r] * s[r][c]).sum();
+                assert!((ls - lambda * l[c]).abs() < 1e-12, "k = {k}, column {c}");
+            }
+            assert!(l.iter().sum::<f64>().abs() < 1e-12, "annihilates constants");
         }
     }
 

@@ -5,6 +5,7 @@ pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
 pub(crate) mod corner_origins;
+pub mod corner_transfer;
 pub mod creases;
 pub mod face_varying;
 pub mod level;
