@@ -35,6 +35,8 @@
 //! | Dual 12.6.4 / 12.6.4 | [`twelve_six_four::dual_12_6_4`], [`compose::remesh_12_6_4`] |
 //! | Checkerboard / Dual | [`checkerboard::checkerboard`], [`compose::dual_checkerboard`] |
 //! | Doo-Sabin (BC) | [`compose::doo_sabin_bc`] |
+//! | Doo Sabin BC New | [`doo_sabin_bc_new::doo_sabin_bc_new`] |
+//! | Double Stellate (Misc.) | [`stellate::double_stellate_misc`] |
 //! | Dome | [`extrude::dome`] |
 //! | Fractal | [`loop_style::fractal`] |
 //! | Extrusions | [`extrude`] |
@@ -43,6 +45,7 @@ pub(crate) mod build;
 pub mod checkerboard;
 pub mod compose;
 pub mod corner_cutting;
+pub mod doo_sabin_bc_new;
 pub mod extrude;
 pub mod linear;
 pub mod loop_style;

@@ -15,6 +15,15 @@
 //!   every old edge: the two triangles beside edge a→b (in faces f, g) merge
 //!   into the quad `[b, c_f, a, c_g]`. V' = V + F, E' = 2E, F' = E, all quads
 //!   (Conway's *join* topology).
+//! * [`double_stellate_misc`] — TopMod's second double stellation, *Double
+//!   Stellate (Misc.)* (`twostellateSubdivide(obj, height, curve)`,
+//!   DLFLSubdiv.cc, the callback `subStellate2`): stellate with the centres
+//!   moved by `height`, stellate every triangle with its centre moved by
+//!   `curve`, then delete every edge of the first stellation. That is
+//!   [`stellate_edge_removal`]`(`[`stellate`]`(m, height), curve)`, written so:
+//!   V' = V + F + 2E, E' = 6E, F' = 3E, all quads (each triangle side of the
+//!   first stellation becomes the quad of its ends and its two triangles'
+//!   centres).
 //!
 //! Vertex layout: the input's vertices first (same positions), then the
 //! centres in face order (then, for [`double_stellate`], the second round's
@@ -96,6 +105,12 @@ fn edge_removal_step(m: &Mesh, offset: f64) -> Result<Mesh> {
     o.finish("stellate_edge_removal")
 }
 
+/// TopMod's *Double Stellate (Misc.)*, `twostellateSubdivide(height,
+/// curve)`: the join of the stellation. See the module docs.
+pub fn double_stellate_misc(m: &Mesh, height: f64, curve: f64) -> Result<Mesh> {
+    stellate_edge_removal(&stellate(m, height)?, curve)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -121,6 +136,16 @@ mod tests {
         assert_eq!(hist_of(&r), BTreeMap::from([(4, 12)]));
         assert_eq!(r.valence_histogram().get(&3), Some(&8));
         assert_eq!(r.valence_histogram().get(&4), Some(&6));
+    }
+
+    #[test]
+    fn double_stellate_misc_counts() {
+        check("double_stellate_misc", |m| double_stellate_misc(m, 0.2, -0.1), |_, (v, e, f)| (v + f + 2 * e, 6 * e, 3 * e), |_, (_, e, _)| BTreeMap::from([(4, 3 * e)]));
+        // the join of the stellated cube: its 24 triangles' centres are 3-valent,
+        // the cube's corners keep valence 6 and the face centres 4
+        let r = double_stellate_misc(&crate::primitives::cube(), 0.0, 0.0).unwrap();
+        let h = r.valence_histogram();
+        assert_eq!((h.get(&3), h.get(&4), h.get(&6)), (Some(&24), Some(&6), Some(&8)));
     }
 
     #[test]
