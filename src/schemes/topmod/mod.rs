@@ -47,6 +47,7 @@ pub mod compose;
 pub mod corner_cutting;
 pub mod doo_sabin_bc_new;
 pub mod extrude;
+mod extrude_platonic;
 pub mod linear;
 pub mod loop_style;
 pub mod pentagonal;
