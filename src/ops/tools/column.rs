@@ -54,7 +54,7 @@
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{HalfedgeId, Mesh};
-use crate::schemes::topmod::build::Out;
+use crate::schemes::keyed::Out;
 use glam::DVec3;
 
 impl Mesh {
@@ -155,7 +155,7 @@ impl Mesh {
                 rung0(h, k)
             }
         };
-        let n_keys = (n * (ne + nh) + (m + 1) * nh) as usize;
+        let n_keys = n * (ne + nh) + (m + 1) * nh;
         let mut o = Out::new(pos, n_keys, 2 * n * ne, 8 * n * ne);
         // columns
         for e in self.edges() {

@@ -74,6 +74,28 @@ impl Mesh {
         Ok(u)
     }
 
+    /// The selection of both multi-face handles: at least two distinct faces
+    /// in range, none a hole or a point-sphere.
+    fn check_handle_faces(&self, name: &str, faces: &[usize]) -> Result<()> {
+        if faces.len() < 2 {
+            return Err(MeshError::InvalidArgument(format!("{name}: {} faces given; at least 2 are needed", faces.len())));
+        }
+        let nf = self.n_faces();
+        for (i, &f) in faces.iter().enumerate() {
+            if f >= nf {
+                return Err(MeshError::InvalidArgument(format!("{name}: face {f} out of range (mesh has {nf} faces)")));
+            }
+            if faces[..i].contains(&f) {
+                return Err(MeshError::InvalidArgument(format!("{name}: face {f} is selected twice")));
+            }
+            let fid = FaceId::new(f);
+            if self.is_hole(fid) || self.face_halfedge(fid).is_none() {
+                return Err(MeshError::Precondition(format!("{name}: face {f} is a hole or a point-sphere")));
+            }
+        }
+        Ok(())
+    }
+
     /// **Multi-face handle** through a convex hub (module docs): `faces`
     /// (at least two, distinct, not holes) are each joined to the hull of
     /// their vertices moved `extrude` along their normals and scaled by
@@ -88,26 +110,11 @@ impl Mesh {
     /// another's: choose a larger `extrude` or fewer faces); a hull without
     /// volume.
     pub fn multi_face_handle(&self, faces: &[usize], scale: f64, extrude: f64) -> Result<Mesh> {
-        if faces.len() < 2 {
-            return Err(MeshError::InvalidArgument(format!("multi_face_handle: {} faces given; at least 2 are needed", faces.len())));
-        }
+        self.check_handle_faces("multi_face_handle", faces)?;
         if !(scale.is_finite() && scale > 0.0) || !extrude.is_finite() {
             return Err(MeshError::InvalidArgument(format!(
                 "multi_face_handle: scale = {scale} must be finite and positive, extrude = {extrude} finite"
             )));
-        }
-        let nf = self.n_faces();
-        for (i, &f) in faces.iter().enumerate() {
-            if f >= nf {
-                return Err(MeshError::InvalidArgument(format!("multi_face_handle: face {f} out of range (mesh has {nf} faces)")));
-            }
-            if faces[..i].contains(&f) {
-                return Err(MeshError::InvalidArgument(format!("multi_face_handle: face {f} is selected twice")));
-            }
-            let fid = FaceId::new(f);
-            if self.is_hole(fid) || self.face_halfedge(fid).is_none() {
-                return Err(MeshError::Precondition(format!("multi_face_handle: face {f} is a hole or a point-sphere")));
-            }
         }
         // moved copies: point k of face i is its k-th corner from the first
         let mut pts = Vec::new();
@@ -200,22 +207,7 @@ impl Mesh {
     /// holes; no candidate bridge (no pair of sides spans a planar quad).
     pub fn multi_face_handle_edges(&self, faces: &[usize]) -> Result<(Mesh, usize)> {
         let name = "multi_face_handle(algorithm='closest_edge')";
-        if faces.len() < 2 {
-            return Err(MeshError::InvalidArgument(format!("{name}: {} faces given; at least 2 are needed", faces.len())));
-        }
-        let nf = self.n_faces();
-        for (i, &f) in faces.iter().enumerate() {
-            if f >= nf {
-                return Err(MeshError::InvalidArgument(format!("{name}: face {f} out of range (mesh has {nf} faces)")));
-            }
-            if faces[..i].contains(&f) {
-                return Err(MeshError::InvalidArgument(format!("{name}: face {f} is selected twice")));
-            }
-            let fid = FaceId::new(f);
-            if self.is_hole(fid) || self.face_halfedge(fid).is_none() {
-                return Err(MeshError::Precondition(format!("{name}: face {f} is a hole or a point-sphere")));
-            }
-        }
+        self.check_handle_faces(name, faces)?;
         let p = |h: HalfedgeId| self.position(self.vertex(h));
         let q = |h: HalfedgeId| self.position(self.head(h));
         let cen: Vec<DVec3> = faces

@@ -24,7 +24,7 @@
 //!
 //! `scale` in (0, 2] and `length` in [0, 1] (TopMod's UI; defaults 1).
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use super::corner_cutting::cut_face;
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;

@@ -34,7 +34,7 @@
 //! the input's vertices, then for each selected face (in selection order,
 //! repeats ignored) its rings' points in corner order, then its fan centres.
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use super::corner_cutting::cut_face;
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;

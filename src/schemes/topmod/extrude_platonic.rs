@@ -35,7 +35,7 @@
 //! *hexagonalize* option (deleting the top ring between segments) is not
 //! offered.
 
-use super::build::Out;
+use crate::schemes::keyed::Out;
 use glam::DVec3;
 
 fn unit(v: DVec3) -> DVec3 {

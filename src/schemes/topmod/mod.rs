@@ -6,7 +6,7 @@
 //! where TopMod's code has an artefact, the file says what differs.
 //!
 //! Every scheme here is a free function `&Mesh → Result<Mesh>` building its
-//! output in one pass from the input's half-edges ([`build::Out`]: faces as
+//! output in one pass from the input's half-edges ([`crate::schemes::keyed::Out`]: faces as
 //! corners with edge keys, twins paired by key), so it runs on every closed
 //! manifold mesh the other schemes accept: any face size, non-convex faces,
 //! self-loops, multi-edges, one-gons, two-gons, any genus. Point-spheres are
@@ -41,7 +41,6 @@
 //! | Fractal | [`loop_style::fractal`] |
 //! | Extrusions | [`extrude`] |
 
-pub(crate) mod build;
 pub mod checkerboard;
 pub mod compose;
 pub mod corner_cutting;

@@ -30,7 +30,7 @@
 //! centres in the first round's face order). A self-loop, one-gon or
 //! two-gon is fanned like any face (a one-gon's triangle is `[v, v, c]`).
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
@@ -42,25 +42,11 @@ pub fn stellate(m: &Mesh, offset: f64) -> Result<Mesh> {
 }
 
 fn stellate_step(m: &Mesh, offset: f64) -> Result<Mesh> {
+    // Conway's kis of every face, with TopMod's apex
     let i = In::new(m)?;
-    let (v, e, h) = (i.nv as u32, i.ne as u32, i.nh);
-    let mut pos = i.positions(i.nf);
+    let c = i.centroids();
     let n = if offset != 0.0 { i.normals() } else { Vec::new() };
-    for (f, c) in i.centroids().into_iter().enumerate() {
-        pos.push(if offset != 0.0 { c + offset * n[f] } else { c });
-    }
-    // keys: input edge e, then the spoke of every corner (E + h)
-    let mut o = Out::new(pos, i.ne + h, h, 3 * h);
-    for f in 0..i.nf {
-        for &k in i.fl.corners(f) {
-            let k = k as usize;
-            o.c(i.vert[k], (k >> 1) as u32);
-            o.c(i.vert[k ^ 1], e + i.next[k]);
-            o.c(v + f as u32, e + k as u32);
-            o.end();
-        }
-    }
-    o.finish("stellate")
+    crate::schemes::conway::kis::fan("stellate", &i, |_| true, |f| if offset != 0.0 { c[f] + offset * n[f] } else { c[f] })
 }
 
 /// TopMod's double stellation (`starSubdivide`). See the module docs.
