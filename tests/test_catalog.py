@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import json
 import re
+import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import topomesh as tm
@@ -24,11 +26,11 @@ def _evaluable(formula: str) -> bool:
 
 def test_every_entry_names_a_method() -> None:
     entries = tm.catalog()
-    assert {e["family"] for e in entries} == {"scheme", "topmod", "conway"}
+    assert {e["family"] for e in entries} == {"scheme", "topmod", "tool", "conway"}
     for e in entries:
         assert callable(getattr(tm.Mesh, e["method"], None)), e
     # names are unique within a family
-    for fam in ("scheme", "topmod", "conway"):
+    for fam in ("scheme", "topmod", "tool", "conway"):
         names = [e["name"] for e in tm.catalog(fam)]
         assert len(names) == len(set(names))
 
@@ -40,7 +42,7 @@ def test_stated_counts_hold(mesh: str) -> None:
     checked = 0
     bad = []
     for e in tm.catalog():
-        if not all(_evaluable(e[k]) for k in "VEF") or e["method"] in ("subdivide_faces", "extrude"):
+        if e["family"] == "tool" or not all(_evaluable(e[k]) for k in "VEF") or e["method"] in ("subdivide_faces", "extrude"):
             continue
         # the formulas are for the plain rule; a conway "t" with n, etc. takes no argument here
         out = getattr(m, e["method"])()
@@ -68,3 +70,35 @@ def test_family_filter_and_error() -> None:
     assert all(e["family"] == "conway" for e in tm.catalog("conway"))
     with pytest.raises(MeshError, match=r"^catalog: family = 'x'; expected one of"):
         tm.catalog("x")
+
+
+def _counts_by_valence(m: tm.Mesh) -> dict[str, int]:
+    vh = m.valence_histogram
+    return {**_counts(m), "V1": vh.get(1, 0), "V2": vh.get(2, 0), "V3": sum(c for k, c in vh.items() if k >= 3)}
+
+
+@pytest.mark.parametrize("make", [tm.cube, tm.dodecahedron, lambda: tm.cube().subdivide_all_edges(1)])
+def test_tool_entries(make) -> None:
+    # each tool runs with its catalog params; stated formulas hold (V1, V2, V3: vertices of valence 1, 2, >= 3)
+    m = make()
+    before = _counts_by_valence(m)
+    checked = 0
+    for e in tm.catalog("tool"):
+        params = dict(e["params"])
+        if "faces" in params:
+            centroids = m.face_centroids
+            # two opposite faces facing away from each other have no hub; take three around a corner
+            params["faces"] = [int(i) for i in np.argsort(-centroids @ np.array([1.0, 0.9, 0.8]))[:3]]
+        if e["method"] == "multi_face_handle" and params.get("algorithm") == "convex_hull":
+            continue  # its hub needs faces looking at one point (tests/test_tools.py)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", tm.GeometryWarning)
+            out = getattr(m, e["method"])(**params)
+        out.validate()
+        got = _counts(out)
+        for k in "VEF":
+            if "see" not in e[k]:
+                want = eval(re.sub(r"(\d)([VEFH(])", r"\1*\2", e[k]), {}, dict(before))
+                assert got[k] == want, (e["name"], k)
+                checked += 1
+    assert checked >= 7

@@ -38,6 +38,77 @@ def test_wireframe_genus_formula(make):
         assert len(w.self_intersections()) == 0
 
 
+def column_counts(m, n):
+    # the counts of docs/tools.md: V1, V2, V3 vertices of valence 1, 2, >= 3
+    e, k = m.n_edges, n // 2
+    vh = m.valence_histogram
+    v1, v2 = vh.get(1, 0), vh.get(2, 0)
+    v3 = sum(c for d, c in vh.items() if d >= 3)
+    ev = 1 if n % 2 == 0 else 0
+    return (2 * n * e, 3 * n * e + (k + 1) * (2 * e - v1) - (1 + ev) * v2, n * e + k * (2 * e - v1) + 2 * v3 + (1 - ev) * v2 + v1)
+
+
+@pytest.mark.parametrize("make", SHAPES + [lambda: topomesh.cube().subdivide_all_edges(1)])
+@pytest.mark.parametrize("n", [3, 4, 7])
+def test_wireframe_columns(make, n):
+    m = make()
+    v, e, f, g = counts(m)
+    before = m.vertices.copy()
+    c = m.wireframe_columns(0.05, n)
+    assert counts(c)[:3] == column_counts(m, n)
+    assert c.genus == e - v + 1 and c.n_components == 1
+    check_watertight(c, e - v + 1)
+    assert len(c.self_intersections()) == 0
+    sizes = c.face_size_histogram
+    vh = m.valence_histogram
+    quads = n * e + (n // 2) * (2 * e - vh.get(1, 0)) + (n % 2) * vh.get(2, 0)
+    assert sizes.get(4, 0) >= quads
+    assert np.array_equal(m.vertices, before)
+
+
+@pytest.mark.filterwarnings("ignore::topomesh.GeometryWarning")
+@pytest.mark.parametrize("make", [lambda: topomesh.torus(6, 4), lambda: topomesh.genus_surface(2)])
+def test_wireframe_columns_curved(make):
+    # at the torus' and the slab's vertices the joints can cross (a GeometryWarning,
+    # docs/tools.md); the counts and the genus hold
+    m = make()
+    v, e, f, g = counts(m)
+    for n in (3, 4):
+        c = m.wireframe_columns(0.05, n)
+        assert counts(c) == (*column_counts(m, n), e - v + 1)
+        assert c.to_trimesh().is_watertight
+
+
+def test_wireframe_columns_errors():
+    c = topomesh.cube()
+    for kw, word in [(dict(thickness=0.0), "thickness"), (dict(segments=2), "segments"), (dict(segments=101), "segments"), (dict(thickness=1.5), "too short")]:
+        with pytest.raises(MeshError, match=word):
+            c.wireframe_columns(**kw)
+    loop, _ = topomesh.cube().insert_edge(0, 0, 0, 0)
+    with pytest.raises(MeshError, match="self-loop"):
+        loop.wireframe_columns(0.05)
+    assert counts(c.wireframe_columns()) == (96, 216, 112, 5)  # TopMod's defaults: thickness 0.25, 4 sides
+
+
+def test_multi_face_handle_closest_edge():
+    # two cubes with facing faces: four planar bridges, the tube of a pipe
+    a, b = topomesh.cube(), topomesh.cube()
+    two = topomesh.Mesh.from_polygons(np.r_[a.vertices, b.vertices + [3.0, 0, 0]], [list(f) for f in _faces(a)] + [list(np.array(f) + 8) for f in _faces(b)])
+    sel = [_face_at(two, [1, 0, 0]), _face_at(two, [2, 0, 0])]
+    r = two.multi_face_handle(sel, algorithm="closest_edge")
+    assert counts(r) == (16, 28, 14, 0) and r.n_components == 1
+    check_watertight(r, 0)
+    with pytest.raises(MeshError, match="algorithm"):
+        two.multi_face_handle(sel, algorithm="nearest")
+    with pytest.raises(MeshError, match="twice"):
+        two.multi_face_handle([sel[0], sel[0]], algorithm="closest_edge")
+
+
+def _faces(m):
+    off = np.r_[0, np.cumsum(m.face_sizes)]
+    return [m.face_indices[off[i] : off[i + 1]] for i in range(m.n_faces)]
+
+
 def test_wireframe_errors_and_input_untouched():
     m = topomesh.cube()
     before = m.vertices.copy()

@@ -96,6 +96,7 @@ def dual_loop_counts(m):
 ENTRIES = {
     "stellate": (lambda m: m.stellate(offset=0.1), lambda m, v, e, f: (v + f, 3 * e, 2 * e), lambda m, e: {3: 2 * e}),
     "double_stellate": (lambda m: m.double_stellate(offset=0.1), lambda m, v, e, f: (v + f + 2 * e, 9 * e, 6 * e), lambda m, e: {3: 6 * e}),
+    "double_stellate_misc": (lambda m: m.double_stellate_misc(height=0.1, curve=0.05), lambda m, v, e, f: (v + f + 2 * e, 6 * e, 3 * e), lambda m, e: {4: 3 * e}),
     "stellate_edge_removal": (lambda m: m.stellate_edge_removal(), lambda m, v, e, f: (v + f, 2 * e, e), lambda m, e: {4: e}),
     "linear_vertex_insertion": (lambda m: m.linear_vertex_insertion(), lambda m, v, e, f: (v + e + f, 4 * e, 2 * e), lambda m, e: {4: 2 * e}),
     "corner_cutting": (lambda m: m.corner_cutting(alpha=0.6), lambda m, v, e, f: (2 * e, 4 * e, f + e + v), lambda m, e: add(H(m), {4: e}, val(m))),
@@ -121,6 +122,7 @@ ENTRIES = {
     "checkerboard": (lambda m: m.checkerboard(thickness=0.3), lambda m, v, e, f: (v + 4 * e, 9 * e, f + 4 * e), lambda m, e: add(H(m), {4: 4 * e})),
     "dual_checkerboard": (lambda m: m.dual_checkerboard(), lambda m, v, e, f: (v + 4 * e, 9 * e, f + 4 * e), lambda m, e: add(H(m), {4: 4 * e})),
     "doo_sabin_bc": (lambda m: m.doo_sabin_bc(), lambda m, v, e, f: (4 * e, 8 * e, f + 3 * e + v), lambda m, e: add(times(H(m), 2), {4: 2 * e, 2: e}, val(m))),
+    "doo_sabin_bc_new": (lambda m: m.doo_sabin_bc_new(scale=0.8, length=0.5), lambda m, v, e, f: (v + 4 * e, 7 * e, f + 2 * e), lambda m, e: add(times(H(m), 2), {5: 2 * e})),
     "dome": (lambda m: m.dome(), lambda m, v, e, f: (v + 59 * e, 116 * e, f + 56 * e), lambda m, e: add(times(H(m), 4), {4: 56 * e})),
     "fractal": (lambda m: m.fractal(), lambda m, v, e, f: (v + e + f, 6 * e, 4 * e), lambda m, e: {3: 4 * e}),
 }
@@ -202,6 +204,14 @@ def test_parameters_are_checked():
         (lambda: c.extrude([0, 6]), "face 6"),
         (lambda: c.extrude([-1]), "face -1"),
         (lambda: c.subdivide_faces([9]), "face 9"),
+        (lambda: c.double_stellate_misc(height=1.5), "height"),
+        (lambda: c.double_stellate_misc(curve=-2.0), "curve"),
+        (lambda: c.doo_sabin_bc_new(scale=0.0), "scale"),
+        (lambda: c.doo_sabin_bc_new(length=1.5), "length"),
+        (lambda: c.extrude(0, kind="dodecahedral", angle=181.0), "angle"),
+        (lambda: c.extrude(0, kind="icosahedral", lengths=(1.0, 1.0, -1.0)), "lengths"),
+        (lambda: c.extrude(0, kind="icosahedral", length=1.0), "length"),
+        (lambda: c.extrude(0, kind="cubical", angle=30.0), "angle"),
     ]
     for f, word in bad:
         with pytest.raises(topomesh.MeshError, match=word):
@@ -223,6 +233,8 @@ EXTRUDE = {
     "stellate": (dict(length=0.5), lambda n, s: (1, n, n - 1)),
     "double_stellate": (dict(length=0.5), lambda n, s: (n + 1, 4 * n, 3 * n - 1)),
     "dome": (dict(twist=1.0), lambda n, s: (5 * n + 1, 11 * n, 6 * n - 1)),
+    "dodecahedral": (dict(segments=2), lambda n, s: (3 * s * n, 5 * s * n, 2 * s * n)),
+    "icosahedral": (dict(segments=2, angle=45.0, lengths=(0.4, 0.6, 0.7)), lambda n, s: (3 * s * n, 9 * s * n, 6 * s * n)),
 }
 
 
@@ -259,6 +271,23 @@ def test_extrusion_geometry():
     # the default length is TopMod's 2
     d = c.extrude(0)
     assert np.ptp(d.vertices, axis=0).max() == pytest.approx(np.ptp(c.vertices, axis=0).max() + 2.0)
+
+
+def test_new_entries_shapes():
+    # the dodecahedral extrusion of a dodecahedron face and the icosahedral one of
+    # an icosahedron face grow the solid by the polyhedron's ring of faces
+    dod, ico = topomesh.dodecahedron(), topomesh.icosahedron()
+    r = dod.extrude(0, kind="dodecahedral")
+    assert H(r) == {5: 12 + 10} and r.volume > dod.volume
+    r = ico.extrude(0, kind="icosahedral")
+    assert H(r) == {3: 20 + 18} and r.volume > ico.volume
+    # the second double stellation is the join of the stellation
+    c = topomesh.cube()
+    assert c.double_stellate_misc() == c.stellate().stellate_edge_removal()
+    # Doo-Sabin BC New keeps the old vertices (length 1) and their valences
+    b = c.doo_sabin_bc_new()
+    assert np.array_equal(b.vertices[:8], c.vertices)
+    assert [b.valence_histogram.get(k, 0) for k in (3,)] == [8 + 48]
 
 
 @pytest.mark.parametrize("quads", [True, False])

@@ -32,6 +32,7 @@ _TOPMOD: list[dict[str, Any]] = [
     {"name": "stellate", "method": "stellate", "params": {"offset": 0.0}, "source": "DLFLSubdiv.cc subdivideAllFaces(false)", "V": "V+F", "E": "3E", "F": "2E"},
     {"name": "double stellate", "method": "double_stellate", "params": {"offset": 0.0}, "source": "DLFLSubdiv.cc starSubdivide", "V": "V+F+2E", "E": "9E", "F": "6E"},
     {"name": "stellate with edge removal", "method": "stellate_edge_removal", "params": {}, "source": "DLFLSubdiv.cc stellateSubdivide", "V": "V+F", "E": "2E", "F": "E"},
+    {"name": "double stellate (misc.)", "method": "double_stellate_misc", "params": {"height": 0.0, "curve": 0.0}, "source": "DLFLSubdiv.cc twostellateSubdivide", "V": "V+F+2E", "E": "6E", "F": "3E"},
     {"name": "linear vertex insertion", "method": "linear_vertex_insertion", "params": {}, "source": "DLFLSubdiv.cc subdivideAllFaces(true)", "V": "V+E+F", "E": "4E", "F": "2E"},
     {"name": "corner cutting", "method": "corner_cutting", "params": {"alpha": 0.5625}, "source": "DLFLSubdiv.cc cornerCuttingSubdivide", "V": "2E", "E": "4E", "F": "F+E+V"},
     {"name": "modified corner cutting", "method": "modified_corner_cutting", "params": {"thickness": 0.25}, "source": "DLFLSubdiv.cc modifiedCornerCuttingSubdivide", "V": "2E", "E": "4E", "F": "F+E+V"},
@@ -52,10 +53,20 @@ _TOPMOD: list[dict[str, Any]] = [
     {"name": "checkerboard", "method": "checkerboard", "params": {"thickness": 0.33}, "source": "DLFLSubdiv.cc checkerBoardRemeshing", "V": "V+4E", "E": "9E", "F": "F+4E"},
     {"name": "dual checkerboard", "method": "dual_checkerboard", "params": {"thickness": 0.33}, "source": "MainWindowCallbacks.cc subdivideDualCheckerBoard", "V": "V+4E", "E": "9E", "F": "F+4E"},
     {"name": "Doo-Sabin BC", "method": "doo_sabin_bc", "params": {}, "source": "DLFLSubdiv.cc dooSabinSubdivideBC", "V": "4E", "E": "8E", "F": "F+3E+V"},
+    {"name": "Doo-Sabin BC new", "method": "doo_sabin_bc_new", "params": {"scale": 1.0, "length": 1.0}, "source": "DLFLSubdiv.cc dooSabinSubdivideBCNew", "V": "V+4E", "E": "7E", "F": "F+2E"},
     {"name": "dome", "method": "dome", "params": {"length": 1.0, "scale": 1.0}, "source": "DLFLSubdiv.cc domeSubdivide", "V": "V+59E", "E": "116E", "F": "F+56E"},
     {"name": "fractal", "method": "fractal", "params": {"offset": 1.0}, "source": "DLFLSubdiv.cc fractalSubdivide", "V": "V+E+F", "E": "6E", "F": "4E"},
     {"name": "subdivide selected faces", "method": "subdivide_faces", "params": {"faces": [], "quads": True}, "source": "DLFLSubdiv.cc subdivideFaces", "V": "V+s+k", "E": "E+s+N", "F": "F-k+N"},
-    {"name": "extrusion", "method": "extrude", "params": {"faces": [], "kind": "cubical", "length": None, "scale": 1.0, "twist": 0.0, "segments": 1}, "source": "DLFLExtrude.cc", "V": "see table", "E": "see table", "F": "see table"},
+    {"name": "extrusion", "method": "extrude", "params": {"faces": [], "kind": "cubical", "length": None, "scale": 1.0, "twist": 0.0, "segments": 1, "angle": None, "lengths": None}, "source": "DLFLExtrude.cc", "V": "see table", "E": "see table", "F": "see table"},
+]
+
+# TopMod's high-genus tools (docs/tools.md): counts with their default parameters;
+# V1, V2, V3 are the vertices of valence 1, 2 and >= 3
+_TOOLS: list[dict[str, Any]] = [
+    {"name": "wireframe", "method": "wireframe", "params": {"thickness": 0.1, "width": None}, "source": "DLFLCrust.cc makeWireframe, makeWireframe2", "V": "4E", "E": "10E", "F": "2V+4E"},
+    {"name": "column modelling", "method": "wireframe_columns", "params": {"thickness": 0.25, "segments": 4}, "source": "DLFLCrust.cc makeWireframeWithColumns", "V": "8E", "E": "12E+3(2E-V1)-2V2", "F": "4E+2(2E-V1)+2V3+V1"},
+    {"name": "multi-face handle (convex hull)", "method": "multi_face_handle", "params": {"faces": [], "scale": 1.0, "extrude": 0.5, "algorithm": "convex_hull"}, "source": "DLFLMultiConnect.cc multiConnectFaces(faces, sf, d, offsets)", "V": "see docs", "E": "see docs", "F": "see docs"},
+    {"name": "multi-face handle (closest edge)", "method": "multi_face_handle", "params": {"faces": [], "algorithm": "closest_edge"}, "source": "DLFLMultiConnect.cc multiConnectFaces(faces)", "V": "V", "E": "see docs", "F": "see docs"},
 ]
 
 
@@ -64,9 +75,10 @@ def catalog(family: str | None = None) -> list[dict[str, Any]]:
 
     Parameters
     ----------
-    family : {"scheme", "topmod", "conway"}, optional
+    family : {"scheme", "topmod", "tool", "conway"}, optional
         Only that family: the papers' and classic smoothing schemes, TopMod's
-        remeshing menu, or Conway's operators.
+        remeshing menu, TopMod's high-genus tools (wireframe, columns,
+        multi-face handle), or Conway's operators.
 
     Returns
     -------
@@ -74,8 +86,8 @@ def catalog(family: str | None = None) -> list[dict[str, Any]]:
         Each with ``family``, ``name``, ``method`` (the :class:`Mesh` method
         that runs it), ``source`` (paper, TopMod function or Hart's
         notation) and the per-iteration counts ``V``, ``E``, ``F`` in terms of
-        the input's (``H = 2E`` half-edges); TopMod entries also give their
-        default ``params``, Conway entries their ``letter``.
+        the input's (``H = 2E`` half-edges); TopMod and tool entries also give
+        their default ``params``, Conway entries their ``letter``.
 
     Examples
     --------
@@ -85,7 +97,7 @@ def catalog(family: str | None = None) -> list[dict[str, Any]]:
     """
     from . import MeshError, conway_operators
 
-    families = ("scheme", "topmod", "conway")
+    families = ("scheme", "topmod", "tool", "conway")
     if family is not None and family not in families:
         raise MeshError(f"catalog: family = {family!r}; expected one of {', '.join(map(repr, families))} or None")
     out: list[dict[str, Any]] = []
@@ -99,6 +111,8 @@ def catalog(family: str | None = None) -> list[dict[str, Any]]:
             out.append(entry)
     if family in (None, "topmod"):
         out += [{"family": "topmod", **{k: (dict(v) if isinstance(v, dict) else v) for k, v in e.items()}} for e in _TOPMOD]
+    if family in (None, "tool"):
+        out += [{"family": "tool", **{k: (dict(v) if isinstance(v, dict) else v) for k, v in e.items()}} for e in _TOOLS]
     if family in (None, "conway"):
         for op in conway_operators():
             v, e, f = op["counts"]

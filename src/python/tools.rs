@@ -5,6 +5,7 @@
 
 use super::mesh::PyMesh;
 use super::{arg_err, err};
+use crate::budget::Counts;
 use crate::mesh::Mesh;
 use glam::DVec3;
 use pyo3::prelude::*;
@@ -157,37 +158,108 @@ impl PyMesh {
         Ok(PyMesh::wrap(m))
     }
 
-    /// Multi-face handle (TopMod's convex-hull algorithm): the vertices of
-    /// ``faces`` (at least two), each moved ``extrude`` along its face's
-    /// normal and scaled by ``scale`` about their centroid, span a convex
-    /// hub, and every face is joined to its copy on the hub by a pipe.
-    /// Faces that look at the hub give a solid hub; a hub behind them
-    /// (negative ``extrude``, inside the solid) is a cavity. On one
-    /// component the genus grows by k − 1 for k faces.
+    /// Multi-face handle (TopMod's ``multiConnectFaces``, both algorithms).
+    ///
+    /// ``algorithm="convex_hull"``: the vertices of ``faces`` (at least two),
+    /// each moved ``extrude`` along its face's normal and scaled by ``scale``
+    /// about their centroid, span a convex hub, and every face is joined to
+    /// its copy on the hub by a pipe. Faces that look at the hub give a solid
+    /// hub; a hub behind them (negative ``extrude``, inside the solid) is a
+    /// cavity. On one component the genus grows by k − 1 for k faces.
+    ///
+    /// ``algorithm="closest_edge"``: bridges (quads of two InsertEdges)
+    /// between the nearest sides of different selected faces, nearest first,
+    /// each side used once, kept only where the bridge is planar within 5°
+    /// (and, for three or more faces, not facing along the normal of their
+    /// centroids' plane); new edges between faces of one plane are deleted
+    /// after (TopMod's ``edgeCleanup``). ``scale`` and ``extrude`` do not
+    /// apply. Two facing squares give a tube of four quads.
+    ///
+    /// Parameters
+    /// ----------
+    /// faces : sequence of int
+    /// scale : float, default 1.0
+    /// extrude : float, default 0.5
+    /// algorithm : {"convex_hull", "closest_edge"}, default "convex_hull"
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
     ///
     /// Raises
     /// ------
     /// MeshError
     ///     Fewer than two faces, repeats, out of range; a copy that is not a
-    ///     face of the hub; faces on both sides of the hub; a flat hub.
+    ///     face of the hub; faces on both sides of the hub; a flat hub; no
+    ///     planar bridge (closest_edge); an unknown ``algorithm``.
     ///
     /// Warns
     /// -----
     /// GeometryWarning
-    ///     When the hub or the pipes pass through the surface.
-    #[pyo3(signature = (faces, scale = 1.0, extrude = 0.5))]
-    fn multi_face_handle(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, scale: f64, extrude: f64) -> PyResult<PyMesh> {
+    ///     When the hub, the pipes or the bridges pass through the surface.
+    #[pyo3(signature = (faces, scale = 1.0, extrude = 0.5, algorithm = "convex_hull"))]
+    fn multi_face_handle(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, scale: f64, extrude: f64, algorithm: &str) -> PyResult<PyMesh> {
         let fs = index_list("multi_face_handle", "face", faces)?;
         super::finite_in("multi_face_handle", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
         super::finite_in("multi_face_handle", "extrude", extrude, -MAX_LENGTH, MAX_LENGTH)?;
-        let m = py
-            .detach(|| self.inner.multi_face_handle(&fs, scale, extrude))
-            .map_err(|e| match e {
-                // the hub is built from the moved face corners: name the parameters that moved them
-                crate::MeshError::Interrupted => err(e),
-                e => arg_err(format!("multi_face_handle (scale = {scale}, extrude = {extrude}): {e}")),
-            })?;
+        let m = match algorithm {
+            "convex_hull" => py
+                .detach(|| self.inner.multi_face_handle(&fs, scale, extrude))
+                .map_err(|e| match e {
+                    // the hub is built from the moved face corners: name the parameters that moved them
+                    crate::MeshError::Interrupted => err(e),
+                    e => arg_err(format!("multi_face_handle (scale = {scale}, extrude = {extrude}): {e}")),
+                })?,
+            "closest_edge" => py.detach(|| self.inner.multi_face_handle_edges(&fs)).map_err(err)?.0,
+            a => return Err(arg_err(format!("multi_face_handle: algorithm = {a:?} is not 'convex_hull' or 'closest_edge'"))),
+        };
         super::ops::warn_new_crossings(py, "multi_face_handle", &self.inner, &m)?;
+        Ok(PyMesh::wrap(m))
+    }
+
+    /// Column modelling (TopMod's ``makeWireframeWithColumns``): a prism of
+    /// ``segments`` sides and radius ``thickness`` along every edge, joined
+    /// at every vertex by strips between neighbouring columns and a top and
+    /// a bottom cap (no cap at a valence-2 vertex; an n-gon closes a
+    /// valence-1 vertex's column).
+    ///
+    /// With V₁, V₂, V₃ the vertices of valence 1, 2, ≥ 3, n = ``segments``,
+    /// m = n // 2 and ε = 1 for even n (else 0): V' = 2nE,
+    /// E' = 3nE + (m + 1)(2E − V₁) − (1 + ε)V₂,
+    /// F' = nE + m(2E − V₁) + 2V₃ + (1 − ε)V₂ + V₁; the genus of each
+    /// component is E − V + 1 (the cycle rank of its edges).
+    ///
+    /// Parameters
+    /// ----------
+    /// thickness : float, default 0.25
+    ///     The columns' radius (> 0; TopMod's UI: (0, 1]).
+    /// segments : int, default 4
+    ///     Sides of each column, in [3, 100] (TopMod's UI: [4, 100]).
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    ///
+    /// Raises
+    /// ------
+    /// MeshError
+    ///     A parameter out of range; a self-loop or zero-length edge; an edge
+    ///     too short for the rings at its ends (use a smaller thickness); a
+    ///     point-sphere.
+    ///
+    /// Warns
+    /// -----
+    /// GeometryWarning
+    ///     When the columns or joints cross each other.
+    #[pyo3(signature = (thickness = 0.25, segments = 4))]
+    fn wireframe_columns(&self, py: Python<'_>, thickness: f64, #[pyo3(from_py_with = super::big_int)] segments: i128) -> PyResult<PyMesh> {
+        super::finite_in("wireframe_columns", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
+        let n = super::usize_in("wireframe_columns", "segments", segments, 3, 100)?;
+        let out = Counts::plain(2 * n as u64 * self.inner.n_edges() as u64, 6 * n as u64 * self.inner.n_edges() as u64, 4 * n as u64 * self.inner.n_edges() as u64);
+        let need = crate::budget::level_bytes(&Counts::of(&self.inner), &out);
+        py.detach(|| crate::budget::check("wireframe_columns", "the output", need)).map_err(err)?;
+        let m = py.detach(|| self.inner.wireframe_columns(thickness, n)).map_err(err)?;
+        super::ops::warn_new_crossings(py, "wireframe_columns", &Mesh::new(), &m)?;
         Ok(PyMesh::wrap(m))
     }
 

@@ -5,7 +5,7 @@
 use super::mesh::PyMesh;
 use super::{arg_err, big_int, err, finite_in, iterate, run_interruptible};
 use crate::budget::{self, Counts};
-use crate::schemes::topmod::{checkerboard as cb, compose, corner_cutting as cc, extrude as ex, linear, loop_style as ls, pentagonal as pt, stellate as st, twelve_six_four as t64};
+use crate::schemes::topmod::{checkerboard as cb, compose, corner_cutting as cc, doo_sabin_bc_new as dsn, extrude as ex, linear, loop_style as ls, pentagonal as pt, stellate as st, twelve_six_four as t64};
 use pyo3::prelude::*;
 
 fn plain(v: u64, e: u64, f: u64) -> Counts {
@@ -46,6 +46,8 @@ predictor!(p_1264, |v, e, f| (a(a(v, e), f), s(e, 6), s(e, 4)), (a(a(v, e), f), 
 predictor!(p_checker, |v, e, f| (a(v, s(e, 4)), s(e, 9), a(f, s(e, 4))), (a(v, s(e, 4)), s(e, 9), a(f, s(e, 4))));
 predictor!(p_dome, |v, e, f| (a(v, s(e, 59)), s(e, 116), a(f, s(e, 56))), (a(v, s(e, 59)), s(e, 116), a(f, s(e, 56))));
 predictor!(p_fractal, |v, e, f| (a(a(v, e), f), s(e, 6), s(e, 4)), (a(a(v, e), f), s(e, 6), s(e, 4)));
+predictor!(p_double_stellate_misc, |v, e, f| (a(a(v, f), s(e, 2)), s(e, 6), s(e, 3)), (a(a(v, f), s(e, 2)), s(e, 6), s(e, 3)));
+predictor!(p_doo_sabin_bc_new, |v, e, f| (a(v, s(e, 4)), s(e, 7), a(f, s(e, 2))), (a(v, s(e, 4)), s(e, 7), a(f, s(e, 2))));
 predictor!(p_doo_sabin_bc, |v, e, f| (s(e, 4), s(e, 8), a(a(f, s(e, 3)), v)), (s(e, 4), s(e, 8), a(a(f, s(e, 3)), v)));
 
 fn unit(call: &str, name: &str, x: f64) -> PyResult<f64> {
@@ -121,6 +123,34 @@ impl PyMesh {
     fn double_stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
         let d = finite_in("double_stellate", "offset", offset, 0.0, 10.0)?;
         iterate(py, &self.inner, iterations, progress, "double_stellate", p_double_stellate, |m| st::double_stellate(m, d))
+    }
+
+    /// Double stellate, TopMod's second variant (*Double Stellate (Misc.)*,
+    /// ``twostellateSubdivide``): stellate with the centres moved by
+    /// ``height`` along the face normals, stellate every triangle with its
+    /// centre moved by ``curve``, then delete every edge of the first
+    /// stellation: the join of the stellation, :meth:`stellate_edge_removal`
+    /// of :meth:`stellate`.
+    ///
+    /// Per iteration V' = V + F + 2E, E' = 6E, F' = 3E (all quads).
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// height : float, default 0.0
+    ///     In [-1, 1] (TopMod's UI).
+    /// curve : float, default 0.0
+    ///     In [-1, 1] (TopMod's UI).
+    /// progress : bool, default False
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    #[pyo3(signature = (iterations = 1, height = 0.0, curve = 0.0, progress = false))]
+    fn double_stellate_misc(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, height: f64, curve: f64, progress: bool) -> PyResult<PyMesh> {
+        let h = finite_in("double_stellate_misc", "height", height, -1.0, 1.0)?;
+        let c = finite_in("double_stellate_misc", "curve", curve, -1.0, 1.0)?;
+        iterate(py, &self.inner, iterations, progress, "double_stellate_misc", p_double_stellate_misc, |m| st::double_stellate_misc(m, h, c))
     }
 
     /// Stellate with edge removal (TopMod's ``stellateSubdivide``): stellate,
@@ -456,6 +486,37 @@ impl PyMesh {
         iterate(py, &self.inner, iterations, progress, "doo_sabin_bc", p_doo_sabin_bc, compose::doo_sabin_bc)
     }
 
+    /// Doo-Sabin BC New (TopMod's ``dooSabinSubdivideBCNew``): every edge
+    /// halved, each face replaced by the Doo-Sabin mask of its halved
+    /// polygon scaled by ``scale`` about its centroid, and each edge by two
+    /// pentagons meeting at a new edge between its faces' rings; the old
+    /// vertices move to ``length · v + (1 − length) ·`` (the mean of their
+    /// ring points).
+    ///
+    /// Per iteration V' = V + 4E, E' = 7E, F' = F + 2E (a 2n-gon per n-gon,
+    /// 2E pentagons); old vertices keep their valence.
+    ///
+    /// Parameters
+    /// ----------
+    /// iterations : int, default 1
+    /// scale : float, default 1.0
+    ///     In (0, 2].
+    /// length : float, default 1.0
+    ///     In [0, 1].
+    /// progress : bool, default False
+    ///
+    /// Returns
+    /// -------
+    /// Mesh
+    #[pyo3(signature = (iterations = 1, scale = 1.0, length = 1.0, progress = false))]
+    fn doo_sabin_bc_new(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, length: f64, progress: bool) -> PyResult<PyMesh> {
+        if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
+            return Err(arg_err(format!("doo_sabin_bc_new: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
+        }
+        let l = finite_in("doo_sabin_bc_new", "length", length, 0.0, 1.0)?;
+        iterate(py, &self.inner, iterations, progress, "doo_sabin_bc_new", p_doo_sabin_bc_new, |m| dsn::doo_sabin_bc_new(m, scale, l))
+    }
+
     /// Dome remeshing (TopMod's ``domeSubdivide``): every edge cut in four,
     /// then seven Doo-Sabin extrusions of every face (lengths 0, 0.3, 0.18,
     /// 0.1, 0.05, 0.025, 0.01 × ``length``, scales 1.6, 1.7, 1.6, 1.4, 1.2,
@@ -551,10 +612,16 @@ impl PyMesh {
     /// (``stellateFace``: a pyramid), ``"double_stellate"``
     /// (``doubleStellateFace``), ``"dome"`` (``extrudeFaceDome``: five
     /// Doo-Sabin rings and a pyramid; ``twist`` in [0, 5] is TopMod's rotation
-    /// factor). Per selected n-gon and ``segments`` s: cubical and doo_sabin
-    /// add (V, E, F) = (s·n, 2s·n, s·n), octahedral (s·n, 3s·n, 2s·n),
-    /// stellate (1, n, n − 1), double_stellate (n + 1, 4n, 3n − 1), dome
-    /// (5n + 1, 11n, 6n − 1). The genus is unchanged.
+    /// factor), ``"dodecahedral"`` (``extrudeFaceDodeca``: per step three
+    /// rings and 2n pentagons, on a pentagon the dodecahedron's ring of ten)
+    /// and ``"icosahedral"`` (``extrudeFaceIcosa``: three rings and 6n
+    /// triangles, on a triangle the icosahedron's eighteen), these two shaped
+    /// by ``angle`` and ``lengths`` instead of length, scale and twist. Per
+    /// selected n-gon and ``segments`` s: cubical and doo_sabin add
+    /// (V, E, F) = (s·n, 2s·n, s·n), octahedral (s·n, 3s·n, 2s·n), stellate
+    /// (1, n, n − 1), double_stellate (n + 1, 4n, 3n − 1), dome
+    /// (5n + 1, 11n, 6n − 1), dodecahedral (3s·n, 5s·n, 2s·n), icosahedral
+    /// (3s·n, 9s·n, 6s·n). The genus is unchanged.
     ///
     /// Parameters
     /// ----------
@@ -571,7 +638,15 @@ impl PyMesh {
     ///     [0, 1] (doo_sabin), the rotation factor in [0, 5] (dome); 0 for the
     ///     stellate kinds.
     /// segments : int, default 1
-    ///     Steps (>= 1; only cubical, doo_sabin and octahedral take more).
+    ///     Steps (>= 1; only cubical, doo_sabin, octahedral, dodecahedral and
+    ///     icosahedral take more).
+    /// angle : float or None, default None
+    ///     TopMod's angle in degrees, in [0, 180] (dodecahedral: 40,
+    ///     icosahedral: 50 when None); other kinds refuse it.
+    /// lengths : (float, float, float) or None, default None
+    ///     TopMod's lengths 1–3 relative to the face's mean side, each in
+    ///     [0, 100] (dodecahedral: (0.5, 1, 1), icosahedral: (0.5, 0.7, 0.8)
+    ///     when None); other kinds refuse them.
     ///
     /// Returns
     /// -------
@@ -582,18 +657,18 @@ impl PyMesh {
     /// MeshError
     ///     Unknown ``kind``, a parameter out of range (named), a face out of
     ///     range or a point-sphere, an open mesh.
-    #[pyo3(signature = (faces, kind = "cubical", length = None, scale = 1.0, twist = 0.0, segments = 1))]
+    #[pyo3(signature = (faces, kind = "cubical", length = None, scale = 1.0, twist = 0.0, segments = 1, angle = None, lengths = None))]
     #[allow(clippy::too_many_arguments)]
-    fn extrude(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, kind: &str, length: Option<f64>, scale: f64, twist: f64, #[pyo3(from_py_with = big_int)] segments: i128) -> PyResult<PyMesh> {
+    fn extrude(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, kind: &str, length: Option<f64>, scale: f64, twist: f64, #[pyo3(from_py_with = big_int)] segments: i128, angle: Option<f64>, lengths: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
         let k = ex::Kind::parse(kind).ok_or_else(|| arg_err(format!("extrude: kind = {kind:?} is not one of {}", ex::Kind::NAMES)))?;
         let segments = super::usize_in("extrude", "segments", segments, 1, 1 << 20)?;
         let length = finite_in("extrude", "length", length.unwrap_or(k.default_length()), 0.0, 1e6)?;
-        let e = ex::Extrusion { kind: k, length, scale, twist, segments };
+        let e = ex::Extrusion { kind: k, length, scale, twist, segments, angle, lengths: lengths.map(|(a, b, c)| [a, b, c]) };
         e.check().map_err(err)?;
         let sel = faces_arg("extrude", faces)?;
         let n: u64 = sel.iter().filter(|&&f| f < self.inner.n_faces()).map(|&f| self.inner.face_degree(crate::FaceId(f as u32)) as u64).sum();
         let c = Counts::of(&self.inner);
-        let per = (segments as u64).saturating_mul(n).saturating_mul(6).saturating_add(n.saturating_mul(11));
+        let per = (segments as u64).saturating_mul(n).saturating_mul(9).saturating_add(n.saturating_mul(11));
         check_once(py, "extrude", &self.inner, plain(c.v.saturating_add(per), c.e.saturating_add(per), c.f.saturating_add(per)))?;
         let m = &self.inner;
         Ok(PyMesh::wrap(run_interruptible(py, || ex::extrude(m, &sel, &e))?))

@@ -24,3 +24,4 @@ pub mod menger;
 pub mod menger_level;
 pub mod conway;
 pub mod topmod;
+pub(crate) mod keyed;

@@ -8,6 +8,7 @@
 pub(crate) mod builder;
 mod object;
 mod wireframe;
+mod column;
 pub mod hull;
 mod multi_handle;
 mod cut;

@@ -1,7 +1,6 @@
-//! Multi-face handle (TopMod's `multiConnectFaces` with the convex-hull
-//! algorithm, `include/dlflaux/DLFLMultiConnect.cc`, the only
-//! description) and rind by scaling (`createCrustWithScaling`,
-//! `include/dlflaux/DLFLCrust.cc`).
+//! Multi-face handle (TopMod's `multiConnectFaces`, both algorithms of its
+//! UI, `include/dlflaux/DLFLMultiConnect.cc`, the only description) and
+//! rind by scaling (`createCrustWithScaling`, `include/dlflaux/DLFLCrust.cc`).
 //!
 //! Multi-face handle: the vertices of the k selected faces, each moved
 //! `extrude` along its face's unit normal and scaled by `scale` about their
@@ -10,6 +9,26 @@
 //! component: V + Σnᵢ, the hub's E and F added, then each pipe E + nᵢ,
 //! F − 2; the first pipe joins the hub (components −1), each further one
 //! adds a handle: genus + k − 1.
+//!
+//! Closest-edge algorithm (`multiConnectFaces(obj, faces)`, TopMod's
+//! *closest edge* choice): every pair of sides of two different selected
+//! faces is a candidate bridge, the quad `[a, b, c, d]` of side a→b of one
+//! face and side c→d of the other. A candidate is kept when that quad is
+//! planar within 5° (the dot product of its normals at two opposite
+//! corners, taken at points a quarter along the sides, above cos 5°) and,
+//! for three or more faces, its normal is not within 5° of the normal of the
+//! plane through the two faces' centroids and the selection's centroid
+//! (TopMod; with two faces that plane is undefined and the test is left
+//! out). Candidates are taken by increasing distance of the sides'
+//! midpoints, each side used once; each bridge is two InsertEdges, a–d and
+//! b–c, either left out when those corners are already neighbours (a bridge
+//! beside an earlier one shares its edge). Last, TopMod's `edgeCleanup` of
+//! the new edges: one with the same face on both sides, or between faces
+//! whose unit normals agree within 1e-5, is deleted. The search is over all
+//! pairs of selected sides (quadratic in their number, as in TopMod); the
+//! counts follow the operators: per InsertEdge E + 1 and F + 1 (a face split)
+//! or genus + 1 / components − 1 (two faces joined), per deletion their
+//! inverse.
 
 use super::hull::convex_hull;
 use crate::error::{MeshError, Result};
@@ -55,6 +74,28 @@ impl Mesh {
         Ok(u)
     }
 
+    /// The selection of both multi-face handles: at least two distinct faces
+    /// in range, none a hole or a point-sphere.
+    fn check_handle_faces(&self, name: &str, faces: &[usize]) -> Result<()> {
+        if faces.len() < 2 {
+            return Err(MeshError::InvalidArgument(format!("{name}: {} faces given; at least 2 are needed", faces.len())));
+        }
+        let nf = self.n_faces();
+        for (i, &f) in faces.iter().enumerate() {
+            if f >= nf {
+                return Err(MeshError::InvalidArgument(format!("{name}: face {f} out of range (mesh has {nf} faces)")));
+            }
+            if faces[..i].contains(&f) {
+                return Err(MeshError::InvalidArgument(format!("{name}: face {f} is selected twice")));
+            }
+            let fid = FaceId::new(f);
+            if self.is_hole(fid) || self.face_halfedge(fid).is_none() {
+                return Err(MeshError::Precondition(format!("{name}: face {f} is a hole or a point-sphere")));
+            }
+        }
+        Ok(())
+    }
+
     /// **Multi-face handle** through a convex hub (module docs): `faces`
     /// (at least two, distinct, not holes) are each joined to the hull of
     /// their vertices moved `extrude` along their normals and scaled by
@@ -69,26 +110,11 @@ impl Mesh {
     /// another's: choose a larger `extrude` or fewer faces); a hull without
     /// volume.
     pub fn multi_face_handle(&self, faces: &[usize], scale: f64, extrude: f64) -> Result<Mesh> {
-        if faces.len() < 2 {
-            return Err(MeshError::InvalidArgument(format!("multi_face_handle: {} faces given; at least 2 are needed", faces.len())));
-        }
+        self.check_handle_faces("multi_face_handle", faces)?;
         if !(scale.is_finite() && scale > 0.0) || !extrude.is_finite() {
             return Err(MeshError::InvalidArgument(format!(
                 "multi_face_handle: scale = {scale} must be finite and positive, extrude = {extrude} finite"
             )));
-        }
-        let nf = self.n_faces();
-        for (i, &f) in faces.iter().enumerate() {
-            if f >= nf {
-                return Err(MeshError::InvalidArgument(format!("multi_face_handle: face {f} out of range (mesh has {nf} faces)")));
-            }
-            if faces[..i].contains(&f) {
-                return Err(MeshError::InvalidArgument(format!("multi_face_handle: face {f} is selected twice")));
-            }
-            let fid = FaceId::new(f);
-            if self.is_hole(fid) || self.face_halfedge(fid).is_none() {
-                return Err(MeshError::Precondition(format!("multi_face_handle: face {f} is a hole or a point-sphere")));
-            }
         }
         // moved copies: point k of face i is its k-th corner from the first
         let mut pts = Vec::new();
@@ -173,6 +199,88 @@ impl Mesh {
         Ok(m)
     }
 
+    /// **Multi-face handle, closest-edge algorithm** (module docs): bridges
+    /// between the nearest sides of the `faces` (at least two, distinct, not
+    /// holes or point-spheres). Returns the mesh and the number of bridges.
+    ///
+    /// Errors: fewer than two faces, repeats, out of range, point-spheres,
+    /// holes; no candidate bridge (no pair of sides spans a planar quad).
+    pub fn multi_face_handle_edges(&self, faces: &[usize]) -> Result<(Mesh, usize)> {
+        let name = "multi_face_handle(algorithm='closest_edge')";
+        self.check_handle_faces(name, faces)?;
+        let p = |h: HalfedgeId| self.position(self.vertex(h));
+        let q = |h: HalfedgeId| self.position(self.head(h));
+        let cen: Vec<DVec3> = faces
+            .iter()
+            .map(|&f| {
+                let hs: Vec<HalfedgeId> = self.face_halfedges(FaceId::new(f)).collect();
+                hs.iter().map(|&h| p(h)).sum::<DVec3>() / hs.len() as f64
+            })
+            .collect();
+        let cc = cen.iter().sum::<DVec3>() / cen.len() as f64;
+        let sides: Vec<(usize, HalfedgeId)> = faces.iter().enumerate().flat_map(|(i, &f)| self.face_halfedges(FaceId::new(f)).map(move |h| (i, h))).collect();
+        let cos5 = 5f64.to_radians().cos();
+        let mut cand: Vec<(f64, usize, usize)> = Vec::new();
+        for x in 0..sides.len() {
+            crate::cancel::poll(x)?;
+            for y in x + 1..sides.len() {
+                let ((i, h1), (j, h2)) = (sides[x], sides[y]);
+                if i == j {
+                    continue;
+                }
+                let (a, b, c, d) = (p(h1), q(h1), p(h2), q(h2));
+                let (a1, b1) = (0.75 * a + 0.25 * b, 0.25 * a + 0.75 * b);
+                let (c1, d1) = (0.75 * c + 0.25 * d, 0.25 * c + 0.75 * d);
+                let n11 = (d1 - a1).cross(b1 - a1).normalize_or_zero();
+                let n21 = (b1 - c1).cross(d1 - c1).normalize_or_zero();
+                let normal = (n11 + n21).normalize_or_zero();
+                let plane = (cen[i] - cc).cross(cen[j] - cc).normalize_or_zero();
+                let faces_ok = plane == DVec3::ZERO || plane.dot(normal).abs() < cos5;
+                if n11.dot(n21) > cos5 && faces_ok {
+                    cand.push((((a + b) - (c + d)).length() * 0.5, x, y));
+                }
+            }
+        }
+        if cand.is_empty() {
+            return Err(MeshError::Precondition(format!("{name}: no two sides of different faces span a planar quad (within 5°); nothing to bridge")));
+        }
+        cand.sort_by(|u, v| u.0.total_cmp(&v.0));
+        let mut used = vec![false; sides.len()];
+        let mut m = self.clone();
+        let first_new = m.n_edges();
+        let mut bridges = 0;
+        for &(_, x, y) in &cand {
+            if used[x] || used[y] {
+                continue;
+            }
+            used[x] = true;
+            used[y] = true;
+            let (h1, h2) = (sides[x].1, sides[y].1);
+            let (n1, n2) = (m.next(h1), m.next(h2));
+            let neighbours = |m: &Mesh, u: HalfedgeId, w: HalfedgeId| m.next(u) == w || m.prev(u) == w;
+            for (u, w) in [(h1, n2), (n1, h2)] {
+                if !neighbours(&m, u, w) {
+                    m.insert_edge(Corner::Halfedge(u), Corner::Halfedge(w))?;
+                }
+            }
+            bridges += 1;
+        }
+        // TopMod's edgeCleanup of the new edges, highest id first (deletion
+        // moves the last edge into the freed id)
+        let normal = |m: &Mesh, f: FaceId| m.face_newell(f).normalize_or_zero();
+        let doomed: Vec<usize> = (first_new..m.n_edges())
+            .filter(|&e| {
+                let h = HalfedgeId::new(2 * e);
+                let (f, g) = (m.face(h), m.face(h.twin()));
+                f == g || (normal(&m, f).dot(normal(&m, g)) - 1.0).abs() < 1e-5
+            })
+            .collect();
+        for &e in doomed.iter().rev() {
+            m.delete_edge(crate::mesh::EdgeId(e as u32))?;
+        }
+        Ok((m, bridges))
+    }
+
     /// The mesh with every face's orientation reversed: half-edge h keeps
     /// its id and edge but runs the other way.
     pub(crate) fn reversed(&self) -> Result<Mesh> {
@@ -254,6 +362,32 @@ mod tests {
         assert!(m.multi_face_handle(&[sel[0], sel[0]], 1.0, 0.5).is_err());
         // the faces themselves (no extrusion) span the hub too
         assert!(m.multi_face_handle(&sel, 1.0, 0.0).is_ok());
+    }
+
+    #[test]
+    fn closest_edges_make_a_tube() {
+        // two cubes with facing faces: four bridges, the tube of a CreatePipe
+        let mut m = primitives::cube();
+        let mut c = primitives::cube();
+        for p in c.positions_mut() {
+            p.x += 3.0;
+        }
+        m = m.disjoint_union(&c).unwrap();
+        let sel = [face_at(&m, [1., 0., 0.]), face_at(&m, [2., 0., 0.])];
+        let (r, k) = m.multi_face_handle_edges(&sel).unwrap();
+        assert_eq!(k, 4);
+        assert_eq!(counts(&r), (16, 28, 14, 1, 0));
+        // three faces of one grid cube: bridges between the nearest sides, a valid mesh
+        let g = grid_cube(3);
+        let sel = [face_at(&g, [1., 0., 0.]), face_at(&g, [0., 1., 0.]), face_at(&g, [0., 0., 1.])];
+        let (r, k) = g.multi_face_handle_edges(&sel).unwrap();
+        assert!(k >= 1);
+        let (v, e, _, _, _) = counts(&r);
+        let (v0, e0, _, _, _) = counts(&g);
+        assert_eq!(v, v0);
+        assert!(e > e0);
+        assert!(g.multi_face_handle_edges(&sel[..1]).is_err());
+        assert!(g.multi_face_handle_edges(&[sel[0], sel[0]]).unwrap_err().to_string().contains("twice"));
     }
 
     #[test]

@@ -193,6 +193,53 @@ impl Mesh {
         (sizes, corners)
     }
 
+    /// The one-pass rebuild of the removal tools: the faces `keep_face`
+    /// keeps, each with the corners `keep_corner` keeps (point-sphere faces
+    /// whole), vertices renumbered by `vmap`, and each kept corner's twin the
+    /// kept corner `twin_of` walks to; hole flags carried over.
+    fn rebuild(
+        &self,
+        pos: Vec<DVec3>,
+        keep_face: impl Fn(crate::FaceId) -> bool,
+        keep_corner: impl Fn(HalfedgeId) -> bool,
+        vmap: impl Fn(VertexId) -> u32,
+        twin_of: impl Fn(HalfedgeId) -> HalfedgeId,
+    ) -> Result<Mesh> {
+        let (sizes0, layout) = self.corner_layout();
+        let mut new_c = vec![u32::MAX; self.n_halfedges()];
+        let (mut sizes, mut verts, mut holes) = (Vec::new(), Vec::new(), Vec::new());
+        let mut i = 0;
+        for (f, &d) in self.faces().zip(&sizes0) {
+            let d = d as usize;
+            if keep_face(f) {
+                let start = verts.len();
+                for c in &layout[i..i + d] {
+                    match *c {
+                        Err(v) => verts.push(vmap(v)),
+                        Ok(h) if keep_corner(h) => {
+                            new_c[h.idx()] = verts.len() as u32;
+                            verts.push(vmap(self.vertex(h)));
+                        }
+                        Ok(_) => {}
+                    }
+                }
+                sizes.push((verts.len() - start) as u32);
+                holes.push(self.is_hole(f));
+            }
+            i += d;
+        }
+        let mut twin = vec![u32::MAX; verts.len()];
+        for h in self.halfedges() {
+            let c = new_c[h.idx()];
+            if c != u32::MAX {
+                twin[c as usize] = new_c[twin_of(h).idx()];
+            }
+        }
+        let mut m = Mesh::from_corner_twins(pos, &sizes, &verts, &twin)?;
+        m.f_hole = holes;
+        Ok(m)
+    }
+
     /// **Remove valence-2 vertices** (TopMod's `cleanupWingedVertices`): each
     /// vertex with exactly two edges goes, its two edges becoming one.
     /// Returns the new mesh and the number removed.
@@ -234,44 +281,20 @@ impl Mesh {
                 pos.push(self.pos[v]);
             }
         }
-        let (_, layout) = self.corner_layout();
-        let mut new_c = vec![u32::MAX; self.n_halfedges()];
-        let mut sizes = Vec::new();
-        let mut verts = Vec::new();
-        let mut holes = Vec::new();
-        let mut i = 0;
-        for f in self.faces() {
-            let d = if self.face_halfedge(f).is_none() { 1 } else { self.face_degree(f) };
-            let start = verts.len();
-            for c in &layout[i..i + d] {
-                match *c {
-                    Err(v) => verts.push(new_v[v.idx()]),
-                    Ok(h) if !removed[self.vertex(h).idx()] => {
-                        new_c[h.idx()] = verts.len() as u32;
-                        verts.push(new_v[self.vertex(h).idx()]);
-                    }
-                    Ok(_) => {}
-                }
-            }
-            i += d;
-            sizes.push((verts.len() - start) as u32);
-            holes.push(self.is_hole(f));
-        }
-        let mut twin = vec![u32::MAX; verts.len()];
-        for h in self.halfedges() {
-            let c = new_c[h.idx()];
-            if c == u32::MAX {
-                continue;
-            }
+        let m = self.rebuild(
+            pos,
+            |_| true,
+            |h| !removed[self.vertex(h).idx()],
+            |v| new_v[v.idx()],
             // the kept corner at the head of this side's new span, in the other face
-            let mut t = h.twin();
-            while removed[self.vertex(t).idx()] {
-                t = self.prev(t);
-            }
-            twin[c as usize] = new_c[t.idx()];
-        }
-        let mut m = Mesh::from_corner_twins(pos, &sizes, &verts, &twin)?;
-        m.f_hole = holes;
+            |h| {
+                let mut t = h.twin();
+                while removed[self.vertex(t).idx()] {
+                    t = self.prev(t);
+                }
+                t
+            },
+        )?;
         Ok((m, count))
     }
 
@@ -337,41 +360,19 @@ impl Mesh {
         if count == 0 {
             return Ok((self.clone(), 0));
         }
-        let (_, layout) = self.corner_layout();
-        let mut new_c = vec![u32::MAX; self.n_halfedges()];
-        let (mut sizes, mut verts, mut holes) = (Vec::new(), Vec::new(), Vec::new());
-        let mut i = 0;
-        for f in self.faces() {
-            let d = if self.face_halfedge(f).is_none() { 1 } else { self.face_degree(f) };
-            if !removed[f.idx()] {
-                for c in &layout[i..i + d] {
-                    match *c {
-                        Err(v) => verts.push(v.0),
-                        Ok(h) => {
-                            new_c[h.idx()] = verts.len() as u32;
-                            verts.push(self.vertex(h).0);
-                        }
-                    }
+        let m = self.rebuild(
+            self.pos.clone(),
+            |f| !removed[f.idx()],
+            |_| true,
+            |v| v.0,
+            |h| {
+                let mut t = h.twin();
+                while removed[self.face(t).idx()] {
+                    t = self.next(t).twin();
                 }
-                sizes.push(d as u32);
-                holes.push(self.is_hole(f));
-            }
-            i += d;
-        }
-        let mut twin = vec![u32::MAX; verts.len()];
-        for h in self.halfedges() {
-            let c = new_c[h.idx()];
-            if c == u32::MAX {
-                continue;
-            }
-            let mut t = h.twin();
-            while removed[self.face(t).idx()] {
-                t = self.next(t).twin();
-            }
-            twin[c as usize] = new_c[t.idx()];
-        }
-        let mut m = Mesh::from_corner_twins(self.pos.clone(), &sizes, &verts, &twin)?;
-        m.f_hole = holes;
+                t
+            },
+        )?;
         Ok((m, count))
     }
 

@@ -16,7 +16,7 @@ pub fn ambo(m: &Mesh) -> Result<Mesh> {
         let c = Ctx::new(m)?;
         reserve("ambo", m, c.ne, 2 * c.ne, c.nf + c.nv)?;
         let pos = (0..c.ne).map(|e| c.mid(e)).collect();
-        let mut out = Out::new(pos, c.nh, 2 * c.nh, c.nf + c.nv);
+        let mut out = Out::new(pos, c.nh, c.nf + c.nv, 2 * c.nh);
         face_faces(&c, &mut out, 0);
         for v in 0..c.nv {
             crate::cancel::poll(v)?;
@@ -50,7 +50,7 @@ pub fn subdivide(m: &Mesh) -> Result<Mesh> {
         pos.extend((0..c.ne).map(|e| c.mid(e)));
         // edge ids: C(g) = g, the half S(g) = tail(g)–mid(g) is nh + g
         let half = |g: usize| (c.nh + g) as u32;
-        let mut out = Out::new(pos, 2 * c.nh, 4 * c.nh, c.nf + c.nh);
+        let mut out = Out::new(pos, 2 * c.nh, c.nf + c.nh, 4 * c.nh);
         face_faces(&c, &mut out, c.nv);
         for g in 0..c.nh {
             crate::cancel::poll(g)?;
@@ -83,7 +83,7 @@ pub fn quinto(m: &Mesh) -> Result<Mesh> {
         // edge ids: in(h)–mid(h) is h, the half tail(g)–mid(g) is nh + g,
         // in(h)–in(next h) is 2nh + h
         let (half, ring) = (|g: usize| (c.nh + g) as u32, |h: usize| (2 * c.nh + h) as u32);
-        let mut out = Out::new(pos, 3 * c.nh, 6 * c.nh, c.nf + c.nh);
+        let mut out = Out::new(pos, 3 * c.nh, c.nf + c.nh, 6 * c.nh);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
             let nx = c.next(h);

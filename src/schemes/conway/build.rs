@@ -1,97 +1,34 @@
-//! The one builder of the Conway operators: output faces as corner lists
-//! `(tail vertex, edge id)`, where the edge id names the output edge from
-//! that corner to the next one. Sides are paired into twins by their edge
-//! id, so a self-loop or a multi-edge is as unambiguous as any other edge
-//! (polyhedronisme's flags name edges by their two vertices, which cannot
-//! tell two edges between the same vertices apart).
+//! What the Conway operators read from their input ([`Ctx`]: the shared
+//! [`In`] view and the face centroids) and their budget check; they build
+//! their output with the shared keyed builder, [`crate::schemes::keyed::Out`]
+//! (faces as corner lists `(tail vertex, edge id)`).
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, NONE};
-use crate::schemes::hosts::{check_output_size, FaceLayout};
+use crate::mesh::Mesh;
+use crate::schemes::hosts::check_output_size;
+pub(crate) use crate::schemes::keyed::{In, Out};
 use glam::DVec3;
 
-/// Paired sides are marked with this in [`Out::finish`].
-const PAIRED: u32 = NONE - 1;
-
-/// An output mesh under construction.
-pub(crate) struct Out {
-    pub pos: Vec<DVec3>,
-    sizes: Vec<u32>,
-    cv: Vec<u32>,
-    ce: Vec<u32>,
-    n_edge_ids: usize,
-}
-
-impl Out {
-    /// `n_edge_ids` bounds the edge ids used (they may be sparse: an id no
-    /// side uses is no edge); `corners` and `faces` are capacity hints.
-    pub fn new(pos: Vec<DVec3>, n_edge_ids: usize, corners: usize, faces: usize) -> Out {
-        Out { pos, sizes: Vec::with_capacity(faces), cv: Vec::with_capacity(corners), ce: Vec::with_capacity(corners), n_edge_ids }
-    }
-
-    /// Appends a face: its corners in boundary order (counter-clockwise seen
-    /// from outside), each a tail vertex and the id of the edge to the next.
-    #[inline]
-    pub fn face(&mut self, corners: impl IntoIterator<Item = (u32, u32)>) {
-        let start = self.cv.len();
-        for (v, e) in corners {
-            self.cv.push(v);
-            self.ce.push(e);
-        }
-        self.sizes.push((self.cv.len() - start) as u32);
-    }
-
-    /// Pairs the two sides of every edge id and builds the mesh. An id with
-    /// one side or more than two is an operator bug, reported as
-    /// [`MeshError::Invariant`] naming the operator.
-    pub fn finish(self, name: &str) -> Result<Mesh> {
-        check_output_size(name, self.cv.len(), self.pos.len())?;
-        let mut first = vec![NONE; self.n_edge_ids];
-        let mut tw = vec![0u32; self.cv.len()];
-        for (c, &e) in self.ce.iter().enumerate() {
-            crate::cancel::poll(c)?;
-            let slot = &mut first[e as usize];
-            match *slot {
-                NONE => *slot = c as u32,
-                PAIRED => return Err(MeshError::Invariant(format!("{name}: output edge {e} has more than two sides"))),
-                o => {
-                    tw[c] = o;
-                    tw[o as usize] = c as u32;
-                    *slot = PAIRED;
-                }
-            }
-        }
-        if let Some(e) = first.iter().position(|&s| s != NONE && s != PAIRED) {
-            return Err(MeshError::Invariant(format!("{name}: output edge {e} has one side")));
-        }
-        Mesh::from_corner_twins(self.pos, &self.sizes, &self.cv, &tw)
-    }
-}
-
-/// What every operator reads from its input: the half-edge columns, the
-/// face layout and the face centroids.
+/// What every operator reads from its input: the shared input view
+/// ([`In`], reached through `Deref`) and the face centroids.
 pub(crate) struct Ctx<'a> {
-    pub m: &'a Mesh,
-    pub next: &'a [u32],
-    pub prev: &'a [u32],
-    pub vert: &'a [u32],
-    pub face: &'a [u32],
-    pub fl: FaceLayout,
+    pub i: In<'a>,
     pub cen: Vec<DVec3>,
-    pub nv: usize,
-    pub ne: usize,
-    pub nf: usize,
-    pub nh: usize,
+}
+
+impl<'a> std::ops::Deref for Ctx<'a> {
+    type Target = In<'a>;
+    fn deref(&self) -> &In<'a> {
+        &self.i
+    }
 }
 
 impl<'a> Ctx<'a> {
     pub fn new(m: &'a Mesh) -> Result<Ctx<'a>> {
-        let (next, vert, face) = m.halfedge_columns();
-        let fl = FaceLayout::new(m)?;
-        let mut cen = vec![DVec3::ZERO; m.n_faces()];
-        crate::schemes::hosts::face_centroids(m, &fl, &mut cen);
+        let i = In::new(m)?;
+        let cen = i.centroids();
         crate::cancel::check()?;
-        Ok(Ctx { m, next, prev: &m.he_prev, vert, face, fl, cen, nv: m.n_vertices(), ne: m.n_edges(), nf: m.n_faces(), nh: m.n_halfedges() })
+        Ok(Ctx { i, cen })
     }
 
     #[inline]

@@ -47,7 +47,7 @@ pub fn gyro(m: &Mesh) -> Result<Mesh> {
         let base = c.nv + c.nf;
         let pt = |h: usize| (base + h) as u32;
         // spoke centre(f)–p(h): id h
-        let mut out = Out::new(pos, 3 * c.nh, 5 * c.nh, c.nh);
+        let mut out = Out::new(pos, 3 * c.nh, c.nh, 5 * c.nh);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
             let [a, b, d] = edge_run(&c, h, pt);
@@ -72,7 +72,7 @@ pub fn propellor(m: &Mesh) -> Result<Mesh> {
         third_points(&c, &mut pos);
         let pt = |h: usize| (c.nv + h) as u32;
         // inner side p(h)–p(next h): id h
-        let mut out = Out::new(pos, 3 * c.nh, 5 * c.nh, c.nf + c.nh);
+        let mut out = Out::new(pos, 3 * c.nh, c.nf + c.nh, 5 * c.nh);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
             let [a, b, d] = edge_run(&c, h, pt);
@@ -103,7 +103,7 @@ pub fn whirl(m: &Mesh) -> Result<Mesh> {
         let q = |h: usize| (c.nv + c.nh + h) as u32;
         // q(h)–q(next h): id h; q(h)–p(h): 3nh + h
         let qp = |h: usize| (3 * c.nh + h) as u32;
-        let mut out = Out::new(pos, 4 * c.nh, 7 * c.nh, c.nf + c.nh);
+        let mut out = Out::new(pos, 4 * c.nh, c.nf + c.nh, 7 * c.nh);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
             let [a, b, d] = edge_run(&c, h, pt);

@@ -27,7 +27,7 @@ pub fn chamfer(m: &Mesh) -> Result<Mesh> {
         let q = |g: usize| (c.nv + g) as u32;
         // q(h)–q(next h): id h; the spoke tail(g)–q(g): nh + g
         let spoke = |g: usize| (c.nh + g) as u32;
-        let mut out = Out::new(pos, 2 * c.nh, 4 * c.nh, c.nf + c.ne);
+        let mut out = Out::new(pos, 2 * c.nh, c.nf + c.ne, 4 * c.nh);
         for f in 0..c.nf {
             out.face(c.corners(f).map(|h| (q(h), h as u32)));
         }
@@ -82,7 +82,7 @@ pub fn loft(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
         crate::cancel::check()?;
         // edge ids: input edge e is e; spoke tail(g)–i(g) is nh + g; i(h)–i(next h) is 2nh + h
         let (spoke, ring) = (|g: usize| (c.nh + g) as u32, |h: usize| (2 * c.nh + h) as u32);
-        let mut out = Out::new(pos, 3 * c.nh, c.nh + 5 * sigma, c.nf + sigma);
+        let mut out = Out::new(pos, 3 * c.nh, c.nf + sigma, c.nh + 5 * sigma);
         for f in 0..c.nf {
             crate::cancel::poll(f)?;
             if !chosen(f) {

@@ -20,9 +20,10 @@
 //! scaling by the face keeps it size-free). A degenerate face (zero normal)
 //! gets its apex at the centroid.
 
-use super::build::{reserve, Ctx, Out};
+use super::build::{reserve, Ctx, In, Out};
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE};
+use glam::DVec3;
 use crate::schemes::hosts::with_point_spheres;
 
 /// Kis of every face (`n = None`) or of the faces with `n` corners.
@@ -32,42 +33,48 @@ pub fn kis(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
 
 fn step(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
     let c = Ctx::new(m)?;
-    let chosen = |f: usize| match n {
-        None => true,
-        Some(n) => c.fl.degree(f) == n,
-    };
+    let chosen = |f: usize| n.map_or(true, |n| c.fl.degree(f) == n);
     let (mut s, mut sigma) = (0usize, 0usize);
-    for f in 0..c.nf {
+    for f in (0..c.nf).filter(|&f| chosen(f)) {
+        s += 1;
+        sigma += c.fl.degree(f);
+    }
+    reserve("kis", m, c.nv + s, c.ne + sigma, c.nf - s + sigma)?;
+    fan("kis", &c, chosen, |f| {
+        let r = c.corners(f).map(|h| c.p(c.tail(h)).distance(c.cen[f])).sum::<f64>() / c.fl.degree(f) as f64;
+        c.cen[f] + c.normal(f) * (0.1 * r)
+    })
+}
+
+/// The centroid fan written once, for Conway's kis and TopMod's stellate:
+/// each `chosen` face of n corners becomes the n triangles
+/// `[tail(h), head(h), apex(f)]`, the other faces stay. Apices follow the
+/// input's vertices in face order; input edge e keeps id e, the spoke of
+/// corner g is E + g.
+pub(crate) fn fan(name: &str, c: &In<'_>, chosen: impl Fn(usize) -> bool, apex: impl Fn(usize) -> DVec3) -> Result<Mesh> {
+    let mut pos = c.positions(c.nf);
+    let mut at = vec![NONE; c.nf];
+    let mut sigma = 0;
+    for (f, a) in at.iter_mut().enumerate() {
         if chosen(f) {
-            s += 1;
+            *a = pos.len() as u32;
+            pos.push(apex(f));
             sigma += c.fl.degree(f);
         }
     }
-    reserve("kis", m, c.nv + s, c.ne + sigma, c.nf - s + sigma)?;
-    let mut pos = Vec::with_capacity(c.nv + s);
-    pos.extend_from_slice(m.positions());
-    let mut apex = vec![NONE; c.nf];
-    for (f, a) in apex.iter_mut().enumerate() {
-        if chosen(f) {
-            *a = pos.len() as u32;
-            let r = c.corners(f).map(|h| c.p(c.tail(h)).distance(c.cen[f])).sum::<f64>() / c.fl.degree(f) as f64;
-            pos.push(c.cen[f] + c.normal(f) * (0.1 * r));
-        }
-    }
     crate::cancel::check()?;
-    // edge ids: input edge e is e; the spoke of corner g is ne + g
-    let spoke = |g: usize| (c.ne + g) as u32;
-    let mut out = Out::new(pos, c.ne + c.nh, c.nh + 2 * sigma, c.nf + sigma);
-    for (f, &a) in apex.iter().enumerate() {
+    let spoke = |g: u32| c.ne as u32 + g;
+    let mut out = Out::new(pos, c.ne + c.nh, c.nf + sigma, c.nh + 2 * sigma);
+    for (f, &a) in at.iter().enumerate() {
         crate::cancel::poll(f)?;
+        let hs = c.fl.corners(f);
         if a == NONE {
-            out.face(c.corners(f).map(|h| (c.tail(h), (h >> 1) as u32)));
+            out.face(hs.iter().map(|&h| (c.vert[h as usize], h >> 1)));
             continue;
         }
-        for h in c.corners(f) {
-            let nx = c.next(h);
-            out.face([(c.tail(h), (h >> 1) as u32), (c.head(h), spoke(nx)), (a, spoke(h))]);
+        for &h in hs {
+            out.face([(c.vert[h as usize], h >> 1), (c.vert[h as usize ^ 1], spoke(c.next[h as usize])), (a, spoke(h))]);
         }
     }
-    out.finish("kis")
+    out.finish(name)
 }

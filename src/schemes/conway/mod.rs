@@ -65,7 +65,7 @@ pub(crate) mod build;
 pub mod canonical;
 mod chiral;
 mod inset;
-mod kis;
+pub(crate) mod kis;
 pub mod seeds;
 #[cfg(test)]
 mod tests;
@@ -398,7 +398,7 @@ fn check_chain(name: &str, m: &Mesh, ops: &[Op]) -> Result<()> {
 pub fn reflect(m: &Mesh) -> Result<Mesh> {
     let mut r = with_point_spheres("reflect", m, |m| {
         let c = build::Ctx::new(m)?;
-        let mut out = build::Out::new(m.positions().to_vec(), c.ne, c.nh, c.nf);
+        let mut out = build::Out::new(m.positions().to_vec(), c.ne, c.nf, c.nh);
         for f in 0..c.nf {
             let hs = c.fl.corners(f);
             // side head(h) -> tail(h) along the edge of h, in reverse order

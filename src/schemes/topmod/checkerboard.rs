@@ -15,7 +15,7 @@
 //! corner h at V + 2E + h. Dual checkerboard is `dual ∘ checkerboard ∘ dual`
 //! (`MainWindow::subdivideDualCheckerBoard`), in `compose`.
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;

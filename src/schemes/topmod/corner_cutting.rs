@@ -24,7 +24,7 @@
 //!   swaps `v₂` for the corner after it when `|v₁ − v₂| < 0.001`, done here)
 //!   the point moves by t towards the face centroid.
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;

@@ -14,6 +14,8 @@
 //! | `Stellate` | `stellateFace(d)` | — (cap: the fan to c + length·N) | — |
 //! | `DoubleStellate` | `doubleStellateFace(d)` | — (cap: the fan, each triangle fanned again, the first centre moved by length·N) | — |
 //! | `Dome` | `extrudeFaceDome(length, rot, sf)` | five Doo-Sabin steps (lengths 0.3, 0.18, 0.1, 0.05, 0.025 × `length`, scales 1.7, 1.6, 1.4, 1.2, 1.1 × `scale`, twist `twist`/5), then the fan at 0.01 × `length` | n quads each |
+//! | `Dodecahedral` | `extrudeFaceDodeca(angle, num, l1, l2, l3)` | three rings ([`super::extrude_platonic`]) | 2n pentagons |
+//! | `Icosahedral` | `extrudeFaceIcosa(angle, num, l1, l2, l3)` | three rings ([`super::extrude_platonic`]) | 6n triangles |
 //!
 //! The top ring keeps the face (its last ring is the new face), except for
 //! the fans. Per selected n-gon, with s = `segments`:
@@ -21,6 +23,8 @@
 //! ```text
 //! Cubical, DooSabin:  V += s·n,     E += 2s·n,  F += s·n
 //! Octahedral:         V += s·n,     E += 3s·n,  F += 2s·n
+//! Dodecahedral:       V += 3s·n,    E += 5s·n,  F += 2s·n
+//! Icosahedral:        V += 3s·n,    E += 9s·n,  F += 6s·n
 //! Stellate:           V += 1,       E += n,     F += n − 1   (n triangles)
 //! DoubleStellate:     V += n + 1,   E += 4n,    F += 3n − 1  (3n triangles)
 //! Dome:               V += 5n + 1,  E += 11n,   F += 6n − 1  (5n quads, n triangles)
@@ -30,7 +34,7 @@
 //! the input's vertices, then for each selected face (in selection order,
 //! repeats ignored) its rings' points in corner order, then its fan centres.
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use super::corner_cutting::cut_face;
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
@@ -46,6 +50,8 @@ pub enum Kind {
     Stellate,
     DoubleStellate,
     Dome,
+    Dodecahedral,
+    Icosahedral,
 }
 
 impl Kind {
@@ -59,16 +65,28 @@ impl Kind {
             "stellate" => Kind::Stellate,
             "double_stellate" => Kind::DoubleStellate,
             "dome" => Kind::Dome,
+            "dodecahedral" => Kind::Dodecahedral,
+            "icosahedral" => Kind::Icosahedral,
             _ => return None,
         })
     }
-    pub const NAMES: &'static str = "'cubical', 'doo_sabin', 'octahedral', 'stellate', 'double_stellate', 'dome'";
-    /// TopMod's default length (`sExtrudeDist` = 2, `sDomeExtrudeLengthFactor` = 1).
+    pub const NAMES: &'static str = "'cubical', 'doo_sabin', 'octahedral', 'stellate', 'double_stellate', 'dome', 'dodecahedral', 'icosahedral'";
+    /// TopMod's default length (`sExtrudeDist` = 2, `sDomeExtrudeLengthFactor` = 1;
+    /// 0 for the kinds that take `lengths` instead).
     pub fn default_length(self) -> f64 {
-        if self == Kind::Dome {
-            1.0
-        } else {
-            2.0
+        match self {
+            Kind::Dome => 1.0,
+            Kind::Dodecahedral | Kind::Icosahedral => 0.0,
+            _ => 2.0,
+        }
+    }
+    /// TopMod's default angle and lengths (`sExtrudeAngle`, `sExtrudeLength1..3`
+    /// and their `_iCosA` versions), for the kinds that take them.
+    pub fn default_platonic(self) -> Option<(f64, [f64; 3])> {
+        match self {
+            Kind::Dodecahedral => Some((40.0, [0.5, 1.0, 1.0])),
+            Kind::Icosahedral => Some((50.0, [0.5, 0.7, 0.8])),
+            _ => None,
         }
     }
     /// (V, E, F) added per selected n-gon (see the module docs).
@@ -79,6 +97,8 @@ impl Kind {
             Kind::Stellate => (1, n, n, -1),
             Kind::DoubleStellate => (n + 1, 4 * n, 3 * n, -1),
             Kind::Dome => (5 * n + 1, 11 * n, 6 * n, -1),
+            Kind::Dodecahedral => (3 * s * n, 5 * s * n, 2 * s * n, 0),
+            Kind::Icosahedral => (3 * s * n, 9 * s * n, 6 * s * n, 0),
         }
     }
 }
@@ -95,8 +115,15 @@ pub struct Extrusion {
     /// the Doo-Sabin twist (DooSabin, in [0, 1]) or TopMod's dome rotation
     /// factor (Dome, in [0, 5]); Stellate kinds take none (0).
     pub twist: f64,
-    /// Steps (>= 1); only Cubical, DooSabin and Octahedral take more than one.
+    /// Steps (>= 1); only Cubical, DooSabin, Octahedral, Dodecahedral and
+    /// Icosahedral take more than one.
     pub segments: usize,
+    /// TopMod's angle in degrees, [0, 180] (Dodecahedral, Icosahedral only;
+    /// `None` is TopMod's default).
+    pub angle: Option<f64>,
+    /// TopMod's lengths 1–3, each in [0, 100], relative to the face's mean
+    /// side (Dodecahedral, Icosahedral only; `None` is TopMod's default).
+    pub lengths: Option<[f64; 3]>,
 }
 
 impl Extrusion {
@@ -113,12 +140,34 @@ impl Extrusion {
             Kind::Cubical | Kind::Octahedral => (0.0, 360.0),
             Kind::DooSabin => (0.0, 1.0),
             Kind::Dome => (0.0, 5.0),
-            Kind::Stellate | Kind::DoubleStellate => (0.0, 0.0),
+            Kind::Stellate | Kind::DoubleStellate | Kind::Dodecahedral | Kind::Icosahedral => (0.0, 0.0),
         };
+        let platonic = self.kind.default_platonic().is_some();
+        if platonic {
+            // TopMod's dodecahedral and icosahedral extrusions take an angle and three lengths instead
+            if self.length != 0.0 {
+                return bad("length", self.length.to_string(), "left unset (this kind takes lengths)");
+            }
+            if self.scale != 1.0 {
+                return bad("scale", self.scale.to_string(), "1 (this kind takes lengths)");
+            }
+            if let Some(a) = self.angle {
+                if !(a.is_finite() && (0.0..=180.0).contains(&a)) {
+                    return bad("angle", a.to_string(), "in [0, 180]");
+                }
+            }
+            if let Some(l) = self.lengths {
+                if let Some(x) = l.iter().find(|x| !(x.is_finite() && (0.0..=100.0).contains(*x))) {
+                    return bad("lengths", x.to_string(), "each in [0, 100]");
+                }
+            }
+        } else if self.angle.is_some() || self.lengths.is_some() {
+            return bad(if self.angle.is_some() { "angle" } else { "lengths" }, "given".into(), "unset (only 'dodecahedral' and 'icosahedral' take it)");
+        }
         if !(self.twist.is_finite() && self.twist >= lo && self.twist <= hi) {
             return bad("twist", self.twist.to_string(), &format!("in [{lo}, {hi}]"));
         }
-        let multi = matches!(self.kind, Kind::Cubical | Kind::DooSabin | Kind::Octahedral);
+        let multi = matches!(self.kind, Kind::Cubical | Kind::DooSabin | Kind::Octahedral) || platonic;
         if self.segments == 0 || (!multi && self.segments != 1) {
             return bad("segments", self.segments.to_string(), if multi { ">= 1" } else { "1" });
         }
@@ -159,6 +208,8 @@ fn rotated(p: &mut [DVec3], axis: DVec3, degrees: f64) {
 enum Band {
     Quads,
     Triangles,
+    Dodeca,
+    Icosa,
 }
 
 /// The next ring of `p` for one step.
@@ -209,6 +260,12 @@ fn extrude_step(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
     let (steps, cap): (Steps, Option<(f64, bool)>) = match ex.kind {
         Kind::Cubical | Kind::DooSabin => (vec![(ex.kind, ex.length, ex.scale, ex.twist, Band::Quads); ex.segments], None),
         Kind::Octahedral => (vec![(ex.kind, ex.length, ex.scale, ex.twist, Band::Triangles); ex.segments], None),
+        Kind::Dodecahedral | Kind::Icosahedral => {
+            let band = if ex.kind == Kind::Dodecahedral { Band::Dodeca } else { Band::Icosa };
+            // the angle rides in the step's twist, the lengths go to `rings` apart
+            let a = ex.kind.default_platonic().expect("platonic kind").0;
+            (vec![(ex.kind, 0.0, 1.0, ex.angle.unwrap_or(a), band); ex.segments], None)
+        }
         Kind::Stellate => (vec![], Some((ex.length, false))),
         Kind::DoubleStellate => (vec![], Some((ex.length, true))),
         Kind::Dome => {
@@ -216,7 +273,8 @@ fn extrude_step(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
             (s.iter().map(|&(l, k)| (Kind::DooSabin, l * ex.length, k * ex.scale, ex.twist / 5.0, Band::Quads)).collect(), Some((0.01 * ex.length, false)))
         }
     };
-    rings(m, faces, &steps, cap)
+    let lengths = ex.lengths.or(ex.kind.default_platonic().map(|p| p.1)).unwrap_or([0.0; 3]);
+    rings(m, faces, &steps, cap, lengths)
 }
 
 /// TopMod's dome remeshing (`domeSubdivide(obj, length, sf)` in
@@ -238,11 +296,13 @@ pub fn dome(m: &Mesh, length: f64, scale: f64) -> Result<Mesh> {
     let steps: Steps = s.iter().map(|&(l, k)| (Kind::DooSabin, l * length, k * scale, 0.0, Band::Quads)).collect();
     with_point_spheres("dome", &split, |m| {
         let all: Vec<usize> = (0..m.n_faces()).collect();
-        rings(m, &all, &steps, None)
+        rings(m, &all, &steps, None, [0.0; 3])
     })
 }
 
-fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>) -> Result<Mesh> {
+/// `lengths`: the three lengths of the Dodeca and Icosa bands (their angle
+/// rides in the step's twist).
+fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>, lengths: [f64; 3]) -> Result<Mesh> {
     let i = In::new(m)?;
     let mut selected = vec![false; i.nf];
     let mut order = Vec::new();
@@ -256,8 +316,14 @@ fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>) -> 
     for &f in &order {
         let n = i.fl.degree(f);
         for &(_, _, _, _, band) in steps {
-            dv += n;
-            de += if band == Band::Quads { 2 * n } else { 3 * n };
+            let (a, b) = match band {
+                Band::Quads => (n, 2 * n),
+                Band::Triangles => (n, 3 * n),
+                Band::Dodeca => (3 * n, 5 * n),
+                Band::Icosa => (3 * n, 9 * n),
+            };
+            dv += a;
+            de += b;
         }
         match cap {
             Some((_, false)) => (dv, de) = (dv + 1, de + n),
@@ -289,6 +355,20 @@ fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>) -> 
         let mut rkey: Vec<u32> = hs.iter().map(|&h| h >> 1).collect();
         let mut pts: Vec<DVec3> = hs.iter().map(|&h| i.p(h as usize)).collect();
         for &(kind, length, scale, twist, band) in steps {
+            if matches!(band, Band::Dodeca | Band::Icosa) {
+                let dodeca = band == Band::Dodeca;
+                let rs = if dodeca { super::extrude_platonic::dodeca_rings(&pts, twist, lengths) } else { super::extrude_platonic::icosa_rings(&pts, twist, lengths) };
+                let base = o.pos.len() as u32;
+                for r in &rs {
+                    o.pos.extend_from_slice(r);
+                }
+                let b = [base, base + n as u32, base + 2 * n as u32];
+                let k = alloc(if dodeca { 5 * n } else { 9 * n });
+                rkey = if dodeca { super::extrude_platonic::dodeca_band(&mut o, &ring, &rkey, b, k) } else { super::extrude_platonic::icosa_band(&mut o, &ring, &rkey, b, k) };
+                ring = (0..n as u32).map(|j| b[2] + j).collect();
+                pts = rs[2].clone();
+                continue;
+            }
             let q = step_ring(kind, &pts, length, scale, twist);
             let base = o.pos.len() as u32;
             o.pos.extend_from_slice(&q);
@@ -379,7 +459,7 @@ mod tests {
     use super::super::tests::meshes;
     use crate::schemes::hosts::test_meshes::n_point_spheres;
 
-    const KINDS: [Kind; 6] = [Kind::Cubical, Kind::DooSabin, Kind::Octahedral, Kind::Stellate, Kind::DoubleStellate, Kind::Dome];
+    const KINDS: [Kind; 8] = [Kind::Cubical, Kind::DooSabin, Kind::Octahedral, Kind::Stellate, Kind::DoubleStellate, Kind::Dome, Kind::Dodecahedral, Kind::Icosahedral];
 
     fn ex(kind: Kind, segments: usize) -> Extrusion {
         let twist = match kind {
@@ -388,7 +468,8 @@ mod tests {
             Kind::Dome => 1.0,
             _ => 0.0,
         };
-        Extrusion { kind, length: 0.5, scale: 0.8, twist, segments }
+        let platonic = kind.default_platonic().is_some();
+        Extrusion { kind, length: if platonic { 0.0 } else { 0.5 }, scale: if platonic { 1.0 } else { 0.8 }, twist, segments, angle: None, lengths: None }
     }
 
     #[test]
@@ -400,7 +481,7 @@ mod tests {
             let some: Vec<usize> = real.iter().copied().step_by(3).chain(real.first().copied()).collect();
             for sel in [real.clone(), some] {
                 for kind in KINDS {
-                    let segs: &[usize] = if matches!(kind, Kind::Cubical | Kind::DooSabin | Kind::Octahedral) { &[1, 3] } else { &[1] };
+                    let segs: &[usize] = if matches!(kind, Kind::Cubical | Kind::DooSabin | Kind::Octahedral | Kind::Dodecahedral | Kind::Icosahedral) { &[1, 3] } else { &[1] };
                     for &s in segs {
                         let r = extrude(&m, &sel, &ex(kind, s)).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
                         r.validate().unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
@@ -440,17 +521,42 @@ mod tests {
         let v0 = c.signed_volume();
         // a cubical extrusion of one face by 1 with scale 1 adds a unit... box of the face's area × length
         let area = c.face_newell(crate::FaceId(0)).length() / 2.0;
-        let r = extrude(&c, &[0], &Extrusion { kind: Kind::Cubical, length: 1.0, scale: 1.0, twist: 0.0, segments: 1 }).unwrap();
+        let r = extrude(&c, &[0], &Extrusion { kind: Kind::Cubical, length: 1.0, scale: 1.0, twist: 0.0, segments: 1, angle: None, lengths: None }).unwrap();
         assert!((r.signed_volume() - v0 - area).abs() < 1e-9);
-        let r2 = extrude(&c, &[0], &Extrusion { kind: Kind::Cubical, length: 0.5, scale: 1.0, twist: 0.0, segments: 2 }).unwrap();
+        let r2 = extrude(&c, &[0], &Extrusion { kind: Kind::Cubical, length: 0.5, scale: 1.0, twist: 0.0, segments: 2, angle: None, lengths: None }).unwrap();
         assert!((r2.signed_volume() - v0 - area).abs() < 1e-9);
         // a stellate extrusion adds a pyramid
-        let s = extrude(&c, &[0], &Extrusion { kind: Kind::Stellate, length: 1.0, scale: 1.0, twist: 0.0, segments: 1 }).unwrap();
+        let s = extrude(&c, &[0], &Extrusion { kind: Kind::Stellate, length: 1.0, scale: 1.0, twist: 0.0, segments: 1, angle: None, lengths: None }).unwrap();
         assert!((s.signed_volume() - v0 - area / 3.0).abs() < 1e-9);
         let bad = |e: Extrusion| extrude(&c, &[0], &e).unwrap_err().to_string();
-        assert!(bad(Extrusion { kind: Kind::Stellate, length: 1.0, scale: 1.0, twist: 0.0, segments: 2 }).contains("segments"));
-        assert!(bad(Extrusion { kind: Kind::DooSabin, length: 1.0, scale: 1.0, twist: 2.0, segments: 1 }).contains("twist"));
-        assert!(bad(Extrusion { kind: Kind::Cubical, length: 1.0, scale: 0.0, twist: 0.0, segments: 1 }).contains("scale"));
+        assert!(bad(Extrusion { kind: Kind::Stellate, length: 1.0, scale: 1.0, twist: 0.0, segments: 2, angle: None, lengths: None }).contains("segments"));
+        assert!(bad(Extrusion { kind: Kind::DooSabin, length: 1.0, scale: 1.0, twist: 2.0, segments: 1, angle: None, lengths: None }).contains("twist"));
+        assert!(bad(Extrusion { kind: Kind::Cubical, length: 1.0, scale: 0.0, twist: 0.0, segments: 1, angle: None, lengths: None }).contains("scale"));
         assert!(extrude(&c, &[6], &ex(Kind::Cubical, 1)).unwrap_err().to_string().contains("face 6"));
+    }
+
+    #[test]
+    fn platonic_extrusions_shape() {
+        use super::super::tests::hist_of;
+        // one face of the dodecahedron (a pentagon), one of the icosahedron (a triangle)
+        for (m, kind, added) in [(crate::primitives::dodecahedron(), Kind::Dodecahedral, (5, 10)), (crate::primitives::icosahedron(), Kind::Icosahedral, (3, 18))] {
+            let f = crate::FaceId(0);
+            let (nrm, c) = (m.face_newell(f).normalize(), m.face_centroids()[0]);
+            let r = extrude(&m, &[0], &ex(kind, 1)).unwrap();
+            r.validate().unwrap();
+            let mut want = hist_of(&m);
+            *want.entry(added.0).or_insert(0) += added.1;
+            assert_eq!(hist_of(&r), want, "{kind:?}");
+            // every new point lies above the extruded face
+            assert!(r.positions()[m.n_vertices()..].iter().all(|p| nrm.dot(*p - c) > 1e-6), "{kind:?}");
+            assert!(r.signed_volume() > m.signed_volume());
+            // the angle and lengths are the extrusion's own: other kinds refuse them, and ranges are named
+            let e = |a: Option<f64>, l: Option<[f64; 3]>| extrude(&m, &[0], &Extrusion { angle: a, lengths: l, ..ex(kind, 1) });
+            assert!(e(Some(200.0), None).unwrap_err().to_string().contains("angle"));
+            assert!(e(None, Some([1.0, -1.0, 1.0])).unwrap_err().to_string().contains("lengths"));
+            assert!(e(Some(60.0), Some([0.3, 0.4, 0.5])).is_ok());
+            assert!(extrude(&m, &[0], &Extrusion { angle: Some(10.0), ..ex(Kind::Cubical, 1) }).unwrap_err().to_string().contains("angle"));
+            assert!(extrude(&m, &[0], &Extrusion { length: 1.0, ..ex(kind, 1) }).unwrap_err().to_string().contains("length"));
+        }
     }
 }

@@ -21,7 +21,7 @@
 //! Vertex layout: the input's vertices, then the edge points (edge order,
 //! from the tail of the edge's first half-edge), then the centres (face order).
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::{Mesh, NONE};
 use crate::schemes::hosts::with_point_spheres;

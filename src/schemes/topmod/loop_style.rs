@@ -22,7 +22,7 @@
 //!   F' = F + E; histogram: the input's plus E hexagons. Vertex layout: old
 //!   vertices, then one inner point per half-edge (V + h).
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use super::corner_cutting::cut_face;
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;

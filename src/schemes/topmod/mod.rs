@@ -6,7 +6,7 @@
 //! where TopMod's code has an artefact, the file says what differs.
 //!
 //! Every scheme here is a free function `&Mesh → Result<Mesh>` building its
-//! output in one pass from the input's half-edges ([`build::Out`]: faces as
+//! output in one pass from the input's half-edges ([`crate::schemes::keyed::Out`]: faces as
 //! corners with edge keys, twins paired by key), so it runs on every closed
 //! manifold mesh the other schemes accept: any face size, non-convex faces,
 //! self-loops, multi-edges, one-gons, two-gons, any genus. Point-spheres are
@@ -35,15 +35,18 @@
 //! | Dual 12.6.4 / 12.6.4 | [`twelve_six_four::dual_12_6_4`], [`compose::remesh_12_6_4`] |
 //! | Checkerboard / Dual | [`checkerboard::checkerboard`], [`compose::dual_checkerboard`] |
 //! | Doo-Sabin (BC) | [`compose::doo_sabin_bc`] |
+//! | Doo Sabin BC New | [`doo_sabin_bc_new::doo_sabin_bc_new`] |
+//! | Double Stellate (Misc.) | [`stellate::double_stellate_misc`] |
 //! | Dome | [`extrude::dome`] |
 //! | Fractal | [`loop_style::fractal`] |
 //! | Extrusions | [`extrude`] |
 
-pub(crate) mod build;
 pub mod checkerboard;
 pub mod compose;
 pub mod corner_cutting;
+pub mod doo_sabin_bc_new;
 pub mod extrude;
+mod extrude_platonic;
 pub mod linear;
 pub mod loop_style;
 pub mod pentagonal;

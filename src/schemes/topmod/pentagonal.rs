@@ -20,7 +20,7 @@
 //!   n-gons (n ≥ 3) kept, H₃ pentagons, a k-gon with k ≤ 2 becomes a 2k-gon.
 //!   Vertex layout: old vertices, midpoints (edge order), inner points.
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;

@@ -15,13 +15,22 @@
 //!   every old edge: the two triangles beside edge a→b (in faces f, g) merge
 //!   into the quad `[b, c_f, a, c_g]`. V' = V + F, E' = 2E, F' = E, all quads
 //!   (Conway's *join* topology).
+//! * [`double_stellate_misc`] — TopMod's second double stellation, *Double
+//!   Stellate (Misc.)* (`twostellateSubdivide(obj, height, curve)`,
+//!   DLFLSubdiv.cc, the callback `subStellate2`): stellate with the centres
+//!   moved by `height`, stellate every triangle with its centre moved by
+//!   `curve`, then delete every edge of the first stellation. That is
+//!   [`stellate_edge_removal`]`(`[`stellate`]`(m, height), curve)`, written so:
+//!   V' = V + F + 2E, E' = 6E, F' = 3E, all quads (each triangle side of the
+//!   first stellation becomes the quad of its ends and its two triangles'
+//!   centres).
 //!
 //! Vertex layout: the input's vertices first (same positions), then the
 //! centres in face order (then, for [`double_stellate`], the second round's
 //! centres in the first round's face order). A self-loop, one-gon or
 //! two-gon is fanned like any face (a one-gon's triangle is `[v, v, c]`).
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
@@ -33,25 +42,11 @@ pub fn stellate(m: &Mesh, offset: f64) -> Result<Mesh> {
 }
 
 fn stellate_step(m: &Mesh, offset: f64) -> Result<Mesh> {
+    // Conway's kis of every face, with TopMod's apex
     let i = In::new(m)?;
-    let (v, e, h) = (i.nv as u32, i.ne as u32, i.nh);
-    let mut pos = i.positions(i.nf);
+    let c = i.centroids();
     let n = if offset != 0.0 { i.normals() } else { Vec::new() };
-    for (f, c) in i.centroids().into_iter().enumerate() {
-        pos.push(if offset != 0.0 { c + offset * n[f] } else { c });
-    }
-    // keys: input edge e, then the spoke of every corner (E + h)
-    let mut o = Out::new(pos, i.ne + h, h, 3 * h);
-    for f in 0..i.nf {
-        for &k in i.fl.corners(f) {
-            let k = k as usize;
-            o.c(i.vert[k], (k >> 1) as u32);
-            o.c(i.vert[k ^ 1], e + i.next[k]);
-            o.c(v + f as u32, e + k as u32);
-            o.end();
-        }
-    }
-    o.finish("stellate")
+    crate::schemes::conway::kis::fan("stellate", &i, |_| true, |f| if offset != 0.0 { c[f] + offset * n[f] } else { c[f] })
 }
 
 /// TopMod's double stellation (`starSubdivide`). See the module docs.
@@ -96,6 +91,12 @@ fn edge_removal_step(m: &Mesh, offset: f64) -> Result<Mesh> {
     o.finish("stellate_edge_removal")
 }
 
+/// TopMod's *Double Stellate (Misc.)*, `twostellateSubdivide(height,
+/// curve)`: the join of the stellation. See the module docs.
+pub fn double_stellate_misc(m: &Mesh, height: f64, curve: f64) -> Result<Mesh> {
+    stellate_edge_removal(&stellate(m, height)?, curve)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -121,6 +122,16 @@ mod tests {
         assert_eq!(hist_of(&r), BTreeMap::from([(4, 12)]));
         assert_eq!(r.valence_histogram().get(&3), Some(&8));
         assert_eq!(r.valence_histogram().get(&4), Some(&6));
+    }
+
+    #[test]
+    fn double_stellate_misc_counts() {
+        check("double_stellate_misc", |m| double_stellate_misc(m, 0.2, -0.1), |_, (v, e, f)| (v + f + 2 * e, 6 * e, 3 * e), |_, (_, e, _)| BTreeMap::from([(4, 3 * e)]));
+        // the join of the stellated cube: its 24 triangles' centres are 3-valent,
+        // the cube's corners keep valence 6 and the face centres 4
+        let r = double_stellate_misc(&crate::primitives::cube(), 0.0, 0.0).unwrap();
+        let h = r.valence_histogram();
+        assert_eq!((h.get(&3), h.get(&4), h.get(&6)), (Some(&24), Some(&6), Some(&8)));
     }
 
     #[test]

@@ -13,7 +13,7 @@
 //! and 2h + 1 are the points of half-edge h. At `scale` = 1 the quads have
 //! zero width (coincident points), as in TopMod.
 
-use super::build::{In, Out};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;

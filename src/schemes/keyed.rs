@@ -1,8 +1,12 @@
-//! The one builder of this folder: output faces as lists of (vertex, side
-//! key) corners, where the key names the output edge the side leaving the
-//! corner lies on. Keys are dense integers computed by index arithmetic from
-//! the input's half-edges, so twins are paired by key, never by vertex ids:
-//! self-loops, multi-edges, one-gons and two-gons need no special case.
+//! The one-pass builder of the Conway operators (`conway/`), TopMod's
+//! remeshing schemes (`topmod/`) and column modelling (`ops/tools/column.rs`):
+//! output faces as lists of (vertex, side key) corners, where the key names
+//! the output edge the side leaving the corner lies on. Keys are dense
+//! integers computed by index arithmetic from the input's half-edges, so
+//! twins are paired by key, never by vertex ids (polyhedronisme's flags name
+//! edges by their two vertices, which cannot tell two edges between the same
+//! vertices apart): self-loops, multi-edges, one-gons and two-gons need no
+//! special case.
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{Mesh, NONE};
@@ -34,6 +38,16 @@ impl Out {
         self.key.push(key);
     }
 
+    /// Appends a whole face: its corners in boundary order (counter-clockwise
+    /// seen from outside), each a vertex and the key of the side leaving it.
+    #[inline]
+    pub fn face(&mut self, corners: impl IntoIterator<Item = (u32, u32)>) {
+        for (v, k) in corners {
+            self.c(v, k);
+        }
+        self.end();
+    }
+
     /// Closes the current face.
     #[inline]
     pub fn end(&mut self) {
@@ -56,6 +70,7 @@ impl Out {
         let mut tw = vec![NONE; n];
         let bad = |k: u32| MeshError::Invariant(format!("{scheme}: output edge {k} does not have exactly two sides (a bug in the scheme)"));
         for (c, &k) in self.key.iter().enumerate() {
+            crate::cancel::poll(c)?;
             let slot = first.get_mut(k as usize).ok_or_else(|| bad(k))?;
             match *slot {
                 NONE => *slot = c as u32,
@@ -75,7 +90,7 @@ impl Out {
     }
 }
 
-/// The input's columns and face layout, shared by every scheme here.
+/// The input's columns and face layout, shared by every scheme built here.
 pub(crate) struct In<'a> {
     pub m: &'a Mesh,
     pub next: &'a [u32],
