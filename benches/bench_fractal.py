@@ -99,7 +99,7 @@ def main() -> None:
         "every cell, so its time is linear in 27^n while the output grows as 20^n.",
         "The generalized Menger sponge builds polygons and pairs them with `from_polygons` (bucketed by vertex),",
         "so it is near-linear rather than a one-pass twin builder. Its crossing check (module docs of",
-        "src/schemes/menger.rs: every input vertex's triangles tested pairwise, crossing vertices rebuilt",
+        "src/schemes/menger/mod.rs: every input vertex's triangles tested pairwise, crossing vertices rebuilt",
         "fully collapsed) is most of its time: 0.058 s for the cube's fourth iteration and 0.57 s for the",
         "dodecahedron's (1.68 M faces, before full collapses merged faces) without it.",
         "",

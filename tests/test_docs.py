@@ -168,7 +168,7 @@ FORMULA_SOURCES = {
                                "src/schemes/sqrt3/mod.rs", "src/schemes/sqrt3/boundary.rs", "src/schemes/simplest.rs", "src/schemes/midpoint.rs", "src/schemes/dual.rs"],
     "schemes/high_genus.md": ["src/schemes/honeycomb.rs", "src/schemes/vertex_truncation.rs", "docs/ops.md"],
     "schemes/sierpinski.md": ["src/schemes/sierpinski.rs"],
-    "schemes/menger.md": ["src/schemes/menger.rs", "src/schemes/menger_sponge/mod.rs"],
+    "schemes/menger.md": ["src/schemes/menger/mod.rs", "src/schemes/menger_sponge/mod.rs"],
     "schemes/ifs.md": ["docs/ifs.md", "python/topomesh/ifs.py"],
 }
 

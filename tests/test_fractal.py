@@ -214,7 +214,7 @@ def test_menger_cube_first_iterations_are_classic():
 
 
 MENGER_CASES = [("cube", 4), ("tetrahedron", 4), ("dodecahedron", 3)]
-# iterations that still self-intersect (src/schemes/menger.rs, Status):
+# iterations that still self-intersect (src/schemes/menger/mod.rs, Status):
 # Mesh.menger warns on them
 MENGER_CROSSING = {("tetrahedron", 4), ("dodecahedron", 3), ("dodecahedron", 4)}
 
@@ -284,7 +284,7 @@ def test_menger_options_and_errors():
 
 @pytest.mark.parametrize("name", ["tetrahedron", "dodecahedron"])
 def test_menger_faces_planar_and_pipes_unsplit(name):
-    """Remeshing corners follow merged offset corners (src/schemes/menger.rs,
+    """Remeshing corners follow merged offset corners (src/schemes/menger/mod.rs,
     step 2), so pipe walls stay planar quads instead of being split into
     two long triangles: every face of the second iteration is planar."""
     m = PLATONIC[name]().menger(2)
@@ -331,7 +331,7 @@ def test_menger_warns_only_where_crossings_remain():
     # (the message of a multi-iteration call: the fourth-iteration test)
 
 
-# Crossing-free cases (the Rust scan in src/schemes/menger.rs covers the
+# Crossing-free cases (the Rust scan in src/schemes/menger/mod.rs covers the
 # larger ones, cube 1–4). An independent numpy checker from test_ops: the
 # tetrahedron's second iteration had 24 crossing triangle pairs before the
 # material-depth rule of the module docs, its third 1304 before the crossing

@@ -357,6 +357,15 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
     found
 }
 
+/// Crossing triangle pairs of the whole triangulation of `m`
+/// ([`triangles_meet`] with `coplanar`; the Menger figures count proper
+/// crossings only, `coplanar = false`). Pairs index `m.triangulate()`'s
+/// triangles and are sorted.
+pub fn mesh_crossing_pairs(m: &crate::mesh::Mesh, coplanar: bool) -> Vec<(u32, u32)> {
+    let (tris, p) = super::triangles_with_points(m);
+    crossing_pairs(&p, &tris, None, coplanar)
+}
+
 /// Crossing triangle pairs that involve a face of `after` that is not a face
 /// of `before` (same vertex cycle up to rotation, vertex ids kept): the
 /// check of a local operator (a handle, a pipe) that added or reshaped

@@ -100,7 +100,7 @@ impl PyMesh {
     /// pipes meeting in one point; the dodecahedron's third iteration still
     /// has 1080 crossing triangle pairs (46610 faces), its fourth 82383
     /// (660191 faces), the tetrahedron's fourth 5754 (114260 faces); see
-    /// ``src/schemes/menger.rs``.
+    /// ``src/schemes/menger/mod.rs``.
     ///
     /// Warns
     /// -----

@@ -1,0 +1,246 @@
+//! Steps 4–5 (VII.3 steps 4–5): the outer remeshing (trisected edges,
+//! corner and edge quads), the pipes between remeshing and offset faces,
+//! the inner surface's strips, miter quads and vertex faces, assembled
+//! into polygons; non-planar ones split into planar pieces.
+
+use super::connect::{inner_points, split_cycle, Inner};
+use super::offset::{plan, Plan};
+use super::pipe::window_corners;
+use super::{EdgeKind, MengerOptions};
+use crate::error::Result;
+use crate::mesh::{HalfedgeId, Mesh};
+use glam::DVec3;
+
+/// Corners of every output face, with vertices as: `0..V` old, then
+/// `tri(e, end)`, `qv(h)` and `inner(i)` (raw inner point ids, see [`Inner`]).
+/// Faces left with fewer than three distinct corners are dropped. Also
+/// returns each face's kind: 0 corner quad, 1 edge quad, 2 pipe quad,
+/// 3 strip, 4 miter quad, 5 vertex face.
+/// Polygons with a tag (which step made them) and their origin (the input
+/// element they belong to, as in [`crate::schemes::level::Origins`]).
+type Emitted = (Vec<i64>, Vec<i64>, Vec<u8>, Vec<(u8, u32)>);
+
+fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> Emitted {
+    use crate::schemes::level::{EDGE, FACE, VERTEX};
+    let ng = pl.group_pos.len();
+    let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
+        let near_tail_of_2e = (h.0 & 1 == 0) == near_tail;
+        tri(2 * h.edge().idx() + if near_tail_of_2e { 0 } else { 1 })
+    };
+    let r = |h: HalfedgeId| iv(inner.rep[pl.group[h.idx()] as usize]);
+    let mid = |e: usize, end: usize| iv(inner.rep[ng + 2 * e + end]);
+    let mut sizes: Vec<i64> = Vec::new();
+    let mut idx: Vec<i64> = Vec::new();
+    let mut tags: Vec<u8> = Vec::new();
+    let mut origin: Vec<(u8, u32)> = Vec::new();
+    let mut push = |poly: &[u32], tag: u8, from: (u8, u32)| {
+        for d in split_cycle(poly) {
+            if d.len() >= 3 {
+                sizes.push(d.len() as i64);
+                idx.extend(d.iter().map(|&x| x as i64));
+                tags.push(tag);
+                origin.push(from);
+            }
+        }
+    };
+    // outer remeshing (corner and edge quads) and the pipes
+    for f in m.faces() {
+        for h in m.face_halfedges(f) {
+            let (pr, nx) = (m.prev(h), m.next(h));
+            let of = (FACE, f.0);
+            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], 0, of);
+            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())], 1, of);
+            push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)], 2, of);
+        }
+    }
+    // inner surface: strips, miter quad pairs, vertex faces
+    for e in m.edges() {
+        let h = e.halfedge();
+        let t = h.twin();
+        match pl.kind[e.idx()] {
+            EdgeKind::Collapse => {}
+            EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3, (EDGE, e.0)),
+            EdgeKind::Miter => {
+                if r(h) == r(m.next(t)) && r(m.next(h)) == r(t) {
+                    // both ends already one offset corner (every other edge
+                    // around collapsed): the offset faces meet, no strip
+                    continue;
+                }
+                let (m0, m1) = (mid(e.idx(), 0), mid(e.idx(), 1));
+                push(&[r(h), r(m.next(h)), m1, m0], 4, (EDGE, e.0));
+                push(&[m0, m1, r(t), r(m.next(t))], 4, (EDGE, e.0));
+            }
+        }
+    }
+    let mut poly = Vec::new();
+    for v in m.vertices() {
+        let Some(h0) = m.vertex_halfedge(v) else { continue };
+        poly.clear();
+        let mut h = h0;
+        loop {
+            poly.push(r(h));
+            if pl.kind[h.edge().idx()] == EdgeKind::Miter {
+                poly.push(mid(h.edge().idx(), (h.0 & 1) as usize));
+            }
+            h = m.next(h.twin());
+            if h == h0 {
+                break;
+            }
+        }
+        push(&poly, 5, (VERTEX, v.0));
+    }
+    (sizes, idx, tags, origin)
+}
+
+/// Positions and polygon faces of one iteration, with the number of inner
+/// points used and of faces added by splitting non-planar faces.
+pub(crate) struct Built {
+    pub(super) pos: Vec<DVec3>,
+    pub(super) sizes: Vec<i64>,
+    pub(super) idx: Vec<i64>,
+    pub(super) inner_vertices: usize,
+    pub(super) split_extra: usize,
+    /// Output vertices from here on are inner points (offset corners, miter
+    /// vertices, cone apices); below are the outer remeshing's.
+    pub(super) first_inner: u32,
+    /// Input vertices whose vertex face became a cone.
+    pub(super) coned: Vec<u32>,
+    /// The input vertex whose local rule placed each output vertex
+    /// (`u32::MAX` for the input's vertices and the trisection points).
+    pub(crate) owner: Vec<u32>,
+    /// The input element every output face belongs to (`Origins` kinds).
+    pub(crate) face_origin: Vec<(u8, u32)>,
+}
+
+pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> Result<Built> {
+    let pl = plan(m, o, full)?;
+    let inner = inner_points(m, &pl, refined, full)?;
+    let pos = m.positions();
+    let (nv, ne, nh) = (m.n_vertices(), m.n_edges(), m.n_halfedges());
+    // vertex layout: [old | trisection 2 per edge | inset corner per half-edge | used welded inner points]
+    let t0 = nv;
+    let q0 = t0 + 2 * ne;
+    let i0 = q0 + nh;
+    let mut out_pos: Vec<DVec3> = Vec::with_capacity(i0 + pl.group_pos.len());
+    out_pos.extend_from_slice(pos);
+    for e in m.edges() {
+        crate::cancel::poll(e.0 as usize)?;
+        let h = e.halfedge();
+        let (a, b) = (pos[m.vertex(h).idx()], pos[m.head(h).idx()]);
+        let len = (b - a).length();
+        let d = (0.5 * (pl.face_d[m.face(h).idx()] + pl.face_d[m.face(h.twin()).idx()])).min(0.4 * len);
+        let u = (b - a) / len;
+        out_pos.push(a + d * u);
+        out_pos.push(b - d * u);
+    }
+    out_pos.extend(window_corners(m, &pl, &inner));
+    // inner points get ids in order of first use
+    let base = u32::MAX / 2;
+    let (sizes, mut idx, tags, origin) = emit_faces(m, &pl, &inner, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32, &|i| base + i);
+    let mut inner_id = vec![u32::MAX; inner.pos.len()];
+    for x in idx.iter_mut() {
+        if *x >= base as i64 {
+            let i = (*x - base as i64) as usize;
+            if inner_id[i] == u32::MAX {
+                inner_id[i] = out_pos.len() as u32;
+                out_pos.push(inner.pos[i]);
+            }
+            *x = inner_id[i] as i64;
+        }
+    }
+    let inner_vertices = out_pos.len() - i0;
+    let ng = pl.group_pos.len();
+    let mut group_vertex = vec![u32::MAX; ng];
+    for h in m.halfedges() {
+        crate::cancel::poll(h.0 as usize)?;
+        group_vertex[pl.group[h.idx()] as usize] = m.vertex(h).0;
+    }
+    let mut owner = vec![u32::MAX; q0];
+    owner.extend(m.halfedges().map(|h| m.vertex(h).0));
+    owner.resize(out_pos.len(), u32::MAX);
+    for (i, &id) in inner_id.iter().enumerate() {
+        if id != u32::MAX {
+            owner[id as usize] = if i < ng {
+                group_vertex[i]
+            } else {
+                let e = crate::mesh::EdgeId(((i - ng) / 2) as u32);
+                let h = e.halfedge();
+                if (i - ng) % 2 == 0 { m.vertex(h).0 } else { m.head(h).0 }
+            };
+        }
+    }
+    // non-planar faces (vertex faces at saddle-like vertices, faces of a
+    // non-planar input) are split into planar pieces
+    let tol = 1e-9 * pl.face_d.iter().cloned().fold(f64::INFINITY, f64::min).max(1e-300);
+    let (mut sz2, mut idx2) = (Vec::with_capacity(sizes.len()), Vec::with_capacity(idx.len()));
+    let mut face_origin = Vec::with_capacity(sizes.len());
+    let mut k = 0;
+    let mut pieces = Vec::new();
+    let mut coned: Vec<u32> = Vec::new();
+    for (fi, &n) in sizes.iter().enumerate() {
+        let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
+        k += n as usize;
+        pieces.clear();
+        split_planar(&poly, &out_pos, tol, &mut pieces);
+        if pieces.len() == poly.len() - 2 && poly.len() > 3 && tags[fi] == 5 {
+            // a vertex face with no planar split: a cone from its centroid
+            // (a fan from a corner can fold through the outer surface)
+            pieces.clear();
+            let c = out_pos.len() as u32;
+            out_pos.push(poly.iter().map(|&i| out_pos[i as usize]).sum::<DVec3>() / poly.len() as f64);
+            for i in 0..poly.len() {
+                pieces.push(vec![c, poly[i], poly[(i + 1) % poly.len()]]);
+            }
+            owner.push(owner[poly[0] as usize]);
+            coned.push(owner[poly[0] as usize]);
+        }
+        for p in &pieces {
+            sz2.push(p.len() as i64);
+            idx2.extend(p.iter().map(|&x| x as i64));
+            face_origin.push(origin[fi]);
+        }
+    }
+    let split_extra = sz2.len() - sizes.len();
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + coned.len(), split_extra, owner, first_inner: i0 as u32, coned, face_origin })
+}
+
+/// Largest distance of the polygon's points from its best-fit plane through
+/// the centroid along the Newell normal.
+fn planarity(poly: &[u32], pos: &[DVec3]) -> f64 {
+    let pts: Vec<DVec3> = poly.iter().map(|&i| pos[i as usize]).collect();
+    let c = pts.iter().sum::<DVec3>() / pts.len() as f64;
+    let mut n = DVec3::ZERO;
+    for i in 0..pts.len() {
+        n += pts[i].cross(pts[(i + 1) % pts.len()]);
+    }
+    let n = n.normalize_or_zero();
+    pts.iter().map(|p| (p - c).dot(n).abs()).fold(0.0, f64::max)
+}
+
+/// Splits a non-planar polygon along a diagonal into planar parts when one
+/// exists (a saddle vertex face folds into squares), else fans it into
+/// triangles from its first corner.
+fn split_planar(poly: &[u32], pos: &[DVec3], tol: f64, out: &mut Vec<Vec<u32>>) {
+    let n = poly.len();
+    if n <= 3 || planarity(poly, pos) <= tol {
+        out.push(poly.to_vec());
+        return;
+    }
+    for i in 0..n {
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let a: Vec<u32> = poly[i..=j].to_vec();
+            let b: Vec<u32> = poly[j..].iter().chain(&poly[..=i]).copied().collect();
+            if planarity(&a, pos) <= tol && planarity(&b, pos) <= tol {
+                out.push(a);
+                out.push(b);
+                return;
+            }
+        }
+    }
+    for i in 1..n - 1 {
+        out.push(vec![poly[0], poly[i], poly[i + 1]]);
+    }
+}
