@@ -215,6 +215,8 @@ def test_ctrl_c_stops_within_half_a_second(setup, call):
 # ----------------------------------------------------------- argument probe
 
 BAD = {"negative": -1, "huge": 2**70, "nan": math.nan, "inf": math.inf}
+# parameters whose valid range includes -1 (their other bad values must still be refused)
+SIGNED = {("Mesh.double_stellate_misc", "height"), ("Mesh.double_stellate_misc", "curve")}
 
 
 def _base_calls():
@@ -254,6 +256,9 @@ def _base_calls():
         **{f"Mesh.{s}": (getattr(cube, s), {"iterations": 1}) for s in ("stellate_edge_removal", "linear_vertex_insertion", "root3", "dual_loop", "doo_sabin_bc")},
         "Mesh.stellate": (cube.stellate, {"iterations": 1, "offset": 0.1}),
         "Mesh.double_stellate": (cube.double_stellate, {"iterations": 1, "offset": 0.1}),
+        "Mesh.double_stellate_misc": (cube.double_stellate_misc, {"iterations": 1, "height": 0.1, "curve": 0.1}),
+        "Mesh.doo_sabin_bc_new": (cube.doo_sabin_bc_new, {"iterations": 1, "scale": 1.0, "length": 1.0}),
+        "Mesh.wireframe_columns": (cube.wireframe_columns, {"thickness": 0.1, "segments": 4}),
         "Mesh.corner_cutting": (cube.corner_cutting, {"iterations": 1, "alpha": 0.6}),
         "Mesh.modified_corner_cutting": (cube.modified_corner_cutting, {"iterations": 1, "thickness": 0.2}),
         "Mesh.loop_style": (cube.loop_style, {"iterations": 1, "length": 0.5}),
@@ -264,7 +269,7 @@ def _base_calls():
         "Mesh.dome": (cube.dome, {"iterations": 1, "length": 0.5, "scale": 0.5}),
         "Mesh.fractal": (cube.fractal, {"iterations": 1, "offset": 0.5}),
         "Mesh.subdivide_faces": (cube.subdivide_faces, {"faces": [0], "quads": True}),
-        "Mesh.extrude": (cube.extrude, {"faces": [0], "kind": "cubical", "length": 0.5, "scale": 0.5, "twist": 10.0, "segments": 2}),
+        "Mesh.extrude": (cube.extrude, {"faces": [0], "kind": "cubical", "length": 0.5, "scale": 0.5, "twist": 10.0, "segments": 2, "angle": None, "lengths": None}),
         "Mesh.rind": (cube.rind, {"thickness": 0.1}),
         "Mesh.mark_creases": (cube.mark_creases, {"angle": 30.0}),
         "Mesh.printable": (cube.printable, {"min_thickness": 0.5}),
@@ -298,7 +303,7 @@ def _base_calls():
         "Mesh.split_valence2_vertices": (cube.subdivide_all_edges().split_valence2_vertices, {"offset": 0.1}),
         "Mesh.subdivide_all_edges": (cube.subdivide_all_edges, {"n": 2}),
         "Mesh.wireframe": (cube.wireframe, {"thickness": 0.1, "width": 0.1}),
-        "Mesh.multi_face_handle": (cube.multi_face_handle, {"faces": [0, 1], "scale": 0.5, "extrude": 0.5}),
+        "Mesh.multi_face_handle": (cube.multi_face_handle, {"faces": [0, 1], "scale": 0.5, "extrude": 0.5, "algorithm": "convex_hull"}),
         "Mesh.rind_by_scaling": (cube.rind_by_scaling, {"scale": 0.8}),
         "Mesh.cut_vertices": (cube.cut_vertices, {"vertices": [0], "offset": 0.25}),
         "Mesh.cut_edges": (cube.cut_edges, {"edges": [0], "offset": 0.25}),
@@ -382,8 +387,10 @@ def test_bad_numeric_argument_is_a_named_error(name, param, bad):
         return
     except Exception as e:  # noqa: BLE001
         pytest.fail(f"{name}({param}={bad!r}) raised {type(e).__name__}: {e}")
-    # accepted: only a huge but finite length, where the result must be valid
-    assert not is_int_param and bad == 2**70, f"{name}({param}={bad!r}) was accepted"
+    # accepted: only a huge but finite length, or -1 where the documented range
+    # is [-1, 1] (TopMod's signed height and curve), where the result must be valid
+    signed = (name, param) in SIGNED and bad == -1
+    assert signed or (not is_int_param and bad == 2**70), f"{name}({param}={bad!r}) was accepted"
     if isinstance(r, topomesh.PrintReport):
         assert not r.ok and len(r.thin_faces) == len(r.thickness)  # every wall is thinner than that
     else:
