@@ -282,8 +282,8 @@ def test_ply_byte_scatter_equals_run_layout():
     lists = [(n, "uchar", "int", a.astype("<i4")[:, None]) for n, a in (("vertex_indices", idx), ("corner_twins", twins))]
     scal = [("mat", "int", (np.arange(len(sizes)) % 3).astype("<i4"))]
     order = [("list", lists[0]), ("list", lists[1]), ("scalar", scal[0])]
-    a = _ply._mixed_records(sizes, idx, order)
-    b = _ply._scattered_records(sizes, idx, order)
+    a = _ply._mixed_records(sizes, order)
+    b = _ply._scattered_records(sizes, order)
     assert a.dtype == b.dtype == np.uint8 and np.array_equal(a, b)
 
 

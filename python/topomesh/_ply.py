@@ -53,7 +53,7 @@ def _write_ply(tmp: str, mesh: Mesh) -> None:
     with open(tmp, "wb") as f:
         f.write("\n".join(header).encode("ascii"))
         f.write(np.ascontiguousarray(np.hstack(vcols), dtype="<f8").tobytes())
-        f.write((records if records is not None else _mixed_records(sizes, idx, order)).view(np.uint8))
+        f.write((records if records is not None else _mixed_records(sizes, order)).view(np.uint8))
 
 
 def _uniform_records(sizes: np.ndarray, order: list) -> np.ndarray | None:
@@ -80,7 +80,7 @@ def _uniform_records(sizes: np.ndarray, order: list) -> np.ndarray | None:
     return rec
 
 
-def _mixed_records(sizes: np.ndarray, idx: np.ndarray, order: list) -> np.ndarray:
+def _mixed_records(sizes: np.ndarray, order: list) -> np.ndarray:
     """The face records of faces of several sizes: run by run of equal-sized
     faces when the runs are few (a scheme's output comes in blocks: Doo-Sabin
     writes its face, edge and vertex faces in turn), else laid out byte by
@@ -96,10 +96,10 @@ def _mixed_records(sizes: np.ndarray, idx: np.ndarray, order: list) -> np.ndarra
             part = [(k, (*x[:2], x[2][a:b]) if k == "scalar" else (*x[:3], x[3][ca:cb])) for k, x in order]
             runs.append(_uniform_records(sizes[a:b], part).view(np.uint8))
         return np.concatenate(runs)
-    return _scattered_records(sizes, idx, order)
+    return _scattered_records(sizes, order)
 
 
-def _scattered_records(sizes: np.ndarray, idx: np.ndarray, order: list) -> np.ndarray:
+def _scattered_records(sizes: np.ndarray, order: list) -> np.ndarray:
     """The face records of faces of interleaved sizes, laid out byte by byte."""
     # per-face byte offset of every field inside its record, then the records' starts
     rec = np.zeros(len(sizes), dtype=np.int64)
@@ -114,7 +114,7 @@ def _scattered_records(sizes: np.ndarray, idx: np.ndarray, order: list) -> np.nd
     start = np.zeros(len(sizes), dtype=np.int64)
     np.cumsum(rec[:-1], out=start[1:])
     buf = np.empty(int(rec.sum()), dtype=np.uint8)
-    local = np.arange(len(idx)) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
     for (kind, x), off in zip(order, offsets):
         pos = start + off
         if kind == "scalar":
@@ -212,8 +212,12 @@ def _binary_header(data: bytes):
     return end + len(b"end_header\n"), nv, vprops, nf, fprops, comments
 
 
+def _vertex_dtype(vprops: list) -> np.dtype:
+    return np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
+
+
 def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
-    vdt = np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
+    vdt = _vertex_dtype(vprops)
     if len(data) < body + nv * vdt.itemsize:
         return None, None, vdt
     vrec = np.frombuffer(data, vdt, nv, body)
@@ -224,8 +228,7 @@ def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
 def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
     """Faces that all have one size: one ``np.frombuffer`` per element; ``None``
     when the face records differ in length."""
-    vdt = np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
-    fstart = body + nv * vdt.itemsize
+    fstart = body + nv * _vertex_dtype(vprops).itemsize
     # the list lengths of the first face fix the record layout
     fields, pos = [], fstart
     for p, c, t in fprops:

@@ -42,6 +42,37 @@ fn read_count(data: &[u8], pos: usize, (size, signed): (u8, bool)) -> Option<i64
     })
 }
 
+/// Walks the `n` records from `start`: `count(record, property, offset,
+/// count type)` gives each list's length, `visit(property, value bytes)`
+/// sees each property's values. Returns the offset after the last record.
+fn walk(
+    data: &[u8],
+    start: usize,
+    n: usize,
+    props: &[Property],
+    bad: &impl Fn(String) -> MeshError,
+    mut count: impl FnMut(usize, usize, usize, (u8, bool)) -> Result<i64>,
+    mut visit: impl FnMut(usize, &[u8]),
+) -> Result<usize> {
+    let mut pos = start;
+    for r in 0..n {
+        for (j, p) in props.iter().enumerate() {
+            let len = match p.count {
+                None => p.value_size as usize,
+                Some(c) => {
+                    let k = count(r, j, pos, c)?;
+                    pos += c.0 as usize;
+                    k as usize * p.value_size as usize
+                }
+            };
+            let v = data.get(pos..pos + len).ok_or_else(|| bad(format!("record {r} is cut off by the end of the file")))?;
+            visit(j, v);
+            pos += len;
+        }
+    }
+    Ok(pos)
+}
+
 /// Splits the `n` records of an element starting at byte `start` of `data`
 /// into one column per property. Two passes (counts and sizes first, then
 /// the copies into exactly sized columns), so a file that lies about its
@@ -62,44 +93,17 @@ pub fn split_records(data: &[u8], start: usize, n: usize, props: &[Property], el
     }
     let mut counts: Vec<Vec<i64>> = props.iter().map(|p| if p.count.is_some() { Vec::with_capacity(n) } else { Vec::new() }).collect();
     let mut totals = vec![0usize; props.len()];
-    let mut pos = start;
-    for r in 0..n {
-        for (j, p) in props.iter().enumerate() {
-            let len = match p.count {
-                None => p.value_size as usize,
-                Some(c) => {
-                    let k = read_count(data, pos, c).ok_or_else(|| bad(format!("record {r} is cut off by the end of the file")))?;
-                    if k < 0 {
-                        return Err(bad(format!("record {r} has a negative list length ({k})")));
-                    }
-                    counts[j].push(k);
-                    pos += c.0 as usize;
-                    k as usize * p.value_size as usize
-                }
-            };
-            if pos + len > data.len() {
-                return Err(bad(format!("record {r} is cut off by the end of the file")));
-            }
-            totals[j] += len;
-            pos += len;
+    let end = walk(data, start, n, props, &bad, |r, j, pos, c| {
+        let k = read_count(data, pos, c).ok_or_else(|| bad(format!("record {r} is cut off by the end of the file")))?;
+        if k < 0 {
+            return Err(bad(format!("record {r} has a negative list length ({k})")));
         }
-    }
-    let end = pos;
+        counts[j].push(k);
+        Ok(k)
+    }, |j, v| totals[j] += v.len())?;
     let mut values: Vec<Vec<u8>> = totals.iter().map(|&t| Vec::with_capacity(t)).collect();
-    let mut pos = start;
-    for r in 0..n {
-        for (j, p) in props.iter().enumerate() {
-            let len = match p.count {
-                None => p.value_size as usize,
-                Some(c) => {
-                    pos += c.0 as usize;
-                    counts[j][r] as usize * p.value_size as usize
-                }
-            };
-            values[j].extend_from_slice(&data[pos..pos + len]);
-            pos += len;
-        }
-    }
+    let counts_of = &counts;
+    walk(data, start, n, props, &bad, |r, j, _, _| Ok(counts_of[j][r]), |j, v| values[j].extend_from_slice(v))?;
     Ok(Columns { values, counts, end })
 }
 
