@@ -242,25 +242,17 @@ def _interleaved(data: bool):
 
 
 @pytest.mark.parametrize("data", [False, True])
-def test_mixed_size_ply_writes_and_reads_back(tmp_path, monkeypatch, data):
-    """Faces of mixed sizes, interleaved (byte-scatter layout) or in a few
-    runs (run layout): plyfile reads the file, and the core's record walk
-    reads it back exactly, data included."""
+def test_mixed_size_ply_writes_and_reads_back(tmp_path, data):
+    """Faces of mixed sizes, interleaved or in a few runs: plyfile reads the
+    file, and the core's record walk reads it back exactly, data included."""
     from plyfile import PlyData
-
-    from topomesh import _ply
 
     few_runs = T.cube().doo_sabin()  # squares, then triangles: two runs
     if data:
         few_runs = few_runs.with_attributes(face={"mat": np.arange(len(few_runs.face_sizes)) % 2})
-    scattered = []
-    real = _ply._scattered_records
-    monkeypatch.setattr(_ply, "_scattered_records", lambda *a: scattered.append(1) or real(*a))
-    for m, expect_scatter in ((_interleaved(data), True), (few_runs, False)):
-        scattered.clear()
+    for m in (_interleaved(data), few_runs):
         p = tmp_path / "m.ply"
         m.save(p)
-        assert bool(scattered) == expect_scatter
         ply = PlyData.read(str(p))
         assert np.array_equal(np.concatenate(list(ply["face"]["vertex_indices"])), m.face_indices)
         assert np.array_equal(np.concatenate(list(ply["face"]["corner_twins"])), m.corner_twins)
@@ -272,19 +264,21 @@ def test_mixed_size_ply_writes_and_reads_back(tmp_path, monkeypatch, data):
             assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
 
 
-def test_ply_byte_scatter_equals_run_layout():
-    """The two layouts for mixed face sizes agree byte for byte on a mesh with
-    few runs (where save() takes the run layout)."""
-    from topomesh import _ply
+@pytest.mark.parametrize("data", [False, True])
+def test_ply_records_equal_plyfiles(tmp_path, data):
+    """The core's record layout is byte for byte what plyfile writes for the
+    same header and columns (plyfile lays out each face on its own)."""
+    from plyfile import PlyData
 
-    m = T.cube().doo_sabin()
-    sizes, idx, twins = m.face_sizes, m.face_indices, m.corner_twins
-    lists = [(n, "uchar", "int", a.astype("<i4")[:, None]) for n, a in (("vertex_indices", idx), ("corner_twins", twins))]
-    scal = [("mat", "int", (np.arange(len(sizes)) % 3).astype("<i4"))]
-    order = [("list", lists[0]), ("list", lists[1]), ("scalar", scal[0])]
-    a = _ply._mixed_records(sizes, order)
-    b = _ply._scattered_records(sizes, order)
-    assert a.dtype == b.dtype == np.uint8 and np.array_equal(a, b)
+    for m in (_interleaved(data), T.cube().doo_sabin(), T.torus(6, 4)):
+        p = tmp_path / "m.ply"
+        m.save(p)
+        ply = PlyData.read(str(p))
+        q = tmp_path / "plyfile.ply"
+        PlyData([ply["vertex"], ply["face"]], text=False, byte_order="<", comments=ply.comments).write(str(q))
+        ours, theirs = p.read_bytes(), q.read_bytes()
+        end = b"end_header\n"
+        assert ours[ours.index(end):] == theirs[theirs.index(end):]
 
 
 def test_truncated_or_padded_mixed_ply_is_an_error(tmp_path):
@@ -386,7 +380,7 @@ def test_failed_save_leaves_old_file(tmp_path, monkeypatch, ext):
     before = p.read_bytes()
     writer = "_write_npz" if ext == ".npz" else "_write_ply"
 
-    def broken(tmp, mesh):
+    def broken(tmp, mesh, *fields):
         with open(tmp, "wb") as f:
             f.write(b"half a file")
         raise OSError(28, "No space left on device")

@@ -24,8 +24,9 @@ class _Data:
 
     @classmethod
     def of(cls, mesh: Mesh) -> "_Data":
-        cs, vs = mesh._corner_sharpness(), mesh.vertex_sharpness
-        creased = bool(np.any(cs) or np.any(vs))
+        # a mesh without a crease table skips building the per-corner column
+        cs, vs = (mesh._corner_sharpness(), mesh.vertex_sharpness) if mesh._has_creases() else (None, None)
+        creased = cs is not None and bool(np.any(cs) or np.any(vs))
         return cls(
             mesh.vertex_attributes, mesh.face_attributes, mesh.corner_attributes,
             cs if creased else None, vs if creased else None,

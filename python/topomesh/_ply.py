@@ -1,8 +1,7 @@
-"""PLY for :mod:`topomesh.io`: binary little-endian records laid out and
-read with NumPy (one structured array or ``frombuffer`` per element when
-every face has one size; faces of mixed sizes written run by run and read
-after the core's walk of the records, ``_ply_split_records``), plyfile for
-ASCII and big-endian PLY. The layout is described in the formats section of
+"""PLY for :mod:`topomesh.io`: binary little-endian face records laid out
+by the core (``_ply_join_records``) and read with NumPy (one ``frombuffer``
+per element when every face has one size, else after the core's walk of
+the records, ``_ply_split_records``), plyfile for ASCII and big-endian PLY. The layout is described in the formats section of
 :mod:`topomesh.io`."""
 
 from __future__ import annotations
@@ -12,7 +11,7 @@ from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-from topomesh._core import Mesh, MeshError, _ply_split_records
+from topomesh._core import Mesh, MeshError, _ply_join_records, _ply_split_records
 from topomesh._fileattrs import _ply_fields
 
 if TYPE_CHECKING:
@@ -24,112 +23,40 @@ _PLY_INT = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "
 _PLY_NUM = dict(_PLY_INT, float="f4", float32="f4", double="f8", float64="f8")
 
 
-def _write_ply(tmp: str, mesh: Mesh) -> None:
-    """Binary little-endian PLY, the face records laid out with NumPy (plyfile
-    writes list properties one face at a time: 25 s for 1M faces)."""
+def _write_ply(tmp: str, mesh: Mesh, fields: tuple | None = None) -> None:
+    """Binary little-endian PLY: the header here, the face records laid out
+    by the core (``_ply_join_records``: plyfile writes list properties one
+    face at a time, 25 s for 1M faces). ``fields`` is ``_ply_fields(None,
+    mesh)`` when the caller has it already."""
     verts, sizes = mesh.vertices, mesh.face_sizes
     idx, twins = mesh.face_indices, mesh.corner_twins
     if len(verts) >= 2**31 or len(idx) >= 2**31:
         raise MeshError("PLY stores int32 indices: the mesh is too large (use .npz)")
-    vextra, fextra, cextra, comments = _ply_fields(None, mesh)
+    vextra, fextra, cextra, comments = fields if fields is not None else _ply_fields(None, mesh)
     top = int(sizes.max()) if len(sizes) else 0
-    # (property, count type or None for a scalar, value dtype, per-face or per-corner values (n, k))
-    fields = [("vertex_indices", idx.astype("<i4")[:, None]), ("corner_twins", twins.astype("<i4")[:, None])]
-    lists = [(p, "uint" if top > 255 else "uchar", "int", a) for p, a in fields]
+    # (property, count type, value type, per-corner values (C, k)), then the face scalars
+    lists = [(p, "uint" if top > 255 else "uchar", "int", a.astype("<i4")[:, None])
+             for p, a in (("vertex_indices", idx), ("corner_twins", twins))]
     lists += [(p, "uint" if top * a.shape[1] > 255 else "uchar", "double", a.astype("<f8")) for p, a in cextra]
-    scalars = [(p, t, a) for p, t, a in fextra]
     header = ["ply", "format binary_little_endian 1.0",
               "comment written by topomesh; corner_twins: the twin corner of each corner, -1 at a boundary side, -2 at a point-sphere"]
     header += [f"comment {c}" for c in comments]
     header += [f"element vertex {len(verts)}"] + [f"property double {c}" for c in ["x", "y", "z"] + [p for p, _ in vextra]]
     header.append(f"element face {len(sizes)}")
     header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[:2]]
-    header += [f"property {t} {p}" for p, t, _ in scalars]
+    header += [f"property {t} {p}" for p, t, _ in fextra]
     header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[2:]]
     header.append("end_header\n")
-    order = [("list", x) for x in lists[:2]] + [("scalar", x) for x in scalars] + [("list", x) for x in lists[2:]]
-    records = _uniform_records(sizes, order)
+    raw = lambda a: np.ascontiguousarray(a).view(np.uint8).reshape(-1)  # noqa: E731
+    cols = [(4 if ct == "uint" else 1, a.shape[1], a.dtype.itemsize, raw(a)) for _, ct, _, a in lists[:2]]
+    cols += [(0, 1, np.asarray(a).dtype.itemsize, raw(np.asarray(a))) for _, _, a in fextra]
+    cols += [(4 if ct == "uint" else 1, a.shape[1], a.dtype.itemsize, raw(a)) for _, ct, _, a in lists[2:]]
+    body = _ply_join_records(np.ascontiguousarray(sizes, dtype=np.int64), cols)
     vcols = [verts] + [np.asarray(c, dtype=np.float64)[:, None] for _, c in vextra]
     with open(tmp, "wb") as f:
         f.write("\n".join(header).encode("ascii"))
         f.write(np.ascontiguousarray(np.hstack(vcols), dtype="<f8").tobytes())
-        f.write((records if records is not None else _mixed_records(sizes, order)).view(np.uint8))
-
-
-def _uniform_records(sizes: np.ndarray, order: list) -> np.ndarray | None:
-    """The face records of a mesh whose faces all have one size, as one packed
-    structured array (a few vectorised column copies: 0.05 s for 1M quads
-    against 1.5–3 s for the byte scatter of :func:`_mixed_records`); ``None``
-    when the sizes differ."""
-    if not len(sizes) or (sizes != sizes[0]).any():
-        return None
-    k, nf = int(sizes[0]), len(sizes)
-    fields, values = [], []
-    for j, (kind, x) in enumerate(order):
-        if kind == "scalar":
-            a = np.asarray(x[2])
-            fields.append((f"s{j}", a.dtype.newbyteorder("<")))
-            values.append(a)
-            continue
-        ct, a = x[1], np.asarray(x[3])
-        fields += [(f"n{j}", "<u4" if ct == "uint" else "u1"), (f"l{j}", a.dtype.newbyteorder("<"), (k * a.shape[1],))]
-        values += [k * a.shape[1], a.reshape(nf, k * a.shape[1])]
-    rec = np.empty(nf, dtype=np.dtype(fields))  # packed: PLY records have no padding
-    for name, v in zip(rec.dtype.names, values):
-        rec[name] = v
-    return rec
-
-
-def _mixed_records(sizes: np.ndarray, order: list) -> np.ndarray:
-    """The face records of faces of several sizes: run by run of equal-sized
-    faces when the runs are few (a scheme's output comes in blocks: Doo-Sabin
-    writes its face, edge and vertex faces in turn), else laid out byte by
-    byte."""
-    if not len(sizes):
-        return np.zeros(0, dtype=np.uint8)
-    bounds = np.concatenate(([0], np.flatnonzero(np.diff(sizes)) + 1, [len(sizes)]))
-    if len(bounds) - 1 <= max(64, len(sizes) // 256):
-        corner = np.concatenate(([0], np.cumsum(sizes)))
-        runs = []
-        for a, b in zip(bounds[:-1].tolist(), bounds[1:].tolist()):
-            ca, cb = int(corner[a]), int(corner[b])
-            part = [(k, (*x[:2], x[2][a:b]) if k == "scalar" else (*x[:3], x[3][ca:cb])) for k, x in order]
-            runs.append(_uniform_records(sizes[a:b], part).view(np.uint8))
-        return np.concatenate(runs)
-    return _scattered_records(sizes, order)
-
-
-def _scattered_records(sizes: np.ndarray, order: list) -> np.ndarray:
-    """The face records of faces of interleaved sizes, laid out byte by byte."""
-    # per-face byte offset of every field inside its record, then the records' starts
-    rec = np.zeros(len(sizes), dtype=np.int64)
-    offsets = []
-    for kind, x in order:
-        offsets.append(rec.copy())
-        if kind == "scalar":
-            rec += x[2].dtype.itemsize
-        else:
-            a = x[3]
-            rec += (4 if x[1] == "uint" else 1) + a.dtype.itemsize * a.shape[1] * sizes
-    start = np.zeros(len(sizes), dtype=np.int64)
-    np.cumsum(rec[:-1], out=start[1:])
-    buf = np.empty(int(rec.sum()), dtype=np.uint8)
-    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-    for (kind, x), off in zip(order, offsets):
-        pos = start + off
-        if kind == "scalar":
-            a = np.ascontiguousarray(x[2])
-            n = a.dtype.itemsize
-            buf[pos[:, None] + np.arange(n)] = a.view(np.uint8).reshape(-1, n)
-            continue
-        ct, a = x[1], np.ascontiguousarray(x[3])
-        cs = 4 if ct == "uint" else 1
-        cnt = (sizes * a.shape[1]).astype("<u4" if cs == 4 else "u1").view(np.uint8).reshape(-1, cs)
-        buf[pos[:, None] + np.arange(cs)] = cnt
-        n = a.dtype.itemsize * a.shape[1]  # the bytes of one corner
-        dest = np.repeat(pos + cs, sizes) + n * local
-        buf[dest[:, None] + np.arange(n)] = a.view(np.uint8).reshape(-1, n)
-    return buf
+        f.write(body)
 
 
 def _read_ply(path: PathLike):

@@ -301,8 +301,8 @@ def save(mesh: Mesh, path: PathLike) -> None:
         _npz_arrays(name, mesh)  # warns (naming the path) about what it leaves out
         _atomic_write(path, lambda tmp: _write_npz(tmp, mesh))
     elif kind == ".ply":
-        _ply_fields(name, mesh)
-        _atomic_write(path, lambda tmp: _write_ply(tmp, mesh))
+        fields = _ply_fields(name, mesh)  # warns (naming the path) about what it leaves out
+        _atomic_write(path, lambda tmp: _write_ply(tmp, mesh, fields))
     elif kind in TRIANGLE_FORMATS:
         write3 = _threemf_exporter(name) if kind == ".3mf" else None
         verts, tris, (sides, pinched) = mesh._print_triangles()

@@ -7,7 +7,10 @@
 //! record's properties and copies every property's raw bytes into one
 //! column, which the Python side (`topomesh._ply`) views with its dtype.
 //! Headers and the uniform case (one record length, one `np.frombuffer`)
-//! stay in Python.
+//! stay in Python. [`join_records`] is the inverse, used for every write:
+//! it lays the records out from the columns in parallel blocks (NumPy's
+//! packed structured arrays took ~0.15 s for 1M triangles, its byte scatter
+//! for interleaved sizes 1.5–3 s).
 
 use crate::error::{MeshError, Result};
 
@@ -107,6 +110,80 @@ pub fn split_records(data: &[u8], start: usize, n: usize, props: &[Property], el
     Ok(Columns { values, counts, end })
 }
 
+/// One column of records to write: a scalar of `value_size` bytes per
+/// record, or (`count` = 1 or 4, the bytes of its unsigned count) a list
+/// whose record `r` holds `per * sizes[r]` values of `value_size` bytes.
+/// `data` is the column's little-endian value bytes, records in order.
+#[derive(Clone, Copy, Debug)]
+pub struct Field<'a> {
+    pub count: u8,
+    pub per: u32,
+    pub value_size: u8,
+    pub data: &'a [u8],
+}
+
+/// Records per parallel block of [`join_records`].
+const BLOCK: usize = 1 << 14;
+
+/// The records of `sizes.len()` faces (`sizes[r]` corners each) laid out
+/// property after property, as a PLY binary little-endian element body.
+pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
+    use rayon::prelude::*;
+    let bad = |msg: String| MeshError::InvalidArgument(format!("PLY record layout: {msg}"));
+    if let Some(r) = sizes.iter().position(|&k| k < 0) {
+        return Err(bad(format!("face {r} has a negative size ({})", sizes[r])));
+    }
+    let corners: usize = sizes.iter().map(|&k| k as usize).sum();
+    let top = sizes.iter().copied().max().unwrap_or(0) as u64;
+    for (j, f) in fields.iter().enumerate() {
+        let units = if f.count == 0 { sizes.len() } else { corners * f.per as usize };
+        if f.data.len() != units * f.value_size as usize {
+            return Err(bad(format!("property {j} has {} bytes, expected {}", f.data.len(), units * f.value_size as usize)));
+        }
+        let limit = match f.count { 0 => u64::MAX, 1 => 255, 4 => u32::MAX as u64, c => return Err(bad(format!("property {j}: count of {c} bytes"))) };
+        if top * f.per as u64 > limit {
+            return Err(bad(format!("property {j}: a list of {} values does not fit its {}-byte count", top * f.per as u64, f.count)));
+        }
+    }
+    let len = |k: usize| -> usize {
+        fields.iter().map(|f| if f.count == 0 { f.value_size as usize } else { f.count as usize + k * f.per as usize * f.value_size as usize }).sum()
+    };
+    // per block: its first corner and its first byte
+    let blocks: Vec<(usize, usize)> = sizes.par_chunks(BLOCK).map(|b| (b.iter().map(|&k| k as usize).sum(), b.iter().map(|&k| len(k as usize)).sum())).collect();
+    let total: usize = blocks.iter().map(|b| b.1).sum();
+    let mut out = vec![0u8; total];
+    let mut parts = Vec::with_capacity(blocks.len());
+    let (mut rest, mut corner) = (&mut out[..], 0usize);
+    for (i, &(nc, nb)) in blocks.iter().enumerate() {
+        let (head, tail) = rest.split_at_mut(nb);
+        parts.push((i * BLOCK, corner, head));
+        rest = tail;
+        corner += nc;
+    }
+    parts.into_par_iter().for_each(|(r0, mut c, buf)| {
+        let mut pos = 0;
+        for (r, &k) in sizes[r0..(r0 + BLOCK).min(sizes.len())].iter().enumerate() {
+            let k = k as usize;
+            for f in fields {
+                let vs = f.value_size as usize;
+                let src = if f.count == 0 {
+                    &f.data[(r0 + r) * vs..(r0 + r + 1) * vs]
+                } else {
+                    let n = k * f.per as usize;
+                    buf[pos..pos + f.count as usize].copy_from_slice(&(n as u32).to_le_bytes()[..f.count as usize]);
+                    pos += f.count as usize;
+                    let a = c * f.per as usize * vs;
+                    &f.data[a..a + n * vs]
+                };
+                buf[pos..pos + src.len()].copy_from_slice(src);
+                pos += src.len();
+            }
+            c += k;
+        }
+    });
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -151,5 +228,44 @@ mod tests {
         let p = Property { count: Some((1, true)), value_size: 4 };
         let e = split_records(&neg, 0, 1, &[p], "face").unwrap_err().to_string();
         assert!(e.contains("negative list length"), "{e}");
+    }
+
+    #[test]
+    fn join_is_the_inverse_of_split() {
+        // sizes 3, 0, 5, 1 and a long run, with a scalar, a 1-byte-count list and a 4-byte-count list of 2 per corner
+        let mut sizes = vec![3i64, 0, 5, 1];
+        sizes.extend(std::iter::repeat_n(4, 2 * BLOCK + 7));
+        let nc: usize = sizes.iter().map(|&k| k as usize).sum();
+        let idx: Vec<u8> = (0..nc as i32).flat_map(|i| i.to_le_bytes()).collect();
+        let tag: Vec<u8> = (0..sizes.len() as u16).flat_map(|i| i.wrapping_mul(7).to_le_bytes()).collect();
+        let uv: Vec<u8> = (0..2 * nc as u64).flat_map(|i| (i as f64 * 0.5).to_le_bytes()).collect();
+        let fields = [
+            Field { count: 1, per: 1, value_size: 4, data: &idx },
+            Field { count: 0, per: 1, value_size: 2, data: &tag },
+            Field { count: 4, per: 2, value_size: 8, data: &uv },
+        ];
+        let body = join_records(&sizes, &fields).unwrap();
+        // the first record by hand: count 3, indices 0 1 2, tag 0, count 6, six doubles
+        assert_eq!(body[0], 3);
+        assert_eq!(&body[1..13], &idx[..12]);
+        assert_eq!(&body[13..15], &[0, 0]);
+        assert_eq!(&body[15..19], &6u32.to_le_bytes());
+        let props = [LIST_U8_I32, SCALAR_U16, Property { count: Some((4, false)), value_size: 8 }];
+        let c = split_records(&body, 0, sizes.len(), &props, "face").unwrap();
+        assert_eq!(c.end, body.len());
+        assert_eq!(c.counts[0], sizes);
+        assert_eq!(c.counts[2], sizes.iter().map(|k| 2 * k).collect::<Vec<_>>());
+        assert_eq!((&c.values[0], &c.values[1], &c.values[2]), (&idx, &tag, &uv));
+    }
+
+    #[test]
+    fn join_refuses_what_it_cannot_write() {
+        let idx = vec![0u8; 4 * 300];
+        let e = join_records(&[300], &[Field { count: 1, per: 1, value_size: 4, data: &idx }]).unwrap_err().to_string();
+        assert!(e.contains("does not fit its 1-byte count"), "{e}");
+        let e = join_records(&[3], &[Field { count: 1, per: 1, value_size: 4, data: &idx[..8] }]).unwrap_err().to_string();
+        assert!(e.contains("property 0 has 8 bytes, expected 12"), "{e}");
+        let e = join_records(&[-1], &[]).unwrap_err().to_string();
+        assert!(e.contains("face 0 has a negative size"), "{e}");
     }
 }

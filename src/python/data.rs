@@ -367,6 +367,12 @@ impl PyMesh {
         PyMesh::wrap(self.inner.clone())
     }
 
+    /// Whether the mesh carries a crease table at all (it may still be all
+    /// zeros): lets the writers skip building :meth:`_corner_sharpness`.
+    fn _has_creases(&self) -> bool {
+        self.data.creases.is_some()
+    }
+
     /// Sharpness of the edge leaving every exported corner (aligned with
     /// :attr:`face_indices`).
     fn _corner_sharpness<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {

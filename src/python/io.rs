@@ -109,8 +109,30 @@ fn _ply_split_records<'py>(
     Ok((values, counts, cols.end).into_pyobject(py)?.into_any())
 }
 
+/// The binary little-endian PLY face records of faces with ``sizes``
+/// corners (GIL released), the inverse of :func:`_ply_split_records`.
+/// ``fields`` gives, per property in record order, ``(count bytes (1 or 4)
+/// or 0 for a scalar, values per corner, value bytes, the column's raw
+/// little-endian bytes (uint8))``. Returns the element body as uint8.
+#[pyfunction]
+fn _ply_join_records<'py>(
+    py: Python<'py>,
+    sizes: PyReadonlyArray1<'py, i64>,
+    fields: Vec<(u8, u32, u8, PyReadonlyArray1<'py, u8>)>,
+) -> PyResult<Bound<'py, numpy::PyArray1<u8>>> {
+    use numpy::IntoPyArray;
+    let sizes = sizes.as_slice()?;
+    let cols = fields
+        .iter()
+        .map(|(c, per, vs, d)| Ok(crate::io::ply::Field { count: *c, per: *per, value_size: *vs, data: d.as_slice()? }))
+        .collect::<PyResult<Vec<_>>>()?;
+    let body = py.detach(|| crate::io::ply::join_records(sizes, &cols)).map_err(super::err)?;
+    Ok(body.into_pyarray(py))
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_ply_split_records, m)?)?;
+    m.add_function(wrap_pyfunction!(_ply_join_records, m)?)?;
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
     m.add_function(wrap_pyfunction!(_write_obj, m)?)?;
     Ok(())
