@@ -148,7 +148,9 @@ def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
     if len(data) < body + nv * vdt.itemsize:
         return None, None, vdt
     vrec = np.frombuffer(data, vdt, nv, body)
-    verts = np.column_stack([vrec[c].astype(np.float64) for c in "xyz"]).reshape(nv, 3)
+    verts = np.empty((nv, 3), np.float64)  # one strided copy per column
+    for j, c in enumerate("xyz"):
+        verts[:, j] = vrec[c]
     return verts, {p: vrec[p] for p in vdt.names}, vdt
 
 
@@ -183,10 +185,12 @@ def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops
     if k == 0:
         return None
     verts, vp, _ = _vertex_columns(data, body, nv, vprops)
-    fp = {p: faces[p].reshape(-1) if c is not None else faces[p] for p, c, _ in fprops}
+    # the index columns are copied once, straight from the strided records to int64
+    idx = faces["vertex_indices"].astype(np.int64).reshape(-1)
+    twins = faces["corner_twins"].astype(np.int64).reshape(-1) if "corner_twins" in faces.dtype.names else None
+    fp = {p: idx if p == "vertex_indices" else twins if p == "corner_twins" else faces[p].reshape(-1) if c is not None else faces[p]
+          for p, c, _ in fprops}
     lists = {p for p, c, _ in fprops if c is not None}
-    twins = fp["corner_twins"].astype(np.int64) if "corner_twins" in fp else None
-    idx = fp["vertex_indices"].astype(np.int64)
     return verts, np.full(nf, k, np.int64), idx, twins, (vp, fp, lists, comments)
 
 
