@@ -45,9 +45,10 @@
 
 //! Cost: [`transfer`] evaluates each output corner's row straight into
 //! the output arrays, in parallel blocks of output faces, with no matrix
-//! built and nothing allocated per corner; a home face's corners are read
-//! by walking its cycle (a sorted list only for faces of more than
-//! [`SMALL`] corners, where the walk would be quadratic). The terms and
+//! built and nothing allocated per corner; a home face's corners are
+//! searched in one contiguous slice of the input's corner vertices (a
+//! sorted list only for faces of more than [`SMALL`] corners, where the
+//! scan would be quadratic). The terms and
 //! their order are those of the matrix [`corner_stencils`], so both give
 //! bit-identical values.
 
@@ -104,6 +105,10 @@ struct Ctx<'a> {
     o: &'a Origins,
     /// Exported corner offset of each input face.
     ioff: Vec<u32>,
+    /// The vertex of every exported input corner: face `f`'s corners are
+    /// `ivert[ioff[f]..ioff[f + 1]]`, contiguous, so a search reads one
+    /// short slice instead of chasing `he_next`.
+    ivert: Vec<u32>,
     /// Per input face of more than [`SMALL`] corners: the start of its
     /// `(vertex, exported corner)` list in `sorted` (sorted by vertex);
     /// `NONE` for the others.
@@ -121,24 +126,28 @@ struct Scratch {
 
 impl<'a> Ctx<'a> {
     fn new(input: &'a Mesh, out: &'a Mesh, s: &'a Stencils, o: &'a Origins) -> Result<Ctx<'a>> {
-        let (ioff, _) = export_offsets(input)?;
+        let (ioff, n_in) = export_offsets(input)?;
+        let mut ivert = Vec::with_capacity(n_in);
+        for f in 0..input.n_faces() {
+            crate::cancel::poll(f)?;
+            let mut h = input.f_start[f];
+            for _ in ioff[f]..ioff[f + 1] {
+                ivert.push(input.he_vert[h as usize]);
+                h = input.he_next[h as usize];
+            }
+        }
         let mut big = vec![NONE; input.n_faces()];
         let mut sorted = Vec::new();
         for f in 0..input.n_faces() {
-            crate::cancel::poll(f)?;
-            let d = (ioff[f + 1] - ioff[f]) as usize;
-            if d > SMALL {
+            let (a, b) = (ioff[f] as usize, ioff[f + 1] as usize);
+            if b - a > SMALL {
                 big[f] = sorted.len() as u32;
                 let start = sorted.len();
-                let mut h = input.f_start[f];
-                for j in 0..d as u32 {
-                    sorted.push((input.he_vert[h as usize], ioff[f] + j));
-                    h = input.he_next[h as usize];
-                }
+                sorted.extend(ivert[a..b].iter().zip(a as u32..b as u32).map(|(&v, c)| (v, c)));
                 sorted[start..].sort_unstable();
             }
         }
-        Ok(Ctx { input, out, s, o, ioff, big, sorted })
+        Ok(Ctx { input, out, s, o, ioff, ivert, big, sorted })
     }
 
     fn real(&self, f: u32) -> bool {
@@ -153,18 +162,21 @@ impl<'a> Ctx<'a> {
     /// order (the order of a sorted list: corners increase along the cycle).
     #[inline]
     fn at<'b>(&self, f: u32, u: u32, buf: &'b mut [u32; SMALL]) -> &'b [u32] {
-        let fi = f as usize;
-        let m = self.input;
-        let (mut h, mut n) = (m.f_start[fi], 0usize);
-        let base = self.ioff[fi];
-        for j in 0..self.degree(f) as u32 {
-            if m.he_vert[h as usize] == u {
-                buf[n] = base + j;
+        let base = self.ioff[f as usize];
+        let mut n = 0usize;
+        for (j, &v) in self.corners_of(f).iter().enumerate() {
+            if v == u {
+                buf[n] = base + j as u32;
                 n += 1;
             }
-            h = m.he_next[h as usize];
         }
         &buf[..n]
+    }
+
+    /// The vertices of real face `f`'s exported corners, in cycle order.
+    #[inline]
+    fn corners_of(&self, f: u32) -> &[u32] {
+        &self.ivert[self.ioff[f as usize] as usize..self.ioff[f as usize + 1] as usize]
     }
 
     #[inline]
@@ -202,15 +214,7 @@ impl<'a> Ctx<'a> {
         if self.big[f as usize] != NONE {
             return !self.at_big(f, u).is_empty();
         }
-        let m = self.input;
-        let mut h = m.f_start[f as usize];
-        for _ in 0..self.degree(f) {
-            if m.he_vert[h as usize] == u {
-                return true;
-            }
-            h = m.he_next[h as usize];
-        }
-        false
+        self.corners_of(f).contains(&u)
     }
 
     fn face_of(&self, kind: u8, i: u32) -> u32 {
@@ -328,12 +332,8 @@ impl<'a> Ctx<'a> {
             // a face point: its face's mean, corners in vertex order
             let pairs = &mut sc.pairs;
             pairs.clear();
-            let m = self.input;
-            let mut h = m.f_start[f as usize];
-            for j in 0..self.degree(f) as u32 {
-                pairs.push((m.he_vert[h as usize], self.ioff[f as usize] + j));
-                h = m.he_next[h as usize];
-            }
+            let base = self.ioff[f as usize];
+            pairs.extend(self.corners_of(f).iter().enumerate().map(|(j, &v)| (v, base + j as u32)));
             pairs.sort_unstable();
             let n = pairs.len() as f64;
             terms.extend(pairs.iter().map(|&(_, c)| (c, 1.0 / n)));
@@ -372,6 +372,41 @@ pub fn transfer(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins, arrays: &mu
         }
     }
     let ins: Vec<(&[f64], usize)> = arrays.iter().map(|(a, k)| (a.as_slice(), *k)).collect();
+    // rule 1 depends on the output vertex alone: a vertex born in a real face
+    // that holds its row gets its value once (`held`), and each of its
+    // corners copies it (the same terms in the same order: the same bits)
+    let nvo = out.n_vertices();
+    let mut memo: Vec<Vec<f64>> = arrays.iter().map(|(_, k)| vec![0.0; nvo * k]).collect();
+    let mut held = vec![false; nvo];
+    {
+        const VB: usize = 4096;
+        let nvb = nvo.div_ceil(VB);
+        let mut per: Vec<Vec<&mut [f64]>> = (0..nvb).map(|_| Vec::with_capacity(arrays.len())).collect();
+        for (m, (_, k)) in memo.iter_mut().zip(arrays.iter()) {
+            if *k == 0 {
+                per.iter_mut().for_each(|p| p.push(&mut []));
+            } else {
+                m.chunks_mut(VB * k).zip(per.iter_mut()).for_each(|(ch, p)| p.push(ch));
+            }
+        }
+        held.par_chunks_mut(VB).zip(per.into_par_iter()).enumerate().for_each_init(Vec::<(u32, f64)>::new, |terms, (b, (hv, mut dst))| {
+            if crate::cancel::requested() {
+                return; // the check below reports it
+            }
+            for (i, h) in hv.iter_mut().enumerate() {
+                let p = b * VB + i;
+                let f = o.vertex[p];
+                if o.vertex_kind[p] != FACE || !ctx.real(f) || !ctx.eval(f, p, terms) || terms.is_empty() {
+                    continue;
+                }
+                *h = true;
+                for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
+                    accumulate(&mut d[i * k..(i + 1) * k], terms, a, k);
+                }
+            }
+        });
+        crate::cancel::check()?;
+    }
     blocks.into_par_iter().enumerate().try_for_each_init(
         || (Vec::<(u32, f64)>::new(), Scratch::default()),
         |(terms, sc), (b, mut dst)| -> Result<()> {
@@ -387,17 +422,18 @@ pub fn transfer(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins, arrays: &mu
                 }
                 let mut hc = st;
                 loop {
-                    ctx.terms(hc, terms, sc);
-                    if terms.is_empty() {
-                        return Err(MeshError::Precondition(NO_HOME.into()));
-                    }
-                    for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
-                        let o = &mut d[c * k..(c + 1) * k];
-                        for &(ci, w) in terms.iter() {
-                            let src = &a[ci as usize * k..(ci as usize + 1) * k];
-                            for (o, s) in o.iter_mut().zip(src) {
-                                *o += w * s;
-                            }
+                    let p = out.he_vert[hc as usize] as usize;
+                    if held[p] {
+                        for (d, (m, &(_, k))) in dst.iter_mut().zip(memo.iter().zip(&ins)) {
+                            d[c * k..(c + 1) * k].copy_from_slice(&m[p * k..(p + 1) * k]);
+                        }
+                    } else {
+                        ctx.terms(hc, terms, sc);
+                        if terms.is_empty() {
+                            return Err(MeshError::Precondition(NO_HOME.into()));
+                        }
+                        for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
+                            accumulate(&mut d[c * k..(c + 1) * k], terms, a, k);
                         }
                     }
                     c += 1;
@@ -415,6 +451,17 @@ pub fn transfer(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins, arrays: &mu
         *a = v;
     }
     Ok(())
+}
+
+/// `o += Σ w · a[c]` over the terms, in their order (as `Stencils::apply`).
+#[inline]
+fn accumulate(o: &mut [f64], terms: &[(u32, f64)], a: &[f64], k: usize) {
+    for &(ci, w) in terms {
+        let src = &a[ci as usize * k..(ci as usize + 1) * k];
+        for (o, s) in o.iter_mut().zip(src) {
+            *o += w * s;
+        }
+    }
 }
 
 /// The corner transfer of one level as a matrix (see the module docs):
