@@ -11,6 +11,12 @@ the output bytes are the exported arrays (vertices 24 B, face indices 8 B per co
 8 B per face) and the extra bytes 8·k per output vertex. ``--baseline`` runs the plain calls in a
 subprocess with another interpreter (e.g. the previous release's venv) to check closed-mesh times,
 alternating fresh processes of the two builds three times and keeping each one's best median.
+
+The second table carries k = 2 columns through every scheme that carries them, two levels on the
+7,200-quad torus (120×60): vertex attributes (extra bytes 16 per output vertex) and corner attributes
+(16 per output corner; Catmull-Clark and Loop on their face-varying meshes, the others through the
+generic corner transfer, src/schemes/corner_transfer.rs). Each call is timed in fresh processes (best
+median of three), with ``--baseline`` for the other build too.
 """
 
 from __future__ import annotations
@@ -38,6 +44,45 @@ for name, f in (("catmull_clark", lambda: torus.catmull_clark(1)), ("loop", lamb
     out[name] = statistics.median(ts)
 print(json.dumps(out))
 """
+
+
+CARRY = """
+import json, statistics, sys, time
+import numpy as np
+import topomesh
+m = topomesh.torus(120, 60)
+fi = np.asarray(m.face_indices)
+mv = m.with_attributes(vertex={"a": np.asarray(m.vertices)[:, :2].copy()})
+mc = m.with_attributes(corner={"uv": np.asarray(m.vertices)[fi][:, :2].copy()})
+out = {}
+for name in sys.argv[2].split(","):
+    levels = 1 if name in ("sierpinski", "menger") else 2
+    row = {}
+    for what, mesh in (("plain", m), ("vertex", mv), ("corner", mc)):
+        f = lambda: getattr(mesh, name)(levels)
+        r = f()
+        ts = []
+        for _ in range(int(sys.argv[1])):
+            t = time.perf_counter(); f(); ts.append(time.perf_counter() - t)
+        row[what] = statistics.median(ts)
+    row["bytes"] = 24 * r.n_vertices + 8 * len(r.face_indices) + 8 * len(r.face_sizes)
+    row["V"], row["C"] = r.n_vertices, len(r.face_indices)
+    out[name] = row
+print(json.dumps(out))
+"""
+CARRY_SCHEMES = "catmull_clark,loop,doo_sabin,midpoint,dual,simplest,sqrt3,honeycomb,vertex_truncation,sierpinski"
+
+
+def carry_rows(py: str, runs: int) -> dict[str, dict[str, float]]:
+    """Best medians over three fresh processes of ``py`` (see the module docs)."""
+    best: dict[str, dict[str, float]] = {}
+    for _ in range(3):
+        res = subprocess.run([py, "-c", CARRY, str(runs), CARRY_SCHEMES], capture_output=True, text=True, check=True)
+        for name, row in json.loads(res.stdout).items():
+            b = best.setdefault(name, dict(row))
+            for k in ("plain", "vertex", "corner"):
+                b[k] = min(b[k], row[k])
+    return best
 
 
 def median_time(f, runs: int) -> float:
@@ -115,6 +160,24 @@ def main() -> None:
         for s, t in base.items():
             r = this[s] / t
             lines.append(f"| {s} | {1e3 * this[s]:.1f} | {1e3 * t:.1f} | {r:.2f} | {'met' if r <= 1.10 else 'NOT met'} |")
+    carried = carry_rows(sys.executable, a.runs)
+    before = carry_rows(a.baseline, a.runs) if a.baseline else None
+    lines += ["", "k = 2 columns carried, torus 120×60 (7,200 quads), 2 levels (Sierpinski 1); ms, best median of 3 fresh processes"
+              + (", baseline = the other build in the same run" if before else "") + ":", ""]
+    head = "| scheme | plain | vertex k=2 | × plain | target | corner k=2 | × plain | target |"
+    if before:
+        head += " baseline corner | baseline × plain |"
+    lines += [head, "|" + "---|" * (head.count("|") - 1)]
+    for name, r in carried.items():
+        tv = (1 + 16 * r["V"] / r["bytes"]) * 1.25
+        tc = (1 + 16 * r["C"] / r["bytes"]) * 1.25
+        rv, rc = r["vertex"] / r["plain"], r["corner"] / r["plain"]
+        row = (f"| {name} | {1e3 * r['plain']:.1f} | {1e3 * r['vertex']:.1f} | {rv:.2f} | ≤ {tv:.2f}: {'met' if rv <= tv else 'NOT met'} "
+               f"| {1e3 * r['corner']:.1f} | {rc:.2f} | ≤ {tc:.2f}: {'met' if rc <= tc else 'NOT met'} |")
+        if before:
+            b = before[name]
+            row += f" {1e3 * b['corner']:.1f} | {b['corner'] / b['plain']:.2f} |"
+        lines.append(row)
     text = "\n".join(lines) + "\n"
     print(text)
     Path(a.out).write_text(text)

@@ -177,6 +177,11 @@ pub struct Counts {
     pub loops: u64,
     /// Sierpinski cones (upper bound; see `schemes::sierpinski`).
     pub cones: u64,
+    /// Hole faces (boundary loops), counted in `f` (exact: every scheme
+    /// that accepts an open mesh keeps its holes).
+    pub holes: u64,
+    /// Corners of the hole faces: the boundary edges (upper bound).
+    pub boundary: u64,
 }
 
 impl Counts {
@@ -199,14 +204,20 @@ impl Counts {
         let (v, e) = (m.n_vertices() as u64, m.n_edges() as u64);
         // one cone per vertex without self-loops; at most one per non-loop half-edge
         let cones = if loops == 0 { v } else { 2 * (e - loops) };
-        Counts { v, e, f: m.n_faces() as u64, f3, loops, cones }
+        let (holes, boundary) = if m.n_holes() == 0 {
+            (0, 0)
+        } else {
+            let b = (0..m.n_halfedges()).filter(|&h| m.f_hole[m.he_face[h] as usize]).count();
+            (m.n_holes() as u64, b as u64)
+        };
+        Counts { v, e, f: m.n_faces() as u64, f3, loops, cones, holes, boundary }
     }
 
     /// Counts of a mesh of `v` vertices, `e` edges and `f` faces, nothing
     /// else known: no triangles and no self-loops, one cone per half-edge
     /// (the values that keep later predictions upper bounds).
     pub fn plain(v: u64, e: u64, f: u64) -> Counts {
-        Counts { v, e, f, f3: 0, loops: 0, cones: e.saturating_mul(2) }
+        Counts { v, e, f, f3: 0, loops: 0, cones: e.saturating_mul(2), holes: 0, boundary: 0 }
     }
 }
 
@@ -302,13 +313,37 @@ pub mod predict {
         (c, c)
     }
 
+    /// A closed-mesh prediction made valid for an input with holes (h hole
+    /// faces, b boundary edges). The holes stay holes, unrefined, so the
+    /// closed formulas overcount by at most what refining them would make:
+    /// a hole of n sides refined as a face (Loop fans it first) gives at
+    /// most n + 1 vertices, 5n edges and 4n faces. The boundary rules add at
+    /// most 2b vertices and edges (the dual: F_r + b + V_b vertices,
+    /// E + 2b edges; Doo-Sabin's, √3's and simplest's boundary points at
+    /// most b) and the h holes as faces (the dual's F' = V + h). Output
+    /// boundaries have at most 3b edges (√3's even levels trisect them, the
+    /// others at most halve), and as many holes. Bounds, not exact counts:
+    /// the lower one only makes the up-front refusal (`check_levels`)
+    /// refuse less. Closed inputs (h = b = 0) get the closed formulas.
+    fn open(c: &Counts, (lo, hi): (Counts, Counts)) -> (Counts, Counts) {
+        if c.holes == 0 && c.boundary == 0 {
+            return (lo, hi);
+        }
+        let (h, b) = (c.holes, c.boundary);
+        let sub = |x: u64, y: u64| x.saturating_sub(y);
+        let bb = mul(3, b);
+        let lo = Counts { v: sub(lo.v, add(b, h)), e: sub(lo.e, mul(5, b)), f: sub(lo.f, mul(4, b)), f3: sub(lo.f3, mul(4, b)), holes: h, boundary: bb, ..lo };
+        let hi = Counts { v: add(hi.v, mul(2, b)), e: add(hi.e, mul(2, b)), f: add(hi.f, h), holes: h, boundary: bb, ..hi };
+        (lo, hi)
+    }
+
     /// V' = V + E + F, E' = 4E, F' = 2E (quads).
     pub fn catmull_clark(c: &Counts) -> (Counts, Counts) {
-        exact(Counts::plain(add(add(c.v, c.e), c.f), mul(4, c.e), mul(2, c.e)).no_loops())
+        open(c, exact(Counts::plain(add(add(c.v, c.e), c.f), mul(4, c.e), mul(2, c.e)).no_loops()))
     }
     /// V' = 2E, E' = 4E, F' = F + E + V.
     pub fn doo_sabin(c: &Counts) -> (Counts, Counts) {
-        exact(Counts::plain(mul(2, c.e), mul(4, c.e), add(add(c.f, c.e), c.v)).no_loops())
+        open(c, exact(Counts::plain(mul(2, c.e), mul(4, c.e), add(add(c.f, c.e), c.v)).no_loops()))
     }
     /// n-gons fanned into n triangles first (T = 2E − 2F₃ triangles,
     /// E_t = 3E − 3F₃, V_t = V + F − F₃), then V' = V_t + E_t, E' = 2E_t + 3T, F' = 4T.
@@ -318,32 +353,32 @@ pub mod predict {
         let et = mul(3, c.e).saturating_sub(mul(3, f3));
         let vt = add(c.v, c.f - f3);
         let out = Counts { f3: mul(4, t), ..Counts::plain(add(vt, et), add(mul(2, et), mul(3, t)), mul(4, t)) };
-        exact(out.no_loops())
+        open(c, exact(out.no_loops()))
     }
     /// V' = V + F, E' = 3E, F' = 2E (triangles).
     pub fn sqrt3(c: &Counts) -> (Counts, Counts) {
         let f = mul(2, c.e);
-        exact(Counts { f3: f, ..Counts::plain(add(c.v, c.f), mul(3, c.e), f) }.no_loops())
+        open(c, exact(Counts { f3: f, ..Counts::plain(add(c.v, c.f), mul(3, c.e), f) }.no_loops()))
     }
     /// V' = E, E' = 2E, F' = F + V.
     pub fn simplest(c: &Counts) -> (Counts, Counts) {
-        exact(Counts::plain(c.e, mul(2, c.e), add(c.f, c.v)).no_loops())
+        open(c, exact(Counts::plain(c.e, mul(2, c.e), add(c.f, c.v)).no_loops()))
     }
     /// Triangles 1 → 4, n-gons into n quads: V' = V + E + (F − F₃),
     /// F' = 2E + F₃, E' = 4E.
     pub fn midpoint(c: &Counts) -> (Counts, Counts) {
         let f3 = c.f3.min(c.f);
         let out = Counts { f3: mul(4, f3), ..Counts::plain(add(add(c.v, c.e), c.f - f3), mul(4, c.e), add(mul(2, c.e), f3)) };
-        exact(out.no_loops())
+        open(c, exact(out.no_loops()))
     }
     /// V' = F, E' = E, F' = V.
     pub fn dual(c: &Counts) -> (Counts, Counts) {
-        exact(Counts::plain(c.f, c.e, c.v))
+        open(c, exact(Counts::plain(c.f, c.e, c.v)))
     }
     /// Honeycomb and vertex truncation: V' = 2E, E' = 3E, F' = F + V (the
     /// rectifying ratio 0.5 gives fewer).
     pub fn truncation(c: &Counts) -> (Counts, Counts) {
-        exact(Counts::plain(mul(2, c.e), mul(3, c.e), add(c.f, c.v)).no_loops())
+        open(c, exact(Counts::plain(mul(2, c.e), mul(3, c.e), add(c.f, c.v)).no_loops()))
     }
     /// Sierpinski (schemes::sierpinski, "Count formulas"), with D = 0 and
     /// every face having a non-loop side: V' = V + N, E' = E + 4N,
@@ -357,6 +392,7 @@ pub mod predict {
             f3: 0,
             loops: add(c.loops, n),
             cones: add(c.cones, mul(2, n)),
+            ..Counts::default()
         };
         let hi = Counts { f: add(add(mul(2, n), c.cones), c.f), ..lo };
         (lo, hi)
@@ -420,6 +456,72 @@ mod tests {
                     for (a, l, h, what) in [(got.v, lo.v, hi.v, "V"), (got.e, lo.e, hi.e, "E"), (got.f, lo.f, hi.f, "F")] {
                         assert!(l <= a && a <= h, "{name}: {what} = {a} outside predicted [{l}, {h}]");
                     }
+                    m = r;
+                }
+            }
+        }
+    }
+
+    /// The predictors bound the real counts on open meshes too (hole faces
+    /// counted as faces, as `Counts::of` does), two levels deep: a disk, an
+    /// annulus, a box and an icosahedron with holes, and a genus-2 surface
+    /// with three holes.
+    #[test]
+    fn predictors_bound_open_meshes() {
+        use crate::mesh::BuildOptions;
+        use crate::schemes::hosts::test_meshes::open_meshes;
+        use crate::schemes::level::{Level, Request};
+        let g = primitives::genus_surface(2).unwrap().to_polygons();
+        let nf = g.sizes.len();
+        let drop = [0, nf / 3, 2 * nf / 3];
+        let (mut sizes, mut idx, mut k) = (Vec::new(), Vec::new(), 0usize);
+        for (f, &n) in g.sizes.iter().enumerate() {
+            if !drop.contains(&f) {
+                sizes.push(n as i64);
+                idx.extend(g.indices[k..k + n as usize].iter().map(|&v| v as i64));
+            }
+            k += n as usize;
+        }
+        let opts = BuildOptions { close_boundaries: true, ..Default::default() };
+        let genus2 = Mesh::from_polygons(primitives::genus_surface(2).unwrap().positions().to_vec(), &sizes, &idx, opts).unwrap();
+        assert_eq!(genus2.n_holes(), 3);
+        let mut meshes = open_meshes();
+        meshes.push(("genus2_three_holes", genus2));
+        type L = fn(&Mesh, &Request) -> Result<Level>;
+        fn honeycomb(m: &Mesh, r: &Request) -> Result<Level> {
+            schemes::honeycomb::honeycomb_level(m, 0.5, None, r)
+        }
+        fn truncation(m: &Mesh, r: &Request) -> Result<Level> {
+            schemes::vertex_truncation::vertex_truncation_level(m, schemes::vertex_truncation::Truncation::Polyhedral { ratio: 0.3 }, r)
+        }
+        let cases: [(&str, L, Predictor); 9] = [
+            ("catmull_clark", schemes::catmull_clark::catmull_clark_level, predict::catmull_clark),
+            ("doo_sabin", schemes::doo_sabin::doo_sabin_level, predict::doo_sabin),
+            ("loop", schemes::loop_subdivision::loop_level, predict::loop_subdivision),
+            ("sqrt3", schemes::sqrt3::sqrt3_level, predict::sqrt3),
+            ("simplest", schemes::simplest::simplest_level, predict::simplest),
+            ("midpoint", schemes::midpoint::midpoint_level, predict::midpoint),
+            ("dual", schemes::dual::dual_level, predict::dual),
+            ("honeycomb", honeycomb, predict::truncation),
+            ("vertex_truncation", truncation, predict::truncation),
+        ];
+        for (name, level, step) in cases {
+            for (mname, m0) in &meshes {
+                let mut m = m0.clone();
+                // the lower bounds chained from the input, as check_levels does
+                let mut chain = Counts::of(&m);
+                for k in 0..2 {
+                    let c = Counts::of(&m);
+                    let (lo, hi) = step(&c);
+                    chain = step(&chain).0;
+                    let r = level(&m, &Request { level: k, ..Request::plain() }).unwrap().mesh;
+                    assert!(r.n_holes() > 0, "{name} {mname}: stays open");
+                    let got = Counts::of(&r);
+                    for (a, l, h, cl, what) in [(got.v, lo.v, hi.v, chain.v, "V"), (got.e, lo.e, hi.e, chain.e, "E"), (got.f, lo.f, hi.f, chain.f, "F")] {
+                        assert!(l <= a && a <= h, "{name} on {mname}, level {k}: {what} = {a} outside predicted [{l}, {h}]");
+                        assert!(cl <= a, "{name} on {mname}, level {k}: {what} = {a} below the chained lower bound {cl}");
+                    }
+                    assert!(got.boundary <= hi.boundary && got.holes == hi.holes, "{name} on {mname}: boundary {} > {}", got.boundary, hi.boundary);
                     m = r;
                 }
             }

@@ -524,5 +524,5 @@ def test_operators_announce_dropped_data(op) -> None:
     c = tm.cube()
     op(c)  # no warning (filterwarnings=error)
     d = c.with_attributes(vertex={"a": np.arange(8.0)})
-    with pytest.warns(tm.GeometryWarning, match=r"does not carry the input's creases and attributes"):
+    with pytest.warns(tm.GeometryWarning, match=r'does not carry the input\'s vertex attributes \["a"\]'):
         op(d)

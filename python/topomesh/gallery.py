@@ -129,6 +129,17 @@ def _real_mesh_entries() -> Iterator[Entry]:
         color=examples.checker,
     )
 
+    # OpenSubdiv's face-varying modes that pin the UV corners and junctions, and seams through a scheme
+    # without face-varying rules (the generic corner transfer: no value crosses a seam)
+    for mode in ("corners_plus1", "corners_plus2"):
+        yield Entry(
+            f"uv_cube_checker_{mode}",
+            f"Checkerboard UVs with seams through Catmull-Clark ×4, corner_interpolation={mode}",
+            lambda m=mode: examples.uv_cube().catmull_clark(4, corner_interpolation=m),
+            color=examples.checker,
+        )
+    yield Entry("uv_cube_checker_doo_sabin", "Checkerboard UVs with seams through Doo-Sabin ×4", lambda: examples.uv_cube().doo_sabin(4), color=examples.checker)
+
     def parents() -> Mesh:
         t = topomesh.torus(8, 6)
         return t.with_attributes(face={"parent": np.arange(len(t.face_sizes))}).catmull_clark(3)

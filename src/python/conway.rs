@@ -12,6 +12,19 @@ fn run(py: Python<'_>, m: &crate::Mesh, name: &str, op: Op) -> PyResult<PyMesh> 
     run_interruptible(py, || conway::apply_all(name, m, &[op])).map(PyMesh::wrap)
 }
 
+/// The output with what it keeps of the input's data: reflect keeps its
+/// vertices and faces in order (vertex and face attributes survive); every
+/// other operator rebuilds both, and the data it drops is named in a
+/// `GeometryWarning`.
+fn data_of(py: Python<'_>, data: &super::data::MeshData, name: &str, op: Op, out: PyMesh) -> PyResult<PyMesh> {
+    if data.is_empty() {
+        return Ok(out);
+    }
+    let keep = op == Op::Reflect;
+    let d = super::data::kept(py, data, name, false, keep, keep)?;
+    Ok(PyMesh::with_data(out.inner, d))
+}
+
 fn sides(name: &str, n: Option<&Bound<'_, PyAny>>) -> PyResult<Option<usize>> {
     n.map(|n| usize_in(name, "n", big_int(n)?, 1, MAX_SIDES)).transpose()
 }
@@ -23,7 +36,7 @@ macro_rules! plain_op {
         impl PyMesh {
             #[doc = $doc]
             fn $name(&self, py: Python<'_>) -> PyResult<PyMesh> {
-                run(py, &self.inner, stringify!($name), $op)
+                data_of(py, &self.data, stringify!($name), $op, run(py, &self.inner, stringify!($name), $op)?)
             }
         }
     };
@@ -38,7 +51,7 @@ macro_rules! sized_op {
             #[pyo3(signature = (n = None))]
             fn $name(&self, py: Python<'_>, n: Option<&Bound<'_, PyAny>>) -> PyResult<PyMesh> {
                 let n = sides(stringify!($name), n)?;
-                run(py, &self.inner, stringify!($name), $op(n))
+                data_of(py, &self.data, stringify!($name), $op(n), run(py, &self.inner, stringify!($name), $op(n))?)
             }
         }
     };
@@ -121,6 +134,7 @@ impl PyMesh {
     ///     letter in ``notation``, boundary loops, or an output beyond the
     ///     memory budget.
     fn conway(&self, py: Python<'_>, notation: &str) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "conway")?;
         run_interruptible(py, || conway::conway(notation, Some(&self.inner))).map(PyMesh::wrap)
     }
 
@@ -158,7 +172,8 @@ impl PyMesh {
     fn canonicalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, tol: f64) -> PyResult<(PyMesh, f64)> {
         let it = usize_in("canonicalize", "iterations", iterations, 0, usize::MAX)?;
         let (m, r) = run_interruptible(py, || canonical::canonicalize(&self.inner, it, tol))?;
-        Ok((PyMesh::wrap(m), r))
+        // only positions move: every attribute and crease stays valid
+        Ok((PyMesh::with_data(m, self.data.clone_ref(py)), r))
     }
 }
 

@@ -25,19 +25,58 @@ pub struct MeshData {
 }
 
 /// Warns (`GeometryWarning`) that operator `op` returns a mesh without the
-/// input's creases and attributes: the local operators rebuild faces and
-/// edges and carry positions only, and data must never vanish unannounced.
+/// input's creases and attributes: the local operators, the Conway
+/// operators, TopMod's remeshing schemes and the object tools rebuild faces
+/// and edges and carry positions only, and data must never vanish
+/// unannounced. The message names what is dropped.
 pub(crate) fn warn_dropped(data: &MeshData, op: &str) -> PyResult<()> {
-    if data.is_empty() {
+    warn_dropping(data, op, false, false)
+}
+
+/// The names of what `data` holds beside what is kept (`vertex`, `face`:
+/// those attributes survive), e.g. `creases, vertex attributes ["c"]`.
+fn dropped_names(data: &MeshData, vertex: bool, face: bool) -> Vec<String> {
+    let list = |what: &str, v: &[(String, Py<PyAny>)]| -> Option<String> {
+        (!v.is_empty()).then(|| format!("{what} attributes [{}]", v.iter().map(|(n, _)| format!("{n:?}")).collect::<Vec<_>>().join(", ")))
+    };
+    let mut out = Vec::new();
+    if data.creases.is_some() {
+        out.push("creases".to_string());
+    }
+    out.extend(if vertex { None } else { list("vertex", &data.vertex) });
+    out.extend(if face { None } else { list("face", &data.face) });
+    out.extend(list("corner", &data.corner));
+    out
+}
+
+/// [`warn_dropped`] for an operator that keeps the vertex and/or face
+/// attributes (same vertices, or same faces in the same order): warns about
+/// the rest only.
+pub(crate) fn warn_dropping(data: &MeshData, op: &str, vertex: bool, face: bool) -> PyResult<()> {
+    let names = dropped_names(data, vertex, face);
+    if names.is_empty() {
         return Ok(());
     }
     Python::attach(|py| {
         let msg = format!(
-            "{op}: the result does not carry the input's creases and attributes (the operators keep positions only); \
-             attach them again with with_creases / with_attributes, or call without_data() first to silence this"
+            "{op}: the result does not carry the input's {} (this operator rebuilds the faces and edges and keeps positions only); \
+             attach them again with with_creases / with_attributes, or call without_data() first to silence this",
+            names.join(", ")
         );
         PyErr::warn(py, &py.get_type::<super::GeometryWarning>(), &std::ffi::CString::new(msg).expect("no NUL"), 1)
     })
+}
+
+/// The data an operator keeps: all of it when `all` (positions moved,
+/// topology and numbering unchanged), else the vertex and face attributes
+/// as flagged, after warning about the rest ([`warn_dropping`]).
+pub(crate) fn kept(py: Python<'_>, data: &MeshData, op: &str, all: bool, vertex: bool, face: bool) -> PyResult<MeshData> {
+    if all {
+        return Ok(data.clone_ref(py));
+    }
+    warn_dropping(data, op, vertex, face)?;
+    let c = |v: &Vec<(String, Py<PyAny>)>| v.iter().map(|(n, a)| (n.clone(), a.clone_ref(py))).collect();
+    Ok(MeshData { creases: None, vertex: if vertex { c(&data.vertex) } else { vec![] }, face: if face { c(&data.face) } else { vec![] }, corner: vec![] })
 }
 
 impl MeshData {

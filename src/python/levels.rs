@@ -210,10 +210,7 @@ pub(crate) fn run<'py>(
             let (Some(s), Some(o)) = (&lv.stencils, &lv.origins) else {
                 return Err(crate::MeshError::Precondition(format!("{}: its level has no stencils or origins, so it cannot carry corner attributes", st.name)));
             };
-            let t = crate::schemes::corner_transfer::corner_stencils(m, &lv.mesh, s, o)?;
-            for (a, k) in &mut st.corner_rows {
-                *a = t.apply(a, *k)?;
-            }
+            crate::schemes::corner_transfer::transfer(m, &lv.mesh, s, o, &mut st.corner_rows)?;
         }
         if let (Some(o), true) = (lv.origins, st.want_origins) {
             st.origins = Some(match &st.origins {

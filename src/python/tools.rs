@@ -64,7 +64,8 @@ impl PyMesh {
         let it = super::usize_in("planarize", "iterations", iterations, 0, 1_000_000)?;
         let mut m = self.inner.clone();
         let r = super::run_interruptible(py, || m.planarize(it, tol))?;
-        Ok((PyMesh::wrap(m), r.residual))
+        // only positions move: every attribute and crease stays valid
+        Ok((PyMesh::with_data(m, self.data.clone_ref(py)), r.residual))
     }
 
     /// The largest distance of a vertex to the least-squares plane of one
@@ -82,14 +83,15 @@ impl PyMesh {
     /// MeshError
     ///     A radius that is not positive, a vertex at the centre.
     #[pyo3(signature = (radius = None, center = None))]
-    fn spherize(&self, radius: Option<f64>, center: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
+    fn spherize(&self, py: Python<'_>, radius: Option<f64>, center: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
         let c = point("spherize", "center", center)?;
         if let Some(r) = radius {
             super::finite_in("spherize", "radius", r, f64::MIN_POSITIVE, MAX_LENGTH)?;
         }
         let mut m = self.inner.clone();
         m.spherize(c, radius).map_err(err)?;
-        Ok(PyMesh::wrap(m))
+        // only positions move: every attribute and crease stays valid
+        Ok(PyMesh::with_data(m, self.data.clone_ref(py)))
     }
 
     /// Remove valence-2 vertices (TopMod's object tool): each vertex with
@@ -97,6 +99,7 @@ impl PyMesh {
     /// genus unchanged). Vertices on a self-loop, and those whose removal
     /// would empty a face (the two-gon sphere keeps one), stay.
     fn remove_valence2_vertices(&self, py: Python<'_>) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "remove_valence2_vertices")?;
         let (m, _) = py.detach(|| self.inner.remove_valence2_vertices()).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
@@ -105,6 +108,7 @@ impl PyMesh {
     /// its two sides becoming one edge (E−1, F−1 each; V and genus
     /// unchanged). A component made only of two-gons keeps two of them.
     fn cleanup_two_gons(&self, py: Python<'_>) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "cleanup_two_gons")?;
         let (m, _) = py.detach(|| self.inner.cleanup_two_gons()).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
@@ -115,6 +119,7 @@ impl PyMesh {
     /// tenth of each edge's length when ``offset`` is None.
     #[pyo3(signature = (offset = None))]
     fn split_valence2_vertices(&self, py: Python<'_>, offset: Option<f64>) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "split_valence2_vertices")?;
         let mut m = self.inner.clone();
         py.detach(|| m.split_valence2_vertices(offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
@@ -126,6 +131,7 @@ impl PyMesh {
     /// edge's first vertex (the row of :attr:`edges`).
     #[pyo3(signature = (n = 1))]
     fn subdivide_all_edges(&self, py: Python<'_>, #[pyo3(from_py_with = super::big_int)] n: i128) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "subdivide_all_edges")?;
         let n = super::usize_in("subdivide_all_edges", "n", n, 1, 1 << 20)?;
         let m = py.detach(|| self.inner.subdivide_all_edges(n)).map_err(err)?;
         Ok(PyMesh::wrap(m))
@@ -149,6 +155,7 @@ impl PyMesh {
     ///     When the tubes cross each other (strips too wide for the faces).
     #[pyo3(signature = (thickness, width = None))]
     fn wireframe(&self, py: Python<'_>, thickness: f64, width: Option<f64>) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "wireframe")?;
         super::finite_in("wireframe", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
         if let Some(w) = width {
             super::finite_in("wireframe", "width", w, f64::MIN_POSITIVE, MAX_LENGTH)?;
@@ -199,6 +206,7 @@ impl PyMesh {
     ///     When the hub, the pipes or the bridges pass through the surface.
     #[pyo3(signature = (faces, scale = 1.0, extrude = 0.5, algorithm = "convex_hull"))]
     fn multi_face_handle(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, scale: f64, extrude: f64, algorithm: &str) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "multi_face_handle")?;
         let fs = index_list("multi_face_handle", "face", faces)?;
         super::finite_in("multi_face_handle", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
         super::finite_in("multi_face_handle", "extrude", extrude, -MAX_LENGTH, MAX_LENGTH)?;
@@ -253,6 +261,7 @@ impl PyMesh {
     ///     When the columns or joints cross each other.
     #[pyo3(signature = (thickness = 0.25, segments = 4))]
     fn wireframe_columns(&self, py: Python<'_>, thickness: f64, #[pyo3(from_py_with = super::big_int)] segments: i128) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "wireframe_columns")?;
         super::finite_in("wireframe_columns", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
         let n = super::usize_in("wireframe_columns", "segments", segments, 3, 100)?;
         let out = Counts::plain(2 * n as u64 * self.inner.n_edges() as u64, 6 * n as u64 * self.inner.n_edges() as u64, 4 * n as u64 * self.inner.n_edges() as u64);
@@ -269,6 +278,7 @@ impl PyMesh {
     /// copy is the outer shell. Returns a :class:`Rind` (faces ``0..F``
     /// outer, ``F..2F`` inner, as :meth:`rind`).
     fn rind_by_scaling(&self, py: Python<'_>, scale: f64) -> PyResult<super::ops::PyRind> {
+        super::data::warn_dropped(&self.data, "rind_by_scaling")?;
         super::finite_in("rind_by_scaling", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
         let r = py.detach(|| self.inner.rind_by_scaling(scale)).map_err(err)?;
         Ok(super::ops::PyRind { inner: r })
@@ -288,6 +298,7 @@ impl PyMesh {
     ///     vertex on or below its plane, a cut that removes a whole component.
     #[pyo3(signature = (vertices, offset = 0.25))]
     fn cut_vertices(&self, py: Python<'_>, vertices: &Bound<'_, PyAny>, offset: f64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "cut_vertices")?;
         let vs = index_list("cut_vertices", "vertex", vertices)?;
         let (m, _) = py.detach(|| self.inner.cut_vertices(&vs, offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
@@ -300,6 +311,7 @@ impl PyMesh {
     /// :meth:`cut_vertices`.
     #[pyo3(signature = (edges, offset = 0.25))]
     fn cut_edges(&self, py: Python<'_>, edges: &Bound<'_, PyAny>, offset: f64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "cut_edges")?;
         let es = index_list("cut_edges", "edge", edges)?;
         let (m, _) = py.detach(|| self.inner.cut_edges(&es, offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
@@ -311,6 +323,7 @@ impl PyMesh {
     /// :meth:`cut_vertices`.
     #[pyo3(signature = (faces, offset = 0.25))]
     fn cut_faces(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, offset: f64) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "cut_faces")?;
         let fs = index_list("cut_faces", "face", faces)?;
         let (m, _) = py.detach(|| self.inner.cut_faces(&fs, offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))

@@ -99,6 +99,7 @@ impl PyMesh {
     ///     A parameter out of range, an open mesh, or the memory budget.
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "stellate")?;
         let d = finite_in("stellate", "offset", offset, 0.0, 10.0)?;
         iterate(py, &self.inner, iterations, progress, "stellate", p_stellate, |m| st::stellate(m, d))
     }
@@ -121,6 +122,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn double_stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "double_stellate")?;
         let d = finite_in("double_stellate", "offset", offset, 0.0, 10.0)?;
         iterate(py, &self.inner, iterations, progress, "double_stellate", p_double_stellate, |m| st::double_stellate(m, d))
     }
@@ -148,6 +150,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, height = 0.0, curve = 0.0, progress = false))]
     fn double_stellate_misc(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, height: f64, curve: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "double_stellate_misc")?;
         let h = finite_in("double_stellate_misc", "height", height, -1.0, 1.0)?;
         let c = finite_in("double_stellate_misc", "curve", curve, -1.0, 1.0)?;
         iterate(py, &self.inner, iterations, progress, "double_stellate_misc", p_double_stellate_misc, |m| st::double_stellate_misc(m, h, c))
@@ -170,6 +173,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn stellate_edge_removal(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "stellate_edge_removal")?;
         iterate(py, &self.inner, iterations, progress, "stellate_edge_removal", p_join, |m| st::stellate_edge_removal(m, 0.0))
     }
 
@@ -189,6 +193,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn linear_vertex_insertion(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "linear_vertex_insertion")?;
         iterate(py, &self.inner, iterations, progress, "linear_vertex_insertion", p_linear, linear::linear_vertex_insertion)
     }
 
@@ -211,6 +216,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, alpha = 0.5625, progress = false))]
     fn corner_cutting(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, alpha: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "corner_cutting")?;
         if !(alpha.is_finite() && alpha >= 1.0 / 3.0 && alpha < 1.0) {
             return Err(arg_err(format!("corner_cutting: alpha = {alpha} is out of range; it must be a finite number in [1/3, 1)")));
         }
@@ -235,6 +241,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, thickness = 0.25, progress = false))]
     fn modified_corner_cutting(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "modified_corner_cutting")?;
         let t = unit("modified_corner_cutting", "thickness", thickness)?;
         iterate(py, &self.inner, iterations, progress, "modified_corner_cutting", p_dual_host, |m| cc::modified_corner_cutting(m, t))
     }
@@ -254,6 +261,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn root3(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "root3")?;
         iterate(py, &self.inner, iterations, progress, "root3", p_stellate, compose::root3)
     }
 
@@ -277,6 +285,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, length = 1.0, progress = false))]
     fn loop_style(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "loop_style")?;
         let l = unit("loop_style", "length", length)?;
         iterate(py, &self.inner, iterations, progress, "loop_style", p_loop_style, |m| ls::loop_style(m, l))
     }
@@ -303,6 +312,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn root4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "root4")?;
         let (w, t) = (unit("root4", "weight", weight)?, unit("root4", "twist", twist)?);
         iterate(py, &self.inner, iterations, progress, "root4", p_root4, |m| ls::root4(m, w, t))
     }
@@ -311,6 +321,7 @@ impl PyMesh {
     /// root-4 (:meth:`root4`, same parameters and counts).
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn dual_loop_style(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_loop_style")?;
         let (w, t) = (unit("dual_loop_style", "weight", weight)?, unit("dual_loop_style", "twist", twist)?);
         iterate(py, &self.inner, iterations, progress, "dual_loop_style", p_root4, |m| ls::root4(m, w, t))
     }
@@ -319,6 +330,7 @@ impl PyMesh {
     /// (:meth:`root4`, same parameters and counts).
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn hexagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "hexagon_preserving")?;
         let (w, t) = (unit("hexagon_preserving", "weight", weight)?, unit("hexagon_preserving", "twist", twist)?);
         iterate(py, &self.inner, iterations, progress, "hexagon_preserving", p_root4, |m| ls::root4(m, w, t))
     }
@@ -329,6 +341,7 @@ impl PyMesh {
     /// 2E triangles).
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn dual_hexagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_hexagon_preserving")?;
         let (w, t) = (unit("dual_hexagon_preserving", "weight", weight)?, unit("dual_hexagon_preserving", "twist", twist)?);
         iterate(py, &self.inner, iterations, progress, "dual_hexagon_preserving", p_loop_style, |m| compose::dual_hexagon_preserving(m, w, t))
     }
@@ -338,6 +351,7 @@ impl PyMesh {
     /// dualised.
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn dual_loop(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_loop")?;
         iterate(py, &self.inner, iterations, progress, "dual_loop", p_dual_loop, compose::dual_loop)
     }
 
@@ -360,6 +374,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn pentagonalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "pentagonalize")?;
         let o = unit("pentagonalize", "offset", offset)?;
         iterate(py, &self.inner, iterations, progress, "pentagonalize", p_pentagonal, |m| pt::pentagonalize(m, o))
     }
@@ -368,6 +383,7 @@ impl PyMesh {
     /// :meth:`pentagonalize`'s counts, positions averaged twice.
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn cubic_pentagonalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "cubic_pentagonalize")?;
         let o = unit("cubic_pentagonalize", "offset", offset)?;
         iterate(py, &self.inner, iterations, progress, "cubic_pentagonalize", p_pentagonal, |m| compose::cubic_pentagonalize(m, o))
     }
@@ -378,6 +394,7 @@ impl PyMesh {
     /// one k-gon per valence-k vertex, 2E triangles).
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn dual_pentagonalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_pentagonalize")?;
         let o = unit("dual_pentagonalize", "offset", offset)?;
         iterate(py, &self.inner, iterations, progress, "dual_pentagonalize", p_dual_pentagonal, |m| compose::dual_pentagonalize(m, o))
     }
@@ -402,6 +419,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 0.75, progress = false))]
     fn pentagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "pentagon_preserving")?;
         let sc = unit("pentagon_preserving", "scale", scale)?;
         iterate(py, &self.inner, iterations, progress, "pentagon_preserving", p_pentagon_preserving, |m| pt::pentagon_preserving(m, sc))
     }
@@ -412,6 +430,7 @@ impl PyMesh {
     /// V' = V + S, E' = 2E + 2S, F' = F + E + S.
     #[pyo3(signature = (iterations = 1, scale = 0.75, progress = false))]
     fn dual_pentagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_pentagon_preserving")?;
         let sc = unit("dual_pentagon_preserving", "scale", scale)?;
         iterate(py, &self.inner, iterations, progress, "dual_pentagon_preserving", p_dual_pentagon_preserving, |m| compose::dual_pentagon_preserving(m, sc))
     }
@@ -435,6 +454,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 0.7, progress = false))]
     fn dual_12_6_4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_12_6_4")?;
         iterate(py, &self.inner, iterations, progress, "dual_12_6_4", p_dual_1264, |m| t64::dual_12_6_4(m, scale))
     }
 
@@ -443,6 +463,7 @@ impl PyMesh {
     /// Per iteration V' = V + E + F, E' = 6E, F' = 4E (all triangles).
     #[pyo3(signature = (iterations = 1, scale = 0.7, progress = false))]
     fn remesh_12_6_4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "remesh_12_6_4")?;
         iterate(py, &self.inner, iterations, progress, "remesh_12_6_4", p_1264, |m| compose::remesh_12_6_4(m, scale))
     }
 
@@ -465,6 +486,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, thickness = 0.33, progress = false))]
     fn checkerboard(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "checkerboard")?;
         iterate(py, &self.inner, iterations, progress, "checkerboard", p_checker, |m| cb::checkerboard(m, thickness))
     }
 
@@ -473,6 +495,7 @@ impl PyMesh {
     /// Per iteration V' = V + 4E, E' = 9E, F' = F + 4E.
     #[pyo3(signature = (iterations = 1, thickness = 0.33, progress = false))]
     fn dual_checkerboard(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dual_checkerboard")?;
         iterate(py, &self.inner, iterations, progress, "dual_checkerboard", p_checker, |m| compose::dual_checkerboard(m, thickness))
     }
 
@@ -483,6 +506,7 @@ impl PyMesh {
     /// n-gons, 2E quads, E two-gons, one k-gon per valence-k vertex).
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn doo_sabin_bc(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "doo_sabin_bc")?;
         iterate(py, &self.inner, iterations, progress, "doo_sabin_bc", p_doo_sabin_bc, compose::doo_sabin_bc)
     }
 
@@ -510,6 +534,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 1.0, length = 1.0, progress = false))]
     fn doo_sabin_bc_new(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, length: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "doo_sabin_bc_new")?;
         if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
             return Err(arg_err(format!("doo_sabin_bc_new: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
         }
@@ -539,6 +564,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, length = 1.0, scale = 1.0, progress = false))]
     fn dome(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "dome")?;
         let l = finite_in("dome", "length", length, 0.0, 2.0)?;
         if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
             return Err(arg_err(format!("dome: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
@@ -564,6 +590,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 1.0, progress = false))]
     fn fractal(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "fractal")?;
         let o = finite_in("fractal", "offset", offset, 0.0, 2.0)?;
         iterate(py, &self.inner, iterations, progress, "fractal", p_fractal, |m| ls::fractal(m, o))
     }
@@ -593,6 +620,7 @@ impl PyMesh {
     ///     A face out of range or a point-sphere, an open mesh.
     #[pyo3(signature = (faces, quads = true))]
     fn subdivide_faces(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, quads: bool) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "subdivide_faces")?;
         let sel = faces_arg("subdivide_faces", faces)?;
         // upper bounds: N corners selected, at most N edges split, k <= N
         let c = Counts::of(&self.inner);
@@ -660,6 +688,7 @@ impl PyMesh {
     #[pyo3(signature = (faces, kind = "cubical", length = None, scale = 1.0, twist = 0.0, segments = 1, angle = None, lengths = None))]
     #[allow(clippy::too_many_arguments)]
     fn extrude(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, kind: &str, length: Option<f64>, scale: f64, twist: f64, #[pyo3(from_py_with = big_int)] segments: i128, angle: Option<f64>, lengths: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
+        super::data::warn_dropped(&self.data, "extrude")?;
         let k = ex::Kind::parse(kind).ok_or_else(|| arg_err(format!("extrude: kind = {kind:?} is not one of {}", ex::Kind::NAMES)))?;
         let segments = super::usize_in("extrude", "segments", segments, 1, 1 << 20)?;
         let length = finite_in("extrude", "length", length.unwrap_or(k.default_length()), 0.0, 1e6)?;

@@ -43,250 +43,464 @@
 //! column = exported input corner (both in face order, holes skipped), so
 //! `T @ values` carries any `(C, k)` corner array through the level.
 
-use super::hosts::FaceLayout;
+//! Cost: [`transfer`] evaluates each output corner's row straight into
+//! the output arrays, in parallel blocks of output faces, with no matrix
+//! built and nothing allocated per corner; a home face's corners are
+//! searched in one contiguous slice of the input's corner vertices (a
+//! sorted list only for faces of more than [`SMALL`] corners, where the
+//! scan would be quadratic). The terms and
+//! their order are those of the matrix [`corner_stencils`], so both give
+//! bit-identical values.
+
 use super::level::{Origins, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
 use crate::mesh::{Mesh, NONE, POINT};
+use rayon::prelude::*;
 
-/// The corner transfer of one level (see the module docs): `input` and
-/// `out` the level's meshes, `s` its stencils (rows: `out`'s vertices) and
-/// `o` its origins (internal ids).
-pub fn corner_stencils(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins) -> Result<Stencils> {
-    let ifl = FaceLayout::new(input)?;
-    let ofl = FaceLayout::new(out)?;
-    // exported corner index of every input half-edge of a real face
-    let mut ec = vec![NONE; input.n_halfedges()];
-    // per input face: its corners as (vertex, exported corner), sorted by vertex
-    let mut by_vertex: Vec<(u32, u32)> = Vec::with_capacity(input.n_halfedges());
+/// Faces of at most this many corners are searched by walking their cycle.
+const SMALL: usize = 8;
+/// Output faces per parallel block.
+const FACES_PER_BLOCK: usize = 1024;
+
+const NO_HOME: &str = "corner attributes: an output corner has no input face to take its value from";
+
+/// Exported corner offset of every face (holes and point-sphere faces own
+/// none) and the number of exported corners, in parallel.
+fn export_offsets(m: &Mesh) -> Result<(Vec<u32>, usize)> {
+    let deg: Vec<u32> = (0..m.n_faces())
+        .into_par_iter()
+        .with_min_len(super::hosts::MIN_LEN)
+        .map(|f| {
+            let s = m.f_start[f];
+            if m.f_hole[f] || s & POINT != 0 || crate::cancel::requested() {
+                return 0;
+            }
+            let (mut h, mut n) = (s, 0u32);
+            loop {
+                n += 1;
+                h = m.he_next[h as usize];
+                if h == s {
+                    break n;
+                }
+            }
+        })
+        .collect();
+    crate::cancel::check()?;
+    let mut off = Vec::with_capacity(deg.len() + 1);
     let mut k = 0u32;
-    for f in 0..input.n_faces() {
-        crate::cancel::poll(f)?;
-        let cs = ifl.corners(f);
-        let start = by_vertex.len();
-        for &h in cs {
-            if !input.f_hole[f] {
-                ec[h as usize] = k;
-                by_vertex.push((input.he_vert[h as usize], k));
-                k += 1;
+    off.push(0);
+    for d in deg {
+        k += d;
+        off.push(k);
+    }
+    Ok((off, k as usize))
+}
+
+/// What every output corner's terms are read from (see the module docs).
+struct Ctx<'a> {
+    input: &'a Mesh,
+    out: &'a Mesh,
+    s: &'a Stencils,
+    o: &'a Origins,
+    /// Exported corner offset of each input face.
+    ioff: Vec<u32>,
+    /// The vertex of every exported input corner: face `f`'s corners are
+    /// `ivert[ioff[f]..ioff[f + 1]]`, contiguous, so a search reads one
+    /// short slice instead of chasing `he_next`.
+    ivert: Vec<u32>,
+    /// Per input face of more than [`SMALL`] corners: the start of its
+    /// `(vertex, exported corner)` list in `sorted` (sorted by vertex);
+    /// `NONE` for the others.
+    big: Vec<u32>,
+    sorted: Vec<(u32, u32)>,
+}
+
+/// Scratch space of one worker, reused from corner to corner.
+#[derive(Default)]
+struct Scratch {
+    cands: Vec<u32>,
+    pairs: Vec<(u32, u32)>,
+    lin: Vec<u32>,
+}
+
+impl<'a> Ctx<'a> {
+    fn new(input: &'a Mesh, out: &'a Mesh, s: &'a Stencils, o: &'a Origins) -> Result<Ctx<'a>> {
+        let (ioff, n_in) = export_offsets(input)?;
+        let mut ivert = Vec::with_capacity(n_in);
+        for f in 0..input.n_faces() {
+            crate::cancel::poll(f)?;
+            let mut h = input.f_start[f];
+            for _ in ioff[f]..ioff[f + 1] {
+                ivert.push(input.he_vert[h as usize]);
+                h = input.he_next[h as usize];
             }
         }
-        by_vertex[start..].sort_unstable();
+        let mut big = vec![NONE; input.n_faces()];
+        let mut sorted = Vec::new();
+        for f in 0..input.n_faces() {
+            let (a, b) = (ioff[f] as usize, ioff[f + 1] as usize);
+            if b - a > SMALL {
+                big[f] = sorted.len() as u32;
+                let start = sorted.len();
+                sorted.extend(ivert[a..b].iter().zip(a as u32..b as u32).map(|(&v, c)| (v, c)));
+                sorted[start..].sort_unstable();
+            }
+        }
+        Ok(Ctx { input, out, s, o, ioff, ivert, big, sorted })
     }
-    // by_vertex[ifl.off[f]..ifl.off[f + 1]] when f is real (holes hold none)
-    let mut voff = Vec::with_capacity(input.n_faces() + 1);
-    voff.push(0usize);
-    for f in 0..input.n_faces() {
-        let d = if input.f_hole[f] { 0 } else { ifl.degree(f) };
-        voff.push(voff[f] + d);
+
+    fn real(&self, f: u32) -> bool {
+        f != NONE && (f as usize) < self.input.n_faces() && !self.input.f_hole[f as usize]
     }
-    let real = |f: u32| f != NONE && (f as usize) < input.n_faces() && !input.f_hole[f as usize];
-    let at = |f: u32, u: u32| -> &[(u32, u32)] {
-        let sl = &by_vertex[voff[f as usize]..voff[f as usize + 1]];
+
+    fn degree(&self, f: u32) -> usize {
+        (self.ioff[f as usize + 1] - self.ioff[f as usize]) as usize
+    }
+
+    /// The exported corners of small face `f` at vertex `u`, in cycle
+    /// order (the order of a sorted list: corners increase along the cycle).
+    #[inline]
+    fn at<'b>(&self, f: u32, u: u32, buf: &'b mut [u32; SMALL]) -> &'b [u32] {
+        let base = self.ioff[f as usize];
+        let mut n = 0usize;
+        for (j, &v) in self.corners_of(f).iter().enumerate() {
+            if v == u {
+                buf[n] = base + j as u32;
+                n += 1;
+            }
+        }
+        &buf[..n]
+    }
+
+    /// The vertices of real face `f`'s exported corners, in cycle order.
+    #[inline]
+    fn corners_of(&self, f: u32) -> &[u32] {
+        &self.ivert[self.ioff[f as usize] as usize..self.ioff[f as usize + 1] as usize]
+    }
+
+    #[inline]
+    fn at_big(&self, f: u32, u: u32) -> &[(u32, u32)] {
+        let s = self.big[f as usize] as usize;
+        let sl = &self.sorted[s..s + self.degree(f)];
         let a = sl.partition_point(|&(w, _)| w < u);
         let b = sl.partition_point(|&(w, _)| w <= u);
         &sl[a..b]
-    };
-    let holds = |f: u32, p: usize| -> bool {
-        let (c, _) = s.row(p);
-        c.iter().all(|&u| !at(f, u).is_empty())
-    };
-    // output corners in export order
-    let ocorners: Vec<u32> = (0..out.n_faces()).filter(|&g| !out.f_hole[g]).flat_map(|g| ofl.corners(g).iter().copied()).collect();
-    let face_of = |kind: u8, i: u32| -> u32 {
-        if kind == FACE && real(i) {
+    }
+
+    /// Calls `each(corner, count)` for the `count` exported corners of `f`
+    /// at `u` and returns their number.
+    #[inline]
+    fn for_at(&self, f: u32, u: u32, mut each: impl FnMut(u32, usize)) -> usize {
+        if self.big[f as usize] != NONE {
+            let cs = self.at_big(f, u);
+            for &(_, c) in cs {
+                each(c, cs.len());
+            }
+            cs.len()
+        } else {
+            let mut buf = [0u32; SMALL];
+            let cs = self.at(f, u, &mut buf);
+            for &c in cs {
+                each(c, cs.len());
+            }
+            cs.len()
+        }
+    }
+
+    /// Whether `f` holds vertex `u`.
+    #[inline]
+    fn has(&self, f: u32, u: u32) -> bool {
+        if self.big[f as usize] != NONE {
+            return !self.at_big(f, u).is_empty();
+        }
+        self.corners_of(f).contains(&u)
+    }
+
+    fn face_of(&self, kind: u8, i: u32) -> u32 {
+        if kind == FACE && self.real(i) {
             i
         } else {
             NONE
         }
-    };
-    // rules 1–3
-    let direct = |hc: u32| -> u32 {
+    }
+
+    /// Rules 1–3 for output corner `hc`.
+    fn direct(&self, hc: u32) -> u32 {
+        let (out, o) = (self.out, self.o);
         let p = out.he_vert[hc as usize] as usize;
         let g = out.he_face[hc as usize] as usize;
         let e_out = (hc >> 1) as usize;
         let e_in = (out.he_prev[hc as usize] >> 1) as usize;
-        [
-            face_of(o.vertex_kind[p], o.vertex[p]),
-            face_of(o.face_kind[g], o.face[g]),
-            face_of(o.edge_kind[e_out], o.edge[e_out]),
-            face_of(o.edge_kind[e_in], o.edge[e_in]),
-        ]
-        .into_iter()
-        .find(|&f| f != NONE)
-        .unwrap_or(NONE)
-    };
-    let around = |kind: u8, i: u32, push: &mut dyn FnMut(u32)| match kind {
-        EDGE => {
-            for h in [2 * i, 2 * i + 1] {
-                push(input.he_face[h as usize]);
+        for f in [
+            self.face_of(o.vertex_kind[p], o.vertex[p]),
+            self.face_of(o.face_kind[g], o.face[g]),
+            self.face_of(o.edge_kind[e_out], o.edge[e_out]),
+            self.face_of(o.edge_kind[e_in], o.edge[e_in]),
+        ] {
+            if f != NONE {
+                return f;
             }
         }
-        VERTEX => {
-            let vo = input.v_out[i as usize];
-            if vo & POINT == 0 {
-                for h in super::creases::ring(input, vo) {
+        NONE
+    }
+
+    /// The row of output vertex `p` evaluated in `f`'s corners, into
+    /// `terms`; false (and `terms` cleared) when `f` misses one of its
+    /// vertices.
+    #[inline]
+    fn eval(&self, f: u32, p: usize, terms: &mut Vec<(u32, f64)>) -> bool {
+        terms.clear();
+        let (cols, ws) = self.s.row(p);
+        if !cols.iter().all(|&u| self.has(f, u)) {
+            return false;
+        }
+        for (&u, &w) in cols.iter().zip(ws) {
+            self.for_at(f, u, |c, n| terms.push((c, w / n as f64)));
+        }
+        true
+    }
+
+    fn around(&self, kind: u8, i: u32, cands: &mut Vec<u32>) {
+        let input = self.input;
+        let mut push = |f: u32| {
+            if self.real(f) && !cands.contains(&f) {
+                cands.push(f);
+            }
+        };
+        match kind {
+            EDGE => {
+                for h in [2 * i, 2 * i + 1] {
                     push(input.he_face[h as usize]);
                 }
             }
+            VERTEX => {
+                let vo = input.v_out[i as usize];
+                if vo & POINT == 0 {
+                    for h in super::creases::ring(input, vo) {
+                        push(input.he_face[h as usize]);
+                    }
+                }
+            }
+            _ => push(i),
         }
-        _ => push(i),
-    };
-    let n_out = ocorners.len();
-    Stencils::build(n_out, k as usize, |c, row| {
-        let hc = ocorners[c];
+    }
+
+    /// The terms `(exported input corner, weight)` of output corner `hc`
+    /// (the module docs' rules); empty when no input face is near.
+    fn terms(&self, hc: u32, terms: &mut Vec<(u32, f64)>, sc: &mut Scratch) {
+        let (out, o) = (self.out, self.o);
         let p = out.he_vert[hc as usize] as usize;
         let g = out.he_face[hc as usize] as usize;
-        let first = direct(hc);
-        let mut home = NONE;
-        if first != NONE && holds(first, p) {
-            home = first;
-        } else {
-            let mut cands: Vec<u32> = Vec::new();
-            let mut push = |f: u32| {
-                if real(f) && !cands.contains(&f) {
-                    cands.push(f);
-                }
-            };
-            push(first);
-            push(direct(out.he_prev[hc as usize]));
-            push(direct(out.he_next[hc as usize]));
-            around(o.vertex_kind[p], o.vertex[p], &mut push);
-            around(o.face_kind[g], o.face[g], &mut push);
-            if let Some(&f) = cands.iter().find(|&&f| holds(f, p)) {
-                home = f;
-            } else if let Some(&f) = cands.first() {
-                // read linearly in the first candidate (see the module docs)
-                let mut lin: Vec<u32> = Vec::new();
-                match o.vertex_kind[p] {
-                    VERTEX => lin.push(o.vertex[p]),
-                    EDGE => {
-                        let e = o.vertex[p] as usize;
-                        lin.extend([input.he_vert[2 * e], input.he_vert[2 * e + 1]]);
-                    }
-                    _ => {}
-                }
-                let lin: Vec<u32> = lin.into_iter().filter(|&u| !at(f, u).is_empty()).collect();
-                if lin.is_empty() {
-                    // a face point: its face's mean
-                    let sl = &by_vertex[voff[f as usize]..voff[f as usize + 1]];
-                    for &(_, ci) in sl {
-                        row.add(ci, 1.0 / sl.len() as f64);
-                    }
-                } else {
-                    for &u in &lin {
-                        let cs = at(f, u);
-                        for &(_, ci) in cs {
-                            row.add(ci, 1.0 / (lin.len() * cs.len()) as f64);
-                        }
-                    }
-                }
+        let first = self.direct(hc);
+        if first != NONE && self.eval(first, p, terms) {
+            return;
+        }
+        terms.clear();
+        let cands = &mut sc.cands;
+        cands.clear();
+        for f in [first, self.direct(out.he_prev[hc as usize]), self.direct(out.he_next[hc as usize])] {
+            if self.real(f) && !cands.contains(&f) {
+                cands.push(f);
+            }
+        }
+        self.around(o.vertex_kind[p], o.vertex[p], cands);
+        self.around(o.face_kind[g], o.face[g], cands);
+        // `first` was tried above
+        for &f in cands.iter() {
+            if f != first && self.eval(f, p, terms) {
                 return;
             }
         }
-        if home == NONE {
-            // no real input face anywhere near: cannot happen for a level's
-            // real face; leave the row empty (value 0) rather than panic
+        terms.clear();
+        let Some(&f) = cands.first() else {
             return;
+        };
+        // read linearly in the first candidate (see the module docs)
+        let lin = &mut sc.lin;
+        lin.clear();
+        match o.vertex_kind[p] {
+            VERTEX => lin.push(o.vertex[p]),
+            EDGE => {
+                let e = o.vertex[p] as usize;
+                lin.extend([self.input.he_vert[2 * e], self.input.he_vert[2 * e + 1]]);
+            }
+            _ => {}
         }
-        let (cols, ws) = s.row(p);
-        for (&u, &w) in cols.iter().zip(ws) {
-            let cs = at(home, u);
-            for &(_, ci) in cs {
-                row.add(ci, w / cs.len() as f64);
+        lin.retain(|&u| self.has(f, u));
+        if lin.is_empty() {
+            // a face point: its face's mean, corners in vertex order
+            let pairs = &mut sc.pairs;
+            pairs.clear();
+            let base = self.ioff[f as usize];
+            pairs.extend(self.corners_of(f).iter().enumerate().map(|(j, &v)| (v, base + j as u32)));
+            pairs.sort_unstable();
+            let n = pairs.len() as f64;
+            terms.extend(pairs.iter().map(|&(_, c)| (c, 1.0 / n)));
+        } else {
+            let nl = lin.len();
+            for &u in lin.iter() {
+                self.for_at(f, u, |c, n| terms.push((c, 1.0 / (nl * n) as f64)));
             }
         }
-    })
-    .and_then(|t| {
-        if t.off.windows(2).any(|w| w[0] == w[1]) {
-            return Err(MeshError::Precondition("corner attributes: an output corner has no input face to take its value from".into()));
+    }
+}
+
+/// Carries corner arrays (row-major `(C, k)`, exported input corners) through
+/// one level: `input` and `out` the level's meshes, `s` its stencils (rows:
+/// `out`'s vertices) and `o` its origins. Each array is replaced by the
+/// output's `(C', k)` array. The values equal `corner_stencils(..) @ a`
+/// bit for bit.
+pub fn transfer(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins, arrays: &mut [(Vec<f64>, usize)]) -> Result<()> {
+    if arrays.is_empty() {
+        return Ok(());
+    }
+    let ctx = Ctx::new(input, out, s, o)?;
+    let (ooff, n_out) = export_offsets(out)?;
+    let nfo = out.n_faces();
+    let nb = nfo.div_ceil(FACES_PER_BLOCK);
+    let mut outs: Vec<Vec<f64>> = arrays.iter().map(|(_, k)| vec![0.0; n_out * k]).collect();
+    // per block, one output slice per array
+    let mut blocks: Vec<Vec<&mut [f64]>> = (0..nb).map(|_| Vec::with_capacity(arrays.len())).collect();
+    for (buf, (_, k)) in outs.iter_mut().zip(arrays.iter()) {
+        let mut rest: &mut [f64] = buf;
+        for (b, blk) in blocks.iter_mut().enumerate() {
+            let (gs, ge) = (b * FACES_PER_BLOCK, ((b + 1) * FACES_PER_BLOCK).min(nfo));
+            let (x, r) = rest.split_at_mut((ooff[ge] - ooff[gs]) as usize * k);
+            blk.push(x);
+            rest = r;
         }
-        Ok(t)
-    })
+    }
+    let ins: Vec<(&[f64], usize)> = arrays.iter().map(|(a, k)| (a.as_slice(), *k)).collect();
+    // rule 1 depends on the output vertex alone: a vertex born in a real face
+    // that holds its row gets its value once (`held`), and each of its
+    // corners copies it (the same terms in the same order: the same bits)
+    let nvo = out.n_vertices();
+    let mut memo: Vec<Vec<f64>> = arrays.iter().map(|(_, k)| vec![0.0; nvo * k]).collect();
+    let mut held = vec![false; nvo];
+    {
+        const VB: usize = 4096;
+        let nvb = nvo.div_ceil(VB);
+        let mut per: Vec<Vec<&mut [f64]>> = (0..nvb).map(|_| Vec::with_capacity(arrays.len())).collect();
+        for (m, (_, k)) in memo.iter_mut().zip(arrays.iter()) {
+            if *k == 0 {
+                per.iter_mut().for_each(|p| p.push(&mut []));
+            } else {
+                m.chunks_mut(VB * k).zip(per.iter_mut()).for_each(|(ch, p)| p.push(ch));
+            }
+        }
+        held.par_chunks_mut(VB).zip(per.into_par_iter()).enumerate().for_each_init(Vec::<(u32, f64)>::new, |terms, (b, (hv, mut dst))| {
+            if crate::cancel::requested() {
+                return; // the check below reports it
+            }
+            for (i, h) in hv.iter_mut().enumerate() {
+                let p = b * VB + i;
+                let f = o.vertex[p];
+                if o.vertex_kind[p] != FACE || !ctx.real(f) || !ctx.eval(f, p, terms) || terms.is_empty() {
+                    continue;
+                }
+                *h = true;
+                for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
+                    accumulate(&mut d[i * k..(i + 1) * k], terms, a, k);
+                }
+            }
+        });
+        crate::cancel::check()?;
+    }
+    blocks.into_par_iter().enumerate().try_for_each_init(
+        || (Vec::<(u32, f64)>::new(), Scratch::default()),
+        |(terms, sc), (b, mut dst)| -> Result<()> {
+            if crate::cancel::requested() {
+                return Ok(()); // the check below reports it
+            }
+            let (gs, ge) = (b * FACES_PER_BLOCK, ((b + 1) * FACES_PER_BLOCK).min(nfo));
+            let mut c = 0usize; // corner within the block
+            for g in gs..ge {
+                let st = out.f_start[g];
+                if out.f_hole[g] || st & POINT != 0 {
+                    continue;
+                }
+                let mut hc = st;
+                loop {
+                    let p = out.he_vert[hc as usize] as usize;
+                    if held[p] {
+                        for (d, (m, &(_, k))) in dst.iter_mut().zip(memo.iter().zip(&ins)) {
+                            d[c * k..(c + 1) * k].copy_from_slice(&m[p * k..(p + 1) * k]);
+                        }
+                    } else {
+                        ctx.terms(hc, terms, sc);
+                        if terms.is_empty() {
+                            return Err(MeshError::Precondition(NO_HOME.into()));
+                        }
+                        for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
+                            accumulate(&mut d[c * k..(c + 1) * k], terms, a, k);
+                        }
+                    }
+                    c += 1;
+                    hc = out.he_next[hc as usize];
+                    if hc == st {
+                        break;
+                    }
+                }
+            }
+            Ok(())
+        },
+    )?;
+    crate::cancel::check()?;
+    for ((a, _), v) in arrays.iter_mut().zip(outs) {
+        *a = v;
+    }
+    Ok(())
+}
+
+/// `o += Σ w · a[c]` over the terms, in their order (as `Stencils::apply`).
+#[inline]
+fn accumulate(o: &mut [f64], terms: &[(u32, f64)], a: &[f64], k: usize) {
+    for &(ci, w) in terms {
+        let src = &a[ci as usize * k..(ci as usize + 1) * k];
+        for (o, s) in o.iter_mut().zip(src) {
+            *o += w * s;
+        }
+    }
+}
+
+/// The corner transfer of one level as a matrix (see the module docs):
+/// row = exported output corner, column = exported input corner, so
+/// `T @ values` carries any `(C, k)` corner array through the level;
+/// [`transfer`] applies it without building it.
+pub fn corner_stencils(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins) -> Result<Stencils> {
+    let ctx = Ctx::new(input, out, s, o)?;
+    let (_, n_in) = export_offsets(input)?;
+    let ocorners: Vec<u32> = (0..out.n_faces())
+        .filter(|&g| !out.f_hole[g] && out.f_start[g] & POINT == 0)
+        .flat_map(|g| {
+            let st = out.f_start[g];
+            let mut h = st;
+            let mut first = true;
+            std::iter::from_fn(move || {
+                if !first && h == st {
+                    return None;
+                }
+                first = false;
+                let r = h;
+                h = out.he_next[h as usize];
+                Some(r)
+            })
+        })
+        .collect();
+    let t = Stencils::build(ocorners.len(), n_in, |c, row| {
+        let (mut terms, mut sc) = (Vec::new(), Scratch::default());
+        ctx.terms(ocorners[c], &mut terms, &mut sc);
+        for (ci, w) in terms {
+            row.add(ci, w);
+        }
+    })?;
+    if t.off.windows(2).any(|w| w[0] == w[1]) {
+        return Err(MeshError::Precondition(NO_HOME.into()));
+    }
+    Ok(t)
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::schemes::level::Request;
-
-    fn req() -> Request<'static> {
-        Request { stencils: true, origins: true, ..Request::default() }
-    }
-
-    /// Corner values of the cube: every corner its own value (every edge a
-    /// seam), as (value per corner) = f(face, vertex).
-    fn seams(m: &Mesh) -> Vec<f64> {
-        let p = m.to_polygons();
-        let mut out = Vec::new();
-        let mut k = 0;
-        for (f, &n) in p.sizes.iter().enumerate() {
-            for j in 0..n as usize {
-                let v = p.indices[k + j] as f64;
-                out.push(100.0 * f as f64 + v);
-            }
-            k += n as usize;
-        }
-        out
-    }
-
-    fn honeycomb(m: &Mesh, r: &Request) -> Result<super::super::level::Level> {
-        super::super::honeycomb::honeycomb_level(m, 0.5, None, r)
-    }
-    fn truncation(m: &Mesh, r: &Request) -> Result<super::super::level::Level> {
-        super::super::vertex_truncation::vertex_truncation_level(m, super::super::vertex_truncation::Truncation::Polyhedral { ratio: 0.5 }, r)
-    }
-    fn menger(m: &Mesh, r: &Request) -> Result<super::super::level::Level> {
-        super::super::menger_level::menger_level(m, &Default::default(), r).map(|(l, _)| l)
-    }
-
-    fn schemes() -> Vec<(&'static str, fn(&Mesh, &Request) -> Result<super::super::level::Level>)> {
-        vec![
-            ("honeycomb", honeycomb),
-            ("vertex_truncation", truncation),
-            ("menger", menger),
-            ("doo_sabin", super::super::doo_sabin::doo_sabin_level),
-            ("midpoint", super::super::midpoint::midpoint_level),
-            ("dual", super::super::dual::dual_level),
-            ("simplest", super::super::simplest::simplest_level),
-            ("sqrt3", super::super::sqrt3::sqrt3_level),
-            ("sierpinski", super::super::sierpinski::sierpinski_level),
-        ]
-    }
-
-    #[test]
-    fn seamless_data_is_s_at_a_and_seams_do_not_mix() {
-        let m = crate::primitives::cube();
-        let p = m.to_polygons();
-        let a: Vec<f64> = (0..8).map(|v| (v * v) as f64).collect();
-        let per_corner: Vec<f64> = p.indices.iter().map(|&v| a[v as usize]).collect();
-        let sv = seams(&m);
-        for (name, lv) in schemes() {
-            let l = lv(&m, &req()).unwrap();
-            let (s, o) = (l.stencils.as_ref().unwrap(), l.origins.as_ref().unwrap());
-            let t = corner_stencils(&m, &l.mesh, s, o).unwrap();
-            assert_eq!(t.n_rows(), l.mesh.n_halfedges(), "{name}: one row per output corner (closed output)");
-            let got = t.apply(&per_corner, 1).unwrap();
-            let sa = s.apply(&a, 1).unwrap();
-            let op = l.mesh.to_polygons();
-            for (c, &v) in op.indices.iter().enumerate() {
-                if name == "sqrt3" && o.vertex_kind[v as usize] == VERTEX {
-                    continue; // smoothed over the one-ring: read linearly
-                }
-                assert!((got[c] - sa[v as usize]).abs() < 1e-12, "{name} corner {c}: {} vs {}", got[c], sa[v as usize]);
-            }
-            // every row mixes the corners of one input face only
-            let mut face_of_corner = Vec::new();
-            for (f, &n) in p.sizes.iter().enumerate() {
-                face_of_corner.extend(std::iter::repeat(f).take(n as usize));
-            }
-            for r in 0..t.n_rows() {
-                let (cols, w) = t.row(r);
-                assert!(!cols.is_empty());
-                assert!(cols.iter().all(|&c| face_of_corner[c as usize] == face_of_corner[cols[0] as usize]), "{name} row {r}");
-                assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-12);
-            }
-            let _ = t.apply(&sv, 1).unwrap();
-        }
-    }
-}
+#[path = "corner_transfer_tests.rs"]
+mod tests;
