@@ -15,7 +15,7 @@ so their time is a copy of the input plus a few faces: they are listed, but
 their faces/s measure the copy. The wireframe tools run with ``thickness`` a
 tenth of the shortest edge (their defaults are lengths for a unit solid). The process sets RAYON_NUM_THREADS=1 before
 topomesh is imported. Each row: one untimed warm-up call, then the median of
-``--runs`` timed calls of ``topomesh.catalog.run_entry``. ``vs CC`` is the
+``--runs`` timed calls (one for rows whose warm-up takes over 2 s) of ``topomesh.catalog.run_entry``. ``vs CC`` is the
 row's faces/s over Catmull-Clark's in the same run (the fastest builder of the
 package, bench_subdivision.py), a ratio that the machine's load (shared by
 several jobs) changes less than the raw figures.
@@ -67,9 +67,11 @@ def time_row(entry, mesh, runs: int) -> tuple[float, int]:
     kw = overrides(entry, mesh)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
+        t0 = time.perf_counter()
         out = run_entry(entry, mesh, **kw)  # warm-up
+        slow = time.perf_counter() - t0 > 2.0
         ts = []
-        for _ in range(runs):
+        for _ in range(1 if slow else runs):  # rows over 2 s: one timed call
             t = time.perf_counter()
             out = run_entry(entry, mesh, **kw)
             ts.append(time.perf_counter() - t)

@@ -213,3 +213,15 @@ def test_gallery_covers_the_catalog(tmp_path):
     back = topomesh.load(tmp_path / "topmod_doo_sabin_bc.ply")
     assert (back.n_vertices, back.n_edges, back.n_faces) == (row["V"], row["E"], row["F"])
     assert back.face_size_histogram.get(2, 0) > 0 and row["trimesh_watertight"] is True
+
+
+def test_subdivide_takes_every_remeshing_name(tmp_path):
+    # TopMod's menu and Conway's operators run from the command line too (-n levels)
+    src = tmp_path / "cube.obj"
+    topomesh.cube().save(src)
+    for scheme, n, want in (("root4", 2, topomesh.cube().root4().root4()), ("conway_subdivide", 2, topomesh.cube().conway("uu")), ("gyro", 1, topomesh.cube().gyro())):
+        assert scheme in cli.SCHEMES
+        assert cli.main(["subdivide", str(src), str(tmp_path / "o.ply"), "--scheme", scheme, "-n", str(n)]) == 0
+        got = topomesh.load(tmp_path / "o.ply")
+        assert (got.n_vertices, got.n_edges, got.n_faces) == (want.n_vertices, want.n_edges, want.n_faces), scheme
+    assert "extrude" not in cli.SCHEMES and "subdivide_faces" not in cli.SCHEMES
