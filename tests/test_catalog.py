@@ -102,3 +102,25 @@ def test_tool_entries(make) -> None:
                 assert got[k] == want, (e["name"], k)
                 checked += 1
     assert checked >= 7
+
+
+def test_schemes_table_and_run_entry() -> None:
+    # schemes() is the catalog; run_entry runs every row on a cube and a genus-2 surface with its defaults
+    from topomesh.catalog import default_selection, run_entry
+
+    assert tm.schemes() == tm.catalog() and tm.schemes("conway") == tm.catalog("conway")
+    for m in (tm.cube(), tm.genus_surface(2)):
+        for e in tm.schemes():
+            if "faces" in e.get("params", {}):
+                sel = default_selection(e, m)
+                assert len(set(sel)) == len(sel) >= 2
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", tm.GeometryWarning)
+                out = run_entry(e, m)
+            assert isinstance(out, tm.Mesh), e["name"]
+            out.validate()
+            if e["family"] in ("topmod", "conway") and e["method"] not in ("subdivide_faces", "extrude"):
+                assert out.genus == m.genus, e["name"]
+    # explicit parameters win over the defaults
+    c = tm.cube()
+    assert run_entry(tm.catalog("topmod")[0], c, offset=0.5).vertices.max() == pytest.approx(c.vertices.max() + 0.5)

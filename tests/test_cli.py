@@ -200,3 +200,28 @@ def test_repair_flag_welds_a_soup(tmp_path, capsys):
     assert cli.main(["convert", "--repair", str(soup), str(out)]) == 0
     back = topomesh.load(out)
     assert (back.n_vertices, back.n_faces, back.genus, back.n_holes) == (8, 12, 0, 0)
+
+
+def test_gallery_covers_the_catalog(tmp_path):
+    # one entry per TopMod, tool and Conway row of the catalog (the papers' schemes have theirs above)
+    names = {e.name for e in gallery.entries()}
+    rows = [e for e in topomesh.catalog() if e["family"] != "scheme"]
+    missing = [e["name"] for e in rows if f"{e['family']}_{re.sub(r'[^a-z0-9]+', '_', e['name'].lower()).strip('_')}" not in names]
+    assert not missing and len(rows) > 50
+    # Doo-Sabin BC's two-gons cannot go through OBJ's polygon list: the gallery writes PLY for it
+    row = gallery.run(tmp_path, only=["topmod_doo_sabin_bc"], progress=False, images=False)[0]
+    back = topomesh.load(tmp_path / "topmod_doo_sabin_bc.ply")
+    assert (back.n_vertices, back.n_edges, back.n_faces) == (row["V"], row["E"], row["F"])
+    assert back.face_size_histogram.get(2, 0) > 0 and row["trimesh_watertight"] is True
+
+
+def test_subdivide_takes_every_remeshing_name(tmp_path):
+    # TopMod's menu and Conway's operators run from the command line too (-n levels)
+    src = tmp_path / "cube.obj"
+    topomesh.cube().save(src)
+    for scheme, n, want in (("root4", 2, topomesh.cube().root4().root4()), ("conway_subdivide", 2, topomesh.cube().conway("uu")), ("gyro", 1, topomesh.cube().gyro())):
+        assert scheme in cli.SCHEMES
+        assert cli.main(["subdivide", str(src), str(tmp_path / "o.ply"), "--scheme", scheme, "-n", str(n)]) == 0
+        got = topomesh.load(tmp_path / "o.ply")
+        assert (got.n_vertices, got.n_edges, got.n_faces) == (want.n_vertices, want.n_edges, want.n_faces), scheme
+    assert "extrude" not in cli.SCHEMES and "subdivide_faces" not in cli.SCHEMES

@@ -33,7 +33,7 @@ from topomesh._repair import RepairReport, repair  # noqa: E402
 from topomesh import _interop, ifs  # noqa: E402
 from topomesh.explore import explore  # noqa: E402
 from topomesh.correspondence import Correspondence  # noqa: E402
-from topomesh.catalog import catalog  # noqa: E402
+from topomesh.catalog import catalog, schemes  # noqa: E402
 from topomesh._core import convex_hull, dual_convex_hull  # noqa: E402
 from topomesh._core import block_cache, set_block_cache  # noqa: E402  (issue 19)
 
@@ -62,6 +62,7 @@ __all__ = [
     "printable",
     "repair",
     "save",
+    "schemes",
     "set_block_cache",
     "set_memory_budget",
     "tetrahedron",

@@ -125,3 +125,54 @@ def catalog(family: str | None = None) -> list[dict[str, Any]]:
                 "V": v, "E": e, "F": f,
             })
     return out
+
+
+def schemes(family: str | None = None) -> list[dict[str, Any]]:
+    """The catalog as a table: the same rows as :func:`catalog`, one per
+    scheme, remeshing, tool and Conway operator (``family``, ``name``,
+    ``method``, ``source``, default ``params`` where it has any, and the
+    per-iteration counts ``V``, ``E``, ``F``).
+
+    ``notebooks/06_catalog.ipynb`` runs every row on a cube and on a genus-2
+    surface; ``topomesh.catalog.run_entry(row, mesh)`` runs one row on a mesh.
+
+    Examples
+    --------
+    >>> import topomesh
+    >>> len(topomesh.schemes()) == len(topomesh.catalog())
+    True
+    """
+    return catalog(family)
+
+
+def default_selection(entry: dict[str, Any], mesh: Any) -> list[int]:
+    """The faces an entry with a ``faces`` parameter is shown on when none
+    are given: the highest and the lowest face (by centroid ``z``) for the
+    multi-face handles (two faces whose hub is the body between them), else
+    the three faces nearest the corner in the direction (1, 0.9, 0.8)."""
+    import numpy as np
+
+    c = mesh.face_centroids
+    if entry["method"] == "multi_face_handle":
+        return [int(np.argmax(c[:, 2])), int(np.argmin(c[:, 2]))]
+    return [int(i) for i in np.argsort(-(c @ np.array([1.0, 0.9, 0.8])))[:3]]
+
+
+def run_entry(entry: dict[str, Any], mesh: Any, **params: Any) -> Any:
+    """Run one catalog row on ``mesh`` with its default parameters (updated
+    by ``params``) and return the output :class:`~topomesh.Mesh`.
+
+    An empty ``faces`` selection is filled by :func:`default_selection`; the
+    convex-hull multi-face handle then gets ``scale=0.5, extrude=-0.25`` (its
+    hub inside the body; the defaults make a hub outside, which needs faces
+    that look at one point). Tools that return ``(mesh, residual)`` give the
+    mesh.
+    """
+    p = {k: (list(v) if isinstance(v, list) else v) for k, v in entry.get("params", {}).items()}
+    if "faces" in p and not p["faces"] and "faces" not in params:
+        p["faces"] = default_selection(entry, mesh)
+        if entry["method"] == "multi_face_handle" and p.get("algorithm") == "convex_hull":
+            p.update(scale=0.5, extrude=-0.25)
+    p.update(params)
+    out = getattr(mesh, entry["method"])(**p)
+    return out[0] if isinstance(out, tuple) else out

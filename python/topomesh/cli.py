@@ -3,7 +3,7 @@
     topomesh gallery OUTDIR              every built-in mesh: OBJ + PNG + summary table
     topomesh info FILE                   counts, genus, watertight per trimesh and manifold3d
     topomesh convert IN OUT              between NPZ, PLY, OBJ, OFF, STL (binary) and 3MF
-    topomesh subdivide IN OUT --scheme S -n K
+    topomesh subdivide IN OUT --scheme S -n K   S: a scheme, a TopMod remeshing or a Conway operator (method names)
     topomesh sierpinski IN OUT -n K
     topomesh menger IN OUT -n K [--thickness D]
 
@@ -25,7 +25,12 @@ from typing import Sequence
 import topomesh
 from topomesh import Mesh, MeshError
 
-SCHEMES = ("catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual", "honeycomb", "vertex_truncation")
+SCHEMES: tuple[str, ...] = ("catmull_clark", "doo_sabin", "loop", "sqrt3", "simplest", "midpoint", "dual", "honeycomb", "vertex_truncation")
+#: every remeshing of the catalog runs as a whole-mesh level too: TopMod's menu
+#: (but the selection tools) and Conway's operators (one level per -n)
+_ONE_LEVEL = tuple(e["method"] for e in topomesh.catalog("conway"))
+_REMESHING = [e["method"] for e in topomesh.catalog("topmod") if e["method"] not in ("subdivide_faces", "extrude")]
+SCHEMES += tuple(m for m in dict.fromkeys(_REMESHING + list(_ONE_LEVEL)) if m not in SCHEMES)
 
 
 def _iterate(mesh: Mesh, method: str, n: int, **kw: object) -> Mesh:
@@ -38,7 +43,9 @@ def _iterate(mesh: Mesh, method: str, n: int, **kw: object) -> Mesh:
         from tqdm.auto import tqdm
 
         for _ in tqdm(range(n), desc=method, unit="level"):
-            mesh = getattr(mesh, method)(iterations=1, **kw)
+            step = getattr(mesh, method)
+            # Conway's operators are one level each and take no iterations
+            mesh = step(**kw) if method in _ONE_LEVEL else step(iterations=1, **kw)
         return mesh
 
 

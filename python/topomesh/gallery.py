@@ -1,7 +1,8 @@
 """The gallery: every mesh topomesh can make, written out with a render and
 a table of what topomesh, trimesh and manifold3d say about it.
 
-``topomesh gallery OUTDIR`` writes ``OUTDIR/<name>.obj``, ``OUTDIR/<name>.png``
+``topomesh gallery OUTDIR`` writes ``OUTDIR/<name>.obj`` (``.ply`` where OBJ cannot
+store the mesh), ``OUTDIR/<name>.png``
 and ``OUTDIR/summary.md`` (plus ``summary.csv``). Entries come from
 :func:`entries`; a scheme shows up here by adding its builder there.
 """
@@ -47,6 +48,7 @@ def entries() -> Iterator[Entry]:
     for g in (2, 3, 5):
         yield Entry(f"genus{g}", f"Genus-{g} slab tunnelled with InsertEdge", lambda g=g: topomesh.genus_surface(g))
     yield from _extra_entries(solids)
+    yield from _catalog_entries()
 
 
 def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
@@ -155,6 +157,30 @@ def _real_mesh_entries() -> Iterator[Entry]:
         return fine.with_vertices(corr.matrix @ v)
 
     yield Entry("torus_reposed", "Torus ×3 re-posed through the subdivision matrix S", reposed)
+
+
+def _catalog_entries() -> Iterator[Entry]:
+    """One entry per row of ``topomesh.catalog()`` beyond the papers' schemes
+    (shown above): TopMod's remeshing menu on the cube, its high-genus tools on
+    the genus-2 slab, Conway's operators on the dodecahedron, each with its
+    catalog defaults (:func:`topomesh.catalog.run_entry`)."""
+    import re
+    import warnings
+
+    from topomesh.catalog import run_entry
+
+    seeds = {"topmod": ("Cube", topomesh.cube), "tool": ("Genus-2 slab", lambda: topomesh.genus_surface(2)), "conway": ("Dodecahedron", topomesh.dodecahedron)}
+
+    def build(e: dict[str, object], make: Callable[[], Mesh]) -> Mesh:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", topomesh.GeometryWarning)  # column joints may cross on genus 2 (issue 16)
+            return run_entry(e, make())
+
+    for family, (label, make) in seeds.items():
+        for e in topomesh.catalog(family):
+            slug = re.sub(r"[^a-z0-9]+", "_", str(e["name"]).lower()).strip("_")
+            what = f"{e['name']} ({e['letter']})" if "letter" in e else str(e["name"])
+            yield Entry(f"{family}_{slug}", f"{label}, {what}", lambda e=e, make=make: build(e, make))
 
 
 @dataclass(frozen=True)
@@ -277,7 +303,12 @@ def run(outdir: str | os.PathLike[str], only: list[str] | None = None, progress:
     for e in tqdm(todo, desc="gallery", unit="mesh", disable=not progress):
         m = e.build()
         m.validate()
-        m.save(out / f"{e.name}.obj")
+        try:
+            m.save(out / f"{e.name}.obj")
+        except topomesh.MeshError:
+            # two-gons between one pair of vertices (Doo-Sabin BC): OBJ's polygon
+            # list cannot pair them back; PLY stores the corner twins
+            m.save(out / f"{e.name}.ply")
         if images:
             render(m, out / f"{e.name}.png", e.title, e.color(m).astype(float) if e.color else None)
         checked = e.realize(m) if e.realize else m

@@ -572,3 +572,49 @@ def image_row(pngs: Iterable[bytes]) -> bytes:
     h = max(t.shape[0] for t in tiles)
     tiles = [np.pad(t, ((0, h - t.shape[0]), (0, 0), (0, 0)), constant_values=255) for t in tiles]
     return _png(np.concatenate(tiles, axis=1))
+
+
+def render_grid(
+    meshes: Sequence[Mesh],
+    titles: Sequence[str] | None = None,
+    cols: int = 8,
+    panel: tuple[int, int] = (120, 110),
+    edges: bool | None = True,
+    color: str = SURFACE,
+    view: Sequence[float] = VIEW,
+) -> bytes:
+    """PNG bytes of small multiples: ``meshes`` in a grid of ``cols``
+    columns, each panel ``panel`` pixels and fitted to its own mesh, drawn
+    in one off-screen window (one render for the whole grid: a catalog of a
+    hundred thumbnails costs seconds, not a plotter each)."""
+    if not meshes:
+        raise MeshError("render_grid: no mesh to draw")
+    if cols < 1:
+        raise MeshError(f"render_grid: cols = {cols}; expected at least 1")
+    pv = _pyvista()
+    cols = min(cols, len(meshes))
+    rows = -(-len(meshes) // cols)
+    w, h = _window_size(panel)
+    plotter = pv.Plotter(shape=(rows, cols), off_screen=True, window_size=[cols * w, rows * h], border=False)
+    try:
+        # no antialiasing: software OpenGL pays it per pixel of the whole grid
+        plotter.render_window.SetMultiSamples(0)
+        plotter.set_background(BACKGROUND)
+        for k, m in enumerate(meshes):
+            plotter.subplot(k // cols, k % cols)
+            label = titles[k] if titles is not None else ""
+            add(plotter, m, edges=edges, title=False, color=color)
+            if label:
+                # a fixed-size text actor: a corner annotation scales its font with the label's length
+                plotter.add_text(label, position=(0.03, 0.87), viewport=True, font_size=7, color="black", render=False)
+            frame(plotter, m.vertices, view=view, top_margin=0.16 if label else 0.0)
+        plotter.render()
+        return _png(plotter.screenshot(return_img=True))
+    finally:
+        plotter.close()
+
+
+def show_grid(meshes: Sequence[Mesh], titles: Sequence[str] | None = None, **kw: Any) -> Any:
+    """:func:`render_grid`, shown as one static PNG (in a notebook: displayed,
+    returns None; else an ``IPython.display.Image``)."""
+    return _show(render_grid(meshes, titles, **kw))

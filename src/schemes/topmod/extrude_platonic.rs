@@ -55,19 +55,33 @@ fn frame(p: &[DVec3]) -> (DVec3, f64) {
     (nrm, l)
 }
 
+/// What both steps start from: the mean side length, the tilt angle, and
+/// TopMod's tilted normal of every side `p_i → p_i+1`
+/// (`facenext` at `p_i`; its `faceprev` at `p_i` is the same vector of side
+/// `i − 1`, bit for bit: `nrm × unit(p_i−1 − p_i)` = `unit(p_i − p_i−1) × nrm`).
+struct Base {
+    lb: f64,
+    alpha: f64,
+    side: Vec<DVec3>,
+}
+
+impl Base {
+    fn new(p: &[DVec3], angle: f64) -> Base {
+        let n = p.len();
+        let (nrm, lb) = frame(p);
+        let alpha = -angle.to_radians();
+        let side = (0..n).map(|i| tilt(unit(p[(i + 1) % n] - p[i]).cross(nrm), nrm, alpha)).collect();
+        Base { lb, alpha, side }
+    }
+}
+
 /// The rings R1, R2, R3 of one dodecahedral step over `p`.
 pub(super) fn dodeca_rings(p: &[DVec3], angle: f64, l: [f64; 3]) -> [Vec<DVec3>; 3] {
     let n = p.len();
-    let (nrm, lb) = frame(p);
-    let alpha = -angle.to_radians();
+    let Base { lb, side, .. } = Base::new(p, angle);
     let (pr, nx) = (|i: usize| (i + n - 1) % n, |i: usize| (i + 1) % n);
-    let fnext = |i: usize| tilt(unit(p[nx(i)] - p[i]).cross(nrm), nrm, alpha);
-    let r1: Vec<DVec3> = (0..n)
-        .map(|i| {
-            let fprev = tilt(nrm.cross(unit(p[pr(i)] - p[i])), nrm, alpha);
-            p[i] + lb * l[0] * unit(fprev.cross(fnext(i)))
-        })
-        .collect();
+    let fnext = |i: usize| side[i];
+    let r1: Vec<DVec3> = (0..n).map(|i| p[i] + lb * l[0] * unit(side[pr(i)].cross(fnext(i)))).collect();
     let c54 = 54f64.to_radians().cos();
     let r2: Vec<DVec3> = (0..n).map(|i| (r1[i] + r1[nx(i)]) * 0.5 + lb * c54 * l[1] * unit(fnext(i).cross(unit(p[nx(i)] - p[i])))).collect();
     // the normal of the triangle (a, b, c) seen from b, as TopMod computes it
@@ -86,10 +100,9 @@ pub(super) fn dodeca_rings(p: &[DVec3], angle: f64, l: [f64; 3]) -> [Vec<DVec3>;
 /// The rings Q1, C, Q2 of one icosahedral step over `p` (C_i sits over p_i).
 pub(super) fn icosa_rings(p: &[DVec3], angle: f64, l: [f64; 3]) -> [Vec<DVec3>; 3] {
     let n = p.len();
-    let (nrm, lb) = frame(p);
-    let alpha = -angle.to_radians();
+    let Base { lb, alpha, side, .. } = Base::new(p, angle);
     let (pr, nx) = (|i: usize| (i + n - 1) % n, |i: usize| (i + 1) % n);
-    let fnext = |i: usize| tilt(unit(p[nx(i)] - p[i]).cross(nrm), nrm, alpha);
+    let fnext = |i: usize| side[i];
     let q1: Vec<DVec3> = (0..n)
         .map(|i| (p[i] + p[nx(i)]) * 0.5 + lb * l[0] * 3f64.sqrt() * 0.5 * unit(fnext(i).cross(unit(p[nx(i)] - p[i]))))
         .collect();
@@ -100,12 +113,7 @@ pub(super) fn icosa_rings(p: &[DVec3], angle: f64, l: [f64; 3]) -> [Vec<DVec3>; 
         let fp2 = tilt(fpx.cross(vp), fpx, alpha);
         unit(fp2.cross(fn2))
     };
-    let c: Vec<DVec3> = (0..n)
-        .map(|i| {
-            let fprev = tilt(nrm.cross(unit(p[pr(i)] - p[i])), nrm, alpha);
-            p[i] + lb * l[1] * dir(fprev, fnext(i), q1[pr(i)] - p[i], q1[i] - p[i])
-        })
-        .collect();
+    let c: Vec<DVec3> = (0..n).map(|i| p[i] + lb * l[1] * dir(side[pr(i)], fnext(i), q1[pr(i)] - p[i], q1[i] - p[i])).collect();
     let q2: Vec<DVec3> = (0..n)
         .map(|i| {
             let at = q1[i];
@@ -173,4 +181,25 @@ pub(super) fn icosa_band(o: &mut Out, ring: &[u32], rkey: &[u32], b: [u32; 3], k
         }
     }
     (0..n).map(t).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// TopMod's `faceprev` at p_i, as both steps computed it before they
+    /// shared [`Base`], is the side normal of side i − 1, bit for bit.
+    #[test]
+    fn faceprev_is_the_previous_side_normal() {
+        let p = [DVec3::new(0.0, 0.0, 0.1), DVec3::new(1.3, 0.2, 0.0), DVec3::new(1.1, 1.7, -0.2), DVec3::new(0.2, 1.4, 0.3), DVec3::new(-0.4, 0.6, 0.0)];
+        for angle in [0.0, 17.0, -40.0] {
+            let b = Base::new(&p, angle);
+            let (nrm, _) = frame(&p);
+            for i in 0..p.len() {
+                let pr = (i + p.len() - 1) % p.len();
+                let fprev = tilt(nrm.cross(unit(p[pr] - p[i])), nrm, -f64::to_radians(angle));
+                assert_eq!(fprev.to_array().map(f64::to_bits), b.side[pr].to_array().map(f64::to_bits));
+            }
+        }
+    }
 }
