@@ -25,3 +25,5 @@ pub mod menger_level;
 pub mod conway;
 pub mod topmod;
 pub(crate) mod keyed;
+#[cfg(test)]
+mod output_hashes;
