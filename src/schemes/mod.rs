@@ -4,6 +4,7 @@
 pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
+mod primal_columns;
 pub(crate) mod corner_origins;
 pub mod corner_transfer;
 pub mod creases;
