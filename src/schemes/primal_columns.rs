@@ -152,14 +152,9 @@ impl Ctx<'_> {
     }
 }
 
-/// Whether [`primal_columns`] takes `m`: no point-sphere, and faces small
-/// enough for ranks packed with a 4-bit mask in 32 bits.
-pub(crate) fn fits(m: &Mesh, fl: &FaceLayout) -> bool {
-    let big = (0..m.n_faces()).into_par_iter().with_min_len(MIN_LEN).any(|f| fl.degree(f) == 0 || fl.degree(f) >= 1 << 25);
-    !big
-}
-
 /// [`super::hosts::primal_host_sides`] by direct column fills; same result.
+/// Faces of 2²⁵ corners or more (whose ranks would not fit the packed
+/// 28 bits) go through [`super::hosts::primal_host_twins`].
 pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -177,6 +172,9 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         };
         if n == 0 || (kind == T && n != 3) {
             return Err(MeshError::Invariant(format!("primal host: face {f} of degree {n} has no layout")));
+        }
+        if n >= 1 << 25 {
+            return super::hosts::primal_host_twins(m, fl, face_point, pos, want_sides);
         }
         fi.push(FaceInfo { off: fl.off[f], n, base: b, fbase: fb, ebase: 0, kind });
         let (len, nfo) = match kind {
@@ -382,4 +380,41 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
     crate::cancel::check()?;
     let out = Mesh::from_columns(cols)?;
     Ok((out, want_sides.then_some(sides)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::hosts::{primal_host_twins, test_meshes as tm};
+    use super::*;
+
+    /// Every face-point pattern the schemes use (a point per face, none on
+    /// triangles, holes) on the corpus and the open meshes, also after
+    /// InsertEdge (faces and vertices whose stored corner is not their
+    /// first): the same mesh and side map as the corner-and-twin build.
+    #[test]
+    fn columns_equal_the_twin_build() {
+        let mut meshes: Vec<(&str, Mesh)> = tm::corpus().into_iter().filter(|(_, m)| !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0)).collect();
+        meshes.extend(tm::open_meshes());
+        meshes.push(("handle_cube", tm::handle_cube()));
+        meshes.push(("one_two_gon", tm::one_gon_two_gon_cube()));
+        for (name, m) in &meshes {
+            let fl = FaceLayout::new(m).unwrap();
+            let nf = m.n_faces();
+            let all: Vec<u32> = (0..nf as u32).map(|f| if m.f_hole[f as usize] { HOLE } else { f }).collect();
+            let tri: Vec<u32> = (0..nf).map(|f| if m.f_hole[f] { HOLE } else if fl.degree(f) == 3 { NONE } else { f as u32 }).collect();
+            for fp in [all, tri] {
+                let n_fp = fp.iter().filter(|&&x| x != NONE && x != HOLE).count();
+                // compact face-point indices, as the schemes number them
+                let mut k = 0;
+                let fp: Vec<u32> = fp.iter().map(|&x| if x == NONE || x == HOLE { x } else { k += 1; k - 1 }).collect();
+                let pos: Vec<DVec3> = (0..m.n_vertices() + m.n_edges() + n_fp).map(|i| DVec3::splat(i as f64)).collect();
+                for sides in [false, true] {
+                    let a = primal_columns(m, &fl, &fp, pos.clone(), sides).unwrap();
+                    let b = primal_host_twins(m, &fl, &fp, pos.clone(), sides).unwrap();
+                    a.0.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+                    assert_eq!(a, b, "{name}");
+                }
+            }
+        }
+    }
 }
