@@ -7,7 +7,9 @@ Runs ``bench_subdivision.py``'s worker (a fresh process per case: input,
 one untimed call, then ``--runs`` timed calls of ``iterations=levels``) for
 topomesh only, and prints ns per output face (the minimum and the median of
 the runs), output faces per second, peak RSS per output face, and the ratio
-of each level's ns/face to level 1's. Catmull-Clark runs on the 100k-quad
+of each level's ns/face to level 1's. The CPU column is the process CPU
+time (all threads): on a shared machine it leaves out the time the
+process waited for a core. Catmull-Clark runs on the 100k-quad
 torus, Loop and the others on their inputs in ``bench_subdivision.py``.
 Point ``PYTHONPATH`` at another build of the package to measure it instead.
 """
@@ -48,8 +50,8 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--label", default="")
     a = ap.parse_args()
-    print(f"| {a.label} scheme | threads | level | faces | ms (min) | ns/face (min) | ns/face (median) | M faces/s | × level 1 | peak B/face |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    print(f"| {a.label} scheme | threads | level | faces | ms (min) | ns/face (min) | ns/face (median) | CPU ns/face (min) | M faces/s | × level 1 | peak B/face |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for scheme in a.schemes:
         for th in a.threads:
             first = None
@@ -60,7 +62,8 @@ def main() -> None:
                 ns = tmin / nf * 1e9
                 first = first or ns
                 peak = (r["peak_mb"] - r["base_mb"]) * 2**20 / nf
-                print(f"| {scheme} | {th} | {lv} | {nf:,} | {tmin * 1e3:.1f} | {ns:.1f} | {tmed / nf * 1e9:.1f} | "
+                cpu = min(r["cpu"]) / nf * 1e9
+                print(f"| {scheme} | {th} | {lv} | {nf:,} | {tmin * 1e3:.1f} | {ns:.1f} | {tmed / nf * 1e9:.1f} | {cpu:.1f} | "
                       f"{nf / tmin / 1e6:.1f} | {ns / first:.2f} | {peak:.0f} |", flush=True)
 
 

@@ -417,4 +417,53 @@ mod tests {
             }
         }
     }
+
+    /// The builder alone, old against new, alternating in one process:
+    /// `cargo test --release --lib builder_ab -- --ignored --nocapture`
+    /// (ns per output face, minimum of 5 runs; `RAYON_NUM_THREADS` as set).
+    #[test]
+    #[ignore]
+    fn builder_ab() {
+        use std::time::Instant;
+        let mut cc = crate::primitives::torus(400, 250, 1.0, 0.4).unwrap();
+        let mut lp = crate::primitives::icosahedron();
+        for _ in 0..6 {
+            lp = crate::schemes::loop_subdivision::loop_subdivision(&lp).unwrap();
+        }
+        for level in 1..=4 {
+            for (name, m) in [("catmull_clark", &cc), ("loop", &lp)] {
+                let fl = FaceLayout::new(m).unwrap();
+                let nf = m.n_faces();
+                let fp: Vec<u32> = if name == "loop" { vec![NONE; nf] } else { (0..nf as u32).collect() };
+                let n_fp = if name == "loop" { 0 } else { nf };
+                let pos = vec![DVec3::ZERO; m.n_vertices() + m.n_edges() + n_fp];
+                let (mut old, mut new) = (f64::MAX, f64::MAX);
+                let mut faces = 0;
+                for _ in 0..5 {
+                    let t = Instant::now();
+                    let a = primal_host_twins(m, &fl, &fp, pos.clone(), false).unwrap();
+                    old = old.min(t.elapsed().as_secs_f64());
+                    faces = a.0.n_faces();
+                    drop(a);
+                    let t = Instant::now();
+                    let b = primal_columns(m, &fl, &fp, pos.clone(), false).unwrap();
+                    new = new.min(t.elapsed().as_secs_f64());
+                    drop(b);
+                }
+                let t = Instant::now();
+                let full = if name == "loop" { crate::schemes::loop_subdivision::loop_subdivision(m) } else { crate::schemes::catmull_clark::catmull_clark(m) }.unwrap();
+                let whole = t.elapsed().as_secs_f64();
+                drop(full);
+                let ns = |t: f64| t / faces as f64 * 1e9;
+                println!(
+                    "{name} level {level} ({faces} faces, {} threads): host+build old {:.1} ns/face, new {:.1} ns/face ({:.2}x); whole level (new) {:.1} ns/face",
+                    rayon::current_num_threads(), ns(old), ns(new), old / new, ns(whole)
+                );
+            }
+            if level < 4 {
+                cc = crate::schemes::catmull_clark::catmull_clark(&cc).unwrap();
+                lp = crate::schemes::loop_subdivision::loop_subdivision(&lp).unwrap();
+            }
+        }
+    }
 }
