@@ -13,10 +13,12 @@
 //! invariant that [`Mesh::validate`] checks.
 //!
 //! The structure knows nothing about any scheme; schemes live in
-//! `crate::schemes` and build new meshes with [`Mesh::from_corner_twins`].
+//! `crate::schemes` and build new meshes with [`Mesh::from_corner_twins`], or
+//! fill the columns themselves and hand them to [`Mesh::from_columns`].
 
 pub mod build;
 mod boundary;
+mod direct;
 mod euler;
 mod export;
 mod twins;
@@ -24,6 +26,7 @@ mod query;
 mod validate;
 
 pub use build::{BuildOptions, PolygonFaces};
+pub use direct::Columns;
 pub use euler::Corner;
 pub use query::Histogram;
 

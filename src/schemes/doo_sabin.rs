@@ -61,7 +61,7 @@ use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{Columns, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -84,7 +84,6 @@ pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("doo_sabin", 4 * m.n_halfedges(), m.n_halfedges())?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m)?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     let (next, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -148,64 +147,69 @@ fn step(m: &Mesh) -> Result<Mesh> {
     });
 
     crate::cancel::check()?;
-    // --- connectivity
-    let (hu, eu) = (nh as u32, ne as u32);
-    let vbase = hu + 4 * eu;
-    let nc = 2 * nh + 4 * ne;
-    let mut cv = vec![0u32; nc];
-    let mut tw = vec![0u32; nc];
-    let mut sizes = Vec::with_capacity(nf + ne + nv);
-    sizes.extend((0..nf).map(|f| fl.degree(f) as u32));
-    sizes.extend(std::iter::repeat(4u32).take(ne));
-    sizes.extend((0..nv).map(|v| vl.valence(v)));
+    // --- connectivity, straight into the columns (issue 19). The corners
+    // `from_corner_twins` was given: F-faces (layout corner c), E-faces
+    // `[p(next a), p(a), p(next b), p(b)]`, V-faces (rotation slots). An
+    // F-face corner's twin is an E-face corner (later), a V-face corner's an
+    // E-face corner (earlier), and the 2nd and 4th E-face corners come
+    // before their twins: so its numbering (edges by first corner) is in
+    // closed form. Edge c is F-face corner c's side (half-edges 2c, 2c + 1),
+    // edges nh + 2e, nh + 2e + 1 the V-sides of E-face e; the V-face corner
+    // at x has half-edge 2(nh + r) + 1, r = rotate(x) = twin(prev x).
+    let (hu, eu, fu) = (nh as u32, ne as u32, nf as u32);
+    let mut cols = Columns::new(pos, 4 * nh, nf + ne + nv);
     let cidx = &fl.cidx;
+    let v_id = |x: usize| 2 * (hu + (prev[x] ^ 1)) + 1;
     {
-        let (cf, rest_c) = cv.split_at_mut(nh);
-        let (ce, cvf) = rest_c.split_at_mut(4 * ne);
-        let (tf, rest_t) = tw.split_at_mut(nh);
-        let (te, tvf) = rest_t.split_at_mut(4 * ne);
-        // F-faces: corner c is vertex c
-        cf.par_iter_mut().zip(tf.par_iter_mut()).with_min_len(MIN_LEN).enumerate().for_each(|(c, (v, t))| {
+        let cp = |c: &mut Vec<u32>| SyncPtr(c.as_mut_ptr());
+        let (pn, pp, pv, pf, ps) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face), cp(&mut cols.f_start));
+        // SAFETY (all three loops): the ids above are a bijection from the
+        // output corners onto 0..4nh, each face is written by one task, so
+        // every entry is written once.
+        let put = |id: u32, idn: u32, v: u32, f: u32| unsafe {
+            *pn.get().add(id as usize) = idn;
+            *pp.get().add(idn as usize) = id;
+            *pv.get().add(id as usize) = v;
+            *pf.get().add(id as usize) = f;
+        };
+        (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
             if crate::cancel::requested() {
-                return; // the check after the loop reports it
+                return; // the check after the loops reports it
             }
-            let h = fl.fh[c];
-            *v = c as u32;
-            *t = hu + 4 * (h >> 1) + 2 * (h & 1);
+            let (s, e) = (fl.off[f], fl.off[f + 1]);
+            unsafe { *ps.get().add(f) = 2 * s };
+            for c in s..e {
+                put(2 * c, 2 * if c + 1 == e { s } else { c + 1 }, c, f as u32);
+            }
         });
-        // E-faces [p(next a), p(a), p(next b), p(b)]
-        ce.par_chunks_mut(4).zip(te.par_chunks_mut(4)).with_min_len(MIN_LEN).enumerate().for_each(|(e, (v, t))| {
+        (0..ne).into_par_iter().with_min_len(MIN_LEN).for_each(|e| {
             if crate::cancel::requested() {
-                return; // the check after the loop reports it
+                return;
             }
             let (a, b) = (2 * e, 2 * e + 1);
             let (na, nb) = (next[a] as usize, next[b] as usize);
-            v[0] = cidx[na];
-            v[1] = cidx[a];
-            v[2] = cidx[nb];
-            v[3] = cidx[b];
-            t[0] = cidx[a];
-            t[1] = vbase + vl.vidx[nb];
-            t[2] = cidx[b];
-            t[3] = vbase + vl.vidx[na];
+            let ids = [2 * cidx[a] + 1, 2 * (hu + 2 * e as u32), 2 * cidx[b] + 1, 2 * (hu + 2 * e as u32 + 1)];
+            let vs = [cidx[na], cidx[a], cidx[nb], cidx[b]];
+            unsafe { *ps.get().add(nf + e) = ids[0] };
+            for j in 0..4 {
+                put(ids[j], ids[(j + 1) % 4], vs[j], fu + e as u32);
+            }
         });
-        // V-faces in rotation order: corner of x, twin on the E-face of rotate(x)
-        let (cvf, tvf) = (SyncPtr(cvf.as_mut_ptr()), SyncPtr(tvf.as_mut_ptr()));
         (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|x| {
             if crate::cancel::requested() {
-                return; // the check after the loop reports it
+                return;
             }
-            let slot = vl.vidx[x] as usize;
-            let r = prev[x] ^ 1;
-            // SAFETY: vidx is a permutation of 0..nh, so every slot is written once.
-            unsafe {
-                *cvf.get().add(slot) = cidx[x];
-                *tvf.get().add(slot) = hu + 4 * (r >> 1) + 1 + 2 * (r & 1);
+            let v = vert[x] as usize;
+            if m.v_out[v] as usize == x {
+                unsafe { *ps.get().add(nf + ne + v) = v_id(x) };
             }
+            put(v_id(x), v_id((prev[x] ^ 1) as usize), cidx[x], fu + eu + v as u32);
         });
     }
     crate::cancel::check()?;
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+    // every output vertex (an input corner) first shows up in its F-face
+    cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(c, o)| *o = 2 * c as u32);
+    Mesh::from_columns(cols)
 }
 
 /// One level with what `req` asks for (see the module docs); without

@@ -45,7 +45,7 @@ use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::{Columns, Mesh, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -59,31 +59,85 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m)?;
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
-    let (next, _, face) = m.halfedge_columns();
+    let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
     let mut pos = vec![DVec3::ZERO; nf];
     face_centroids(m, &fl, &mut pos);
     crate::cancel::check()?;
-    let mut cv = vec![0u32; nh];
-    let mut tw = vec![0u32; nh];
-    let (pc, pt) = (super::hosts::SyncPtr(cv.as_mut_ptr()), super::hosts::SyncPtr(tw.as_mut_ptr()));
-    (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
-        if crate::cancel::requested() {
-            return; // the check after the loop reports it
-        }
-        let slot = vl.vidx[h] as usize;
-        // side face(h) -> face(rotate h) crosses edge(prev h); its twin is the
-        // side at next(rotate h) around the other end
-        let r = prev[h] ^ 1;
-        // SAFETY: vidx is a permutation of 0..nh.
-        unsafe {
-            *pc.get().add(slot) = face[h];
-            *pt.get().add(slot) = vl.vidx[next[r as usize] as usize];
-        }
-    });
+    // Connectivity straight into the columns (issue 19), numbered as
+    // `from_corner_twins` numbered the corners it was given: face v lists
+    // the rotation slots of v; the corner at slot(h) (centroid of face(h))
+    // has its twin at slot(next(rotate h)), and edges are numbered by first
+    // corner (the one before its twin). Pass 1 ranks, per vertex, the first
+    // corners of its face (`rank << 1 | first`); a prefix over vertices gives
+    // the edge base of every face; then each id is a lookup.
+    let rot = |h: u32| prev[h as usize] ^ 1;
+    let first = |h: u32| vl.vidx[next[rot(h) as usize] as usize] > vl.vidx[h as usize];
+    let mut rank = vec![0u32; nh];
+    let rp = super::hosts::SyncPtr(rank.as_mut_ptr());
+    let cnt: Vec<u32> = (0..nv)
+        .into_par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|v| {
+            if crate::cancel::requested() {
+                return 0; // the check after the loop reports it
+            }
+            let s = m.v_out[v];
+            let (mut h, mut r) = (s, 0u32);
+            loop {
+                let fst = first(h);
+                // SAFETY: every half-edge leaves one vertex, whose task alone writes it.
+                unsafe { *rp.get().add(h as usize) = r << 1 | fst as u32 };
+                r += fst as u32;
+                h = rot(h);
+                if h == s {
+                    return r;
+                }
+            }
+        })
+        .collect();
     crate::cancel::check()?;
-    let sizes: Vec<u32> = (0..nv).map(|v| vl.valence(v)).collect();
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+    let mut ebase = Vec::with_capacity(nv);
+    let mut acc = 0u32;
+    for c in cnt {
+        ebase.push(acc);
+        acc += c;
+    }
+    if 2 * acc as usize != nh {
+        return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * acc)));
+    }
+    let first_id = |h: u32| 2 * (ebase[vert[h as usize] as usize] + (rank[h as usize] >> 1));
+    let id = |h: u32| if rank[h as usize] & 1 != 0 { first_id(h) } else { first_id(next[rot(h) as usize]) + 1 };
+    let mut cols = Columns::new(pos, nh, nv);
+    {
+        let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
+        let (pn, pp, pv, pf, ps) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face), cp(&mut cols.f_start));
+        (0..nh as u32).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+            if crate::cancel::requested() {
+                return;
+            }
+            let (i, v) = (id(h), vert[h as usize]);
+            let n = id(rot(h));
+            // SAFETY: `id` is a bijection from the half-edges (corners) onto
+            // 0..nh, and f_start[v] is written by v's outgoing v_out only.
+            unsafe {
+                *pn.get().add(i as usize) = n;
+                *pp.get().add(n as usize) = i;
+                *pv.get().add(i as usize) = face[h as usize];
+                *pf.get().add(i as usize) = v;
+                if m.v_out[v as usize] == h {
+                    *ps.get().add(v as usize) = i;
+                }
+            }
+        });
+    }
+    crate::cancel::check()?;
+    // the centroid of face f first shows up at the lowest slot of its corners
+    cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
+        let h = fl.corners(f).iter().copied().min_by_key(|&h| vl.vidx[h as usize]).unwrap_or(0);
+        *o = id(h);
+    });
+    Mesh::from_columns(cols)
 }
 
 /// The dual with what `req` asks for; open meshes keep their boundary (see

@@ -5,7 +5,9 @@
 //! buffer laid out by index arithmetic (e.g. `[vertex points | edge points |
 //! face points]`), the output faces and the twin of every output corner are
 //! computed from the half-edge columns of the input, and
-//! [`Mesh::from_corner_twins`] assembles the result. Nothing is ever paired by
+//! [`Mesh::from_corner_twins`] assembles the result; the primal host,
+//! Doo-Sabin and the dual go one step further and write the half-edge
+//! columns themselves ([`Mesh::from_columns`], see `primal_columns.rs`). Nothing is ever paired by
 //! vertex ids, so self-loops, multi-edges, one-gons, two-gons and repeated
 //! vertices in a face are handled like any other element: a self-loop's two
 //! sides are two half-edges with their own corners and new points.
@@ -442,7 +444,16 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
 /// [`primal_host`], and on request, per output edge, the input half-edge
 /// `h` such that the edge is the child of edge `h >> 1` at the tail of `h`
 /// (`NONE` for edges inside an input face).
+///
+/// Written straight into the mesh columns ([`super::primal_columns`]); the
+/// corner-and-twin build below is kept for faces too large for its packed
+/// ranks (and as the reference its tests compare with).
 pub(crate) fn primal_host_sides(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
+    super::primal_columns::primal_columns(m, fl, face_point, pos, want_sides)
+}
+
+/// [`primal_host_sides`] through [`Mesh::from_corner_twins`].
+pub(crate) fn primal_host_twins(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
     let (next, vert, face) = m.halfedge_columns();
     let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
     let prev = &m.he_prev;

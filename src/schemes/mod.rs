@@ -4,6 +4,7 @@
 pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
+mod primal_columns;
 pub(crate) mod corner_origins;
 pub mod corner_transfer;
 pub mod creases;
@@ -25,3 +26,5 @@ pub mod menger_level;
 pub mod conway;
 pub mod topmod;
 pub(crate) mod keyed;
+#[cfg(test)]
+mod output_hashes;

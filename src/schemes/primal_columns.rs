@@ -1,0 +1,469 @@
+//! The primal host's output written straight into the mesh columns
+//! ([`crate::mesh::Columns`]), by index arithmetic on the input (issue 19,
+//! item 1), instead of listing corners and twins for
+//! [`Mesh::from_corner_twins`].
+//!
+//! The result is the mesh `from_corner_twins` built, bit for bit: its
+//! numbering is reproduced in closed form.
+//! * **Corners.** Input face `f` owns the output corners `base[f]..`, one
+//!   sub-block of `S` corners per input corner `h` (local index `k`), in the
+//!   layout of [`super::hosts::primal_host`]: a face with a face point (`Q`,
+//!   `S = 4`) `[v→e(h), e(h)→fp, fp→e(prev h), e(prev h)→v]`; a triangle
+//!   without one (`T`, `S = 3`) `[v→e(h), e(h)→e(prev h), e(prev h)→v]` and
+//!   then the middle triangle; a hole (`H`, `S = 2`) `[v→e(h), e(h)→v(next h)]`.
+//!   The two *outer* corners along an input edge are `a(h)` (`v→e(h)`) and
+//!   `b(h)` (`e(prev h)→v`, in `H` the second corner of the previous
+//!   sub-block); `twin(a(h)) = b(next(twin h))`.
+//! * **Half-edges.** `from_corner_twins` numbers edges by their first corner
+//!   (the one whose twin comes later): corner `c` gets `2e` with `e` the
+//!   number of first corners before it, its twin `2e + 1`. Pass 1 marks, per
+//!   input corner, which of its sub-block's corners are first (an inner
+//!   corner by its position, an outer one by comparing with its twin's
+//!   position) and counts them; a prefix over faces gives every face's edge
+//!   base, so every id is a lookup plus a popcount (a later corner's id is
+//!   its twin's plus one, one hop away).
+//! * **Vertices' corners.** `v_out` is the id of a vertex's first corner:
+//!   for a vertex point the `a` corner of the outgoing half-edge that comes
+//!   first in face order, for an edge point the lowest of its candidates,
+//!   for a face point its face's third corner.
+
+use super::hosts::{FaceLayout, SyncPtr, HOLE, MIN_LEN};
+use crate::error::{MeshError, Result};
+use crate::mesh::{Columns, Mesh, NONE};
+use glam::DVec3;
+use rayon::prelude::*;
+
+const Q: u8 = 0;
+const T: u8 = 1;
+const H: u8 = 2;
+
+/// Per input face: where its output starts.
+#[derive(Clone, Copy, Default)]
+struct FaceInfo {
+    /// First input corner (FaceLayout index).
+    off: u32,
+    /// Degree.
+    n: u32,
+    /// First output corner.
+    base: u32,
+    /// First output face.
+    fbase: u32,
+    /// Number of output edges whose first corner lies before `base`.
+    ebase: u32,
+    kind: u8,
+}
+
+impl FaceInfo {
+    #[inline]
+    fn stride(&self) -> u32 {
+        match self.kind {
+            Q => 4,
+            T => 3,
+            _ => 2,
+        }
+    }
+}
+
+struct Ctx<'a> {
+    next: &'a [u32],
+    prev: &'a [u32],
+    face: &'a [u32],
+    cidx: &'a [u32],
+    fi: Vec<FaceInfo>,
+    /// Per input corner: `rank << 4 | mask`, the number of first corners of
+    /// its face's block before its sub-block, and which of the sub-block's
+    /// corners are first.
+    rm: Vec<u32>,
+}
+
+impl Ctx<'_> {
+    /// Face info and local index of input half-edge `h`.
+    #[inline]
+    fn loc(&self, h: u32) -> (&FaceInfo, u32, u32) {
+        let c = self.cidx[h as usize];
+        let fi = &self.fi[self.face[h as usize] as usize];
+        (fi, c - fi.off, c)
+    }
+    /// Output corner index of `a(h)`.
+    #[inline]
+    fn pos_a(&self, h: u32) -> u32 {
+        let (fi, k, _) = self.loc(h);
+        fi.base + fi.stride() * k
+    }
+    /// Output corner index of `b(h)`.
+    #[inline]
+    fn pos_b(&self, h: u32) -> u32 {
+        let (fi, k, _) = self.loc(h);
+        match fi.kind {
+            Q => fi.base + 4 * k + 3,
+            T => fi.base + 3 * k + 2,
+            _ => fi.base + 2 * ((k + fi.n - 1) % fi.n) + 1,
+        }
+    }
+    /// Id of the first corner at `slot` of input corner `c`'s sub-block.
+    #[inline]
+    fn first_id(&self, fi: &FaceInfo, c: u32, slot: u32) -> u32 {
+        let rm = self.rm[c as usize];
+        2 * (fi.ebase + (rm >> 4) + (rm & 15 & ((1 << slot) - 1)).count_ones())
+    }
+    #[inline]
+    fn is_first(&self, c: u32, slot: u32) -> bool {
+        self.rm[c as usize] >> slot & 1 != 0
+    }
+    /// Id of `a(h)` when it is the first corner of its edge.
+    #[inline]
+    fn first_a(&self, h: u32) -> u32 {
+        let (fi, _, c) = self.loc(h);
+        self.first_id(fi, c, 0)
+    }
+    /// Sub-block (input corner) and slot of `b(h)`.
+    #[inline]
+    fn slot_b(fi: &FaceInfo, k: u32, c: u32) -> (u32, u32) {
+        match fi.kind {
+            Q => (c, 3),
+            T => (c, 2),
+            _ => (fi.off + (k + fi.n - 1) % fi.n, 1),
+        }
+    }
+    #[inline]
+    fn first_b(&self, h: u32) -> u32 {
+        let (fi, k, c) = self.loc(h);
+        let (c, s) = Self::slot_b(fi, k, c);
+        self.first_id(fi, c, s)
+    }
+    #[inline]
+    fn id_a(&self, h: u32) -> u32 {
+        let (fi, _, c) = self.loc(h);
+        if self.is_first(c, 0) {
+            self.first_id(fi, c, 0)
+        } else {
+            self.first_b(self.next[(h ^ 1) as usize]) + 1
+        }
+    }
+    #[inline]
+    fn id_b(&self, h: u32) -> u32 {
+        let (fi, k, c) = self.loc(h);
+        let (c, s) = Self::slot_b(fi, k, c);
+        if self.is_first(c, s) {
+            self.first_id(fi, c, s)
+        } else {
+            self.first_a(self.prev[h as usize] ^ 1) + 1
+        }
+    }
+}
+
+/// [`super::hosts::primal_host_sides`] by direct column fills; same result.
+/// Faces of 2²⁵ corners or more (whose ranks would not fit the packed
+/// 28 bits) go through [`super::hosts::primal_host_twins`].
+pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
+    // pass 0: output corner and face bases (sequential, per input face)
+    let mut fi = Vec::with_capacity(nf);
+    let (mut b, mut fb) = (0u32, 0u32);
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        let n = fl.degree(f) as u32;
+        let kind = match face_point[f] {
+            NONE => T,
+            HOLE => H,
+            _ => Q,
+        };
+        if n == 0 || (kind == T && n != 3) {
+            return Err(MeshError::Invariant(format!("primal host: face {f} of degree {n} has no layout")));
+        }
+        if n >= 1 << 25 {
+            return super::hosts::primal_host_twins(m, fl, face_point, pos, want_sides);
+        }
+        fi.push(FaceInfo { off: fl.off[f], n, base: b, fbase: fb, ebase: 0, kind });
+        let (len, nfo) = match kind {
+            Q => (4 * n, n),
+            T => (12, 4),
+            _ => (2 * n, 1),
+        };
+        b += len;
+        fb += nfo;
+    }
+    let (nc, nfo) = (b as usize, fb as usize);
+    let mut ctx = Ctx { next, prev, face, cidx: &fl.cidx, fi, rm: vec![0; m.n_halfedges()] };
+    // pass 1: first corners, per input corner and per face
+    let cnt: Vec<u32> = {
+        let rmp = SyncPtr(ctx.rm.as_mut_ptr());
+        let ctx = &ctx;
+        (0..nf)
+            .into_par_iter()
+            .with_min_len(MIN_LEN)
+            .map(|f| {
+                if crate::cancel::requested() {
+                    return 0;
+                }
+                let fi = &ctx.fi[f];
+                let hs = fl.corners(f);
+                let n = fi.n;
+                let mut r = 0u32;
+                for (k, &h) in hs.iter().enumerate() {
+                    let k = k as u32;
+                    let pa = fi.base + fi.stride() * k;
+                    let first_a = ctx.pos_b(next[(h ^ 1) as usize]) > pa;
+                    let mask = match fi.kind {
+                        Q => {
+                            let pb = pa + 3;
+                            first_a as u32
+                                | ((k + 1 < n || n == 1) as u32) << 1
+                                | ((k == 0 && n > 1) as u32) << 2
+                                | ((ctx.pos_a(prev[h as usize] ^ 1) > pb) as u32) << 3
+                        }
+                        T => first_a as u32 | 2 | ((ctx.pos_a(prev[h as usize] ^ 1) > pa + 2) as u32) << 2,
+                        // slot 1 is b(next h), whose twin is a(twin h)
+                        _ => first_a as u32 | ((ctx.pos_a(h ^ 1) > pa + 1) as u32) << 1,
+                    };
+                    // SAFETY: input corner fi.off + k belongs to face f only.
+                    unsafe { *rmp.get().add((fi.off + k) as usize) = r << 4 | mask };
+                    r += mask.count_ones();
+                }
+                r
+            })
+            .collect()
+    };
+    crate::cancel::check()?;
+    let mut acc = 0u32;
+    for (f, c) in cnt.into_iter().enumerate() {
+        ctx.fi[f].ebase = acc;
+        acc += c;
+    }
+    let nh = 2 * acc as usize;
+    if nh != nc {
+        return Err(MeshError::Invariant(format!("primal host: {nc} corners but {nh} half-edges")));
+    }
+    let mut cols = Columns::new(pos, nh, nfo);
+    let ne_out = acc as usize;
+    let mut sides = if want_sides { vec![NONE; ne_out] } else { Vec::new() };
+    let ctx = &ctx;
+    let (pn, pp, pv, pf, ps, po, psd) = (
+        SyncPtr(cols.he_next.as_mut_ptr()),
+        SyncPtr(cols.he_prev.as_mut_ptr()),
+        SyncPtr(cols.he_vert.as_mut_ptr()),
+        SyncPtr(cols.he_face.as_mut_ptr()),
+        SyncPtr(cols.f_start.as_mut_ptr()),
+        SyncPtr(cols.v_out.as_mut_ptr()),
+        SyncPtr(sides.as_mut_ptr()),
+    );
+    let fhole = SyncPtr(cols.f_hole.as_mut_ptr());
+    // pass 3: every output corner's id, then the columns
+    (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each_init(Vec::<[u32; 4]>::new, |buf, f| {
+        if crate::cancel::requested() {
+            return;
+        }
+        let fi = &ctx.fi[f];
+        let hs = fl.corners(f);
+        let n = fi.n as usize;
+        // per corner of the block: (id, vertex, face, side)
+        buf.clear();
+        let fp = (nv + ne).wrapping_add(face_point[f]); // used by Q faces only
+        match fi.kind {
+            Q => {
+                for (k, &h) in hs.iter().enumerate() {
+                    let c = fi.off + k as u32;
+                    let p = prev[h as usize];
+                    let of = fi.fbase + k as u32;
+                    let i1 = if ctx.is_first(c, 1) { ctx.first_id(fi, c, 1) } else { ctx.first_id(fi, fi.off, 2) + 1 };
+                    let i2 = if ctx.is_first(c, 2) {
+                        ctx.first_id(fi, c, 2)
+                    } else {
+                        ctx.first_id(fi, fi.off + ((k + n - 1) % n) as u32, 1) + 1
+                    };
+                    buf.push([ctx.id_a(h), vert[h as usize], of, h]);
+                    buf.push([i1, nv + (h >> 1), of, NONE]);
+                    buf.push([i2, fp, of, NONE]);
+                    buf.push([ctx.id_b(h), nv + (p >> 1), of, p ^ 1]);
+                }
+            }
+            T => {
+                for (k, &h) in hs.iter().enumerate() {
+                    let c = fi.off + k as u32;
+                    let p = prev[h as usize];
+                    let of = fi.fbase + k as u32;
+                    buf.push([ctx.id_a(h), vert[h as usize], of, h]);
+                    buf.push([ctx.first_id(fi, c, 1), nv + (h >> 1), of, NONE]);
+                    buf.push([ctx.id_b(h), nv + (p >> 1), of, p ^ 1]);
+                }
+                for (k, &h) in hs.iter().enumerate() {
+                    let c1 = fi.off + ((k + 1) % 3) as u32;
+                    buf.push([ctx.first_id(fi, c1, 1) + 1, nv + (h >> 1), fi.fbase + 3, NONE]);
+                }
+            }
+            _ => {
+                for (k, &h) in hs.iter().enumerate() {
+                    buf.push([ctx.id_a(h), vert[h as usize], fi.fbase, h]);
+                    buf.push([ctx.id_b(hs[(k + 1) % n]), nv + (h >> 1), fi.fbase, h ^ 1]);
+                }
+            }
+        }
+        let len = buf.len();
+        // size of the output faces of this block
+        let fsize = match fi.kind {
+            Q => 4,
+            T => 3,
+            _ => len,
+        };
+        // SAFETY: ids are a bijection from output corners onto half-edges,
+        // and every output face, face point and hole flag belongs to one
+        // input face, so no two writes hit the same entry.
+        unsafe {
+            for s in (0..len).step_by(fsize) {
+                *ps.get().add(buf[s][2] as usize) = buf[s][0];
+                for j in s..s + fsize {
+                    let nx = if j + 1 == s + fsize { s } else { j + 1 };
+                    let [id, v, of, sd] = buf[j];
+                    let idn = buf[nx][0];
+                    *pn.get().add(id as usize) = idn;
+                    *pp.get().add(idn as usize) = id;
+                    *pv.get().add(id as usize) = v;
+                    *pf.get().add(id as usize) = of;
+                    if want_sides && id & 1 == 0 && sd != NONE {
+                        *psd.get().add((id >> 1) as usize) = sd;
+                    }
+                }
+            }
+            match fi.kind {
+                Q => *po.get().add(fp as usize) = buf[2][0],
+                H => *fhole.get().add(fi.fbase as usize) = true,
+                _ => {}
+            }
+        }
+    });
+    crate::cancel::check()?;
+    // vertex points: the a corner of the outgoing half-edge first in face order
+    cols.v_out[..nv as usize].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
+        if crate::cancel::requested() {
+            return;
+        }
+        let s = m.v_out[v];
+        let mut h = s;
+        let mut best = s;
+        loop {
+            if fl.cidx[h as usize] < fl.cidx[best as usize] {
+                best = h;
+            }
+            h = prev[h as usize] ^ 1;
+            if h == s {
+                break;
+            }
+        }
+        *o = ctx.id_a(best);
+    });
+    // edge points: the lowest of e(h)'s corners, h one of the edge's halves:
+    // the inner corner after a(h) (not in a hole) and b(next h)
+    cols.v_out[nv as usize..(nv + ne) as usize].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
+        if crate::cancel::requested() {
+            return;
+        }
+        let mut best = (u32::MAX, 0u32);
+        for h in [2 * e as u32, 2 * e as u32 + 1] {
+            let (fi, k, c) = ctx.loc(h);
+            if fi.kind != H {
+                let p = fi.base + fi.stride() * k + 1;
+                if p < best.0 {
+                    let id = if ctx.is_first(c, 1) { ctx.first_id(fi, c, 1) } else { ctx.first_id(fi, fi.off, 2) + 1 };
+                    best = (p, id);
+                }
+            }
+            let g = next[h as usize];
+            let p = ctx.pos_b(g);
+            if p < best.0 {
+                best = (p, ctx.id_b(g));
+            }
+        }
+        *o = best.1;
+    });
+    crate::cancel::check()?;
+    let out = Mesh::from_columns(cols)?;
+    Ok((out, want_sides.then_some(sides)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::hosts::{primal_host_twins, test_meshes as tm};
+    use super::*;
+
+    /// Every face-point pattern the schemes use (a point per face, none on
+    /// triangles, holes) on the corpus and the open meshes, also after
+    /// InsertEdge (faces and vertices whose stored corner is not their
+    /// first): the same mesh and side map as the corner-and-twin build.
+    #[test]
+    fn columns_equal_the_twin_build() {
+        let mut meshes: Vec<(&str, Mesh)> = tm::corpus().into_iter().filter(|(_, m)| !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0)).collect();
+        meshes.extend(tm::open_meshes());
+        meshes.push(("handle_cube", tm::handle_cube()));
+        meshes.push(("one_two_gon", tm::one_gon_two_gon_cube()));
+        for (name, m) in &meshes {
+            let fl = FaceLayout::new(m).unwrap();
+            let nf = m.n_faces();
+            let all: Vec<u32> = (0..nf as u32).map(|f| if m.f_hole[f as usize] { HOLE } else { f }).collect();
+            let tri: Vec<u32> = (0..nf).map(|f| if m.f_hole[f] { HOLE } else if fl.degree(f) == 3 { NONE } else { f as u32 }).collect();
+            for fp in [all, tri] {
+                let n_fp = fp.iter().filter(|&&x| x != NONE && x != HOLE).count();
+                // compact face-point indices, as the schemes number them
+                let mut k = 0;
+                let fp: Vec<u32> = fp.iter().map(|&x| if x == NONE || x == HOLE { x } else { k += 1; k - 1 }).collect();
+                let pos: Vec<DVec3> = (0..m.n_vertices() + m.n_edges() + n_fp).map(|i| DVec3::splat(i as f64)).collect();
+                for sides in [false, true] {
+                    let a = primal_columns(m, &fl, &fp, pos.clone(), sides).unwrap();
+                    let b = primal_host_twins(m, &fl, &fp, pos.clone(), sides).unwrap();
+                    a.0.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+                    assert_eq!(a, b, "{name}");
+                }
+            }
+        }
+    }
+
+    /// The builder alone, old against new, alternating in one process:
+    /// `cargo test --release --lib builder_ab -- --ignored --nocapture`
+    /// (ns per output face, minimum of 5 runs; `RAYON_NUM_THREADS` as set).
+    #[test]
+    #[ignore]
+    fn builder_ab() {
+        use std::time::Instant;
+        let mut cc = crate::primitives::torus(400, 250, 1.0, 0.4).unwrap();
+        let mut lp = crate::primitives::icosahedron();
+        for _ in 0..6 {
+            lp = crate::schemes::loop_subdivision::loop_subdivision(&lp).unwrap();
+        }
+        for level in 1..=4 {
+            for (name, m) in [("catmull_clark", &cc), ("loop", &lp)] {
+                let fl = FaceLayout::new(m).unwrap();
+                let nf = m.n_faces();
+                let fp: Vec<u32> = if name == "loop" { vec![NONE; nf] } else { (0..nf as u32).collect() };
+                let n_fp = if name == "loop" { 0 } else { nf };
+                let pos = vec![DVec3::ZERO; m.n_vertices() + m.n_edges() + n_fp];
+                let (mut old, mut new) = (f64::MAX, f64::MAX);
+                let mut faces = 0;
+                for _ in 0..5 {
+                    let t = Instant::now();
+                    let a = primal_host_twins(m, &fl, &fp, pos.clone(), false).unwrap();
+                    old = old.min(t.elapsed().as_secs_f64());
+                    faces = a.0.n_faces();
+                    drop(a);
+                    let t = Instant::now();
+                    let b = primal_columns(m, &fl, &fp, pos.clone(), false).unwrap();
+                    new = new.min(t.elapsed().as_secs_f64());
+                    drop(b);
+                }
+                let t = Instant::now();
+                let full = if name == "loop" { crate::schemes::loop_subdivision::loop_subdivision(m) } else { crate::schemes::catmull_clark::catmull_clark(m) }.unwrap();
+                let whole = t.elapsed().as_secs_f64();
+                drop(full);
+                let ns = |t: f64| t / faces as f64 * 1e9;
+                println!(
+                    "{name} level {level} ({faces} faces, {} threads): host+build old {:.1} ns/face, new {:.1} ns/face ({:.2}x); whole level (new) {:.1} ns/face",
+                    rayon::current_num_threads(), ns(old), ns(new), old / new, ns(whole)
+                );
+            }
+            if level < 4 {
+                cc = crate::schemes::catmull_clark::catmull_clark(&cc).unwrap();
+                lp = crate::schemes::loop_subdivision::loop_subdivision(&lp).unwrap();
+            }
+        }
+    }
+}
