@@ -60,7 +60,7 @@ def test_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
         assert m.volume > 0
         if i == k:
             r = assert_agrees_with_peers(m)
-            assert r["trimesh"]["volume"] > 0
+            assert r["trimesh_volume"] > 0
 
 
 @pytest.mark.parametrize("name,k", [("cube", 3), ("tetrahedron", 2), ("dodecahedron", 2), ("genus2", 2)])
@@ -109,3 +109,23 @@ def test_crossing_iteration_is_never_silent():
     # still a valid closed manifold with the genus formula
     m.validate()
     assert m.genus == 2 * o2.genus + o2.n_faces - 1 and m.volume > 0
+
+
+def test_tetrahedron_third_iteration_reduced_to_no_contact():
+    """Without the reduction the tetrahedron's third iteration has 4
+    coplanar contacts (0 proper crossings); the reduction halves the depth
+    of a few faces and leaves none, and says so."""
+    t2 = topomesh.tetrahedron().menger(2)
+    plain = t2.menger(reduce_thickness=False)
+    assert len(plain.self_intersections()) > 0
+    with pytest.warns(topomesh.GeometryWarning, match=r"reduced on \d+ of 522 faces .* free of crossings") as rec:
+        m, rep = t2.menger(report=True)
+    assert len(rec) == 1
+    assert len(m.self_intersections()) == 0 and rep["crossing_pairs"] == [0]
+    f = rep["face_factor"][0]
+    n = int((f < 1).sum())
+    assert 0 < n < t2.n_faces and rep["reduced_faces"] == [n] and f"reduced on {n} of" in str(rec[0].message)
+    assert rep["min_factor"][0] == f.min() == 0.5
+    assert m.genus == 2 * t2.genus + t2.n_faces - 1
+    r = assert_agrees_with_peers(m)
+    assert r["trimesh_volume"] > 0

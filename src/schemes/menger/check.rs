@@ -95,11 +95,16 @@ pub const REDUCTION_FLOOR: f64 = 1.0 / 32.0;
 /// ([`crate::geometry::crossing::triangles_meet`], what
 /// `Mesh.self_intersections` counts), each given by the two output faces
 /// it came from.
-fn output_crossings(mesh: &Mesh) -> Vec<(u32, u32)> {
+///
+/// Two triangles of the outer remeshing (every corner below `first_inner`)
+/// lie in the input's faces and cannot cross (as in the per-vertex check),
+/// so only pairs with another triangle are tested.
+fn output_crossings(mesh: &Mesh, first_inner: u32) -> Vec<(u32, u32)> {
     let t = mesh.triangulate();
     let mut p = mesh.positions().to_vec();
     p.extend_from_slice(&t.points);
-    let pairs = crate::geometry::crossing::crossing_pairs(&p, &t.tris, None, true);
+    let focus: Vec<bool> = t.tris.iter().map(|tv| tv.iter().any(|&v| v >= first_inner)).collect();
+    let pairs = crate::geometry::crossing::crossing_pairs(&p, &t.tris, Some(&focus), true);
     pairs.iter().map(|&(i, j)| (t.tri_face[i as usize], t.tri_face[j as usize])).collect()
 }
 
@@ -153,7 +158,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
             let report = MengerReport { face_factor: vec![1.0; nf], rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
             return Ok(((b, mesh), report));
         }
-        let pairs = output_crossings(&mesh);
+        let pairs = output_crossings(&mesh, b.first_inner);
         crate::cancel::check()?;
         if best.as_ref().is_some_and(|(_, r)| r.crossing_pairs.is_some_and(|n| n <= pairs.len())) {
             // this round did not lower the count: the best so far stands

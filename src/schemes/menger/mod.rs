@@ -219,8 +219,11 @@
 //!
 //! [`menger_checked`] returns how many input vertices still cross when the
 //! check ends (180 in the dodecahedron's third iteration, 1056 in the
-//! tetrahedron's fourth, 0 wherever the table says crossing-free); the Python binding raises
-//! `topomesh.GeometryWarning` with that number.
+//! tetrahedron's fourth, 0 wherever the table says crossing-free). The
+//! figures in this table are before the thickness reduction (section
+//! "Thickness reduction", and `docs/schemes/menger.md` for the figures
+//! after it); the Python binding's `GeometryWarning` gives the crossing
+//! pairs the whole-output scan finds.
 //!
 //! Where the dodecahedron's third iteration crosses (measured): every one
 //! of the 1080 pairs is a pipe wall triangle crossing an outer corner or
