@@ -49,6 +49,16 @@ def _iterate(name, k, **kw):
     return out
 
 
+def _assert_cgal_finds_none(m):
+    """libigl's CGAL self-intersection test agrees (when installed)."""
+    try:
+        import igl.copyleft.cgal as cgal
+    except ImportError:
+        return
+    v, t, _ = m.triangulate()
+    assert len(cgal.remesh_self_intersections(v, t, detect_only=True)[2]) == 0
+
+
 @pytest.mark.parametrize("name,k", CLEAN)
 def test_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
     for i, (m, rep, warned) in enumerate(_iterate(name, k), start=1):
@@ -61,6 +71,7 @@ def test_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
         if i == k:
             r = assert_agrees_with_peers(m)
             assert r["trimesh_volume"] > 0
+            _assert_cgal_finds_none(m)
 
 
 @pytest.mark.parametrize("name,k", [("cube", 3), ("tetrahedron", 2), ("dodecahedron", 2), ("genus2", 2)])
@@ -129,3 +140,4 @@ def test_tetrahedron_third_iteration_reduced_to_no_contact():
     assert m.genus == 2 * t2.genus + t2.n_faces - 1
     r = assert_agrees_with_peers(m)
     assert r["trimesh_volume"] > 0
+    _assert_cgal_finds_none(m)
