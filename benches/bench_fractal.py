@@ -34,7 +34,23 @@ def cases() -> dict:
         out["menger(cube, 4)"] = (topomesh.cube, lambda c: c.menger(4))
         out["menger(cube, 4): last iteration only"] = (lambda: topomesh.cube().menger(3), lambda m: m.menger())
         out["menger(dodecahedron, 4)"] = (topomesh.dodecahedron, lambda c: c.menger(4))
+        # issue 17: the last iteration with and without the thickness reduction
+        # (src/schemes/menger/mod.rs, "Thickness reduction"), same run
+        for name, k in [("cube", 4), ("tetrahedron", 4), ("dodecahedron", 3)]:
+            prep = (lambda name=name, k=k: _quiet(lambda: getattr(topomesh, name)().menger(k - 1)))
+            out[f"menger({name}, {k}): last iteration, reduce_thickness=False"] = (
+                prep, lambda m: _quiet(lambda: m.menger(reduce_thickness=False)))
+            out[f"menger({name}, {k}): last iteration, reduced (default)"] = (prep, lambda m: _quiet(m.menger))
     return out
+
+
+def _quiet(f):
+    """f() with GeometryWarning silenced (the crossing iterations warn)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", topomesh.GeometryWarning)
+        return f()
 
 
 def vm_hwm_kib() -> int:
@@ -57,12 +73,16 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--child", default=None)
+    ap.add_argument("--only", default=None, help="run the cases whose name contains this; their table goes "
+                    "into FRACTAL.md's section of that name (the main table is left as it is)")
     a = ap.parse_args()
     if a.child:
         child(a.child)
         return
     rows = []
     for name, (prep, run) in cases().items():
+        if a.only and a.only not in name:
+            continue
         state = prep()
         ts = []
         for _ in range(a.repeat):
@@ -91,6 +111,9 @@ def main() -> None:
         f"| {n} | {nf:,} | {ne:,} | {g:,} | {s:.3f} | {nf / s / 1e6:.2f} | {p / 2**20:.0f} | {p / nf:.0f} |"
         for n, nf, ne, g, s, p in rows
     ]
+    if a.only:
+        section(a.only, lines[len(lines) - len(rows) - 2:], a.repeat)
+        return
     lines += [
         "",
         "Sierpinski iteration 8 of the cube is small (524,288 faces); iteration 10 (8.4 M faces) is shown as",
@@ -106,6 +129,22 @@ def main() -> None:
     ]
     Path(__file__).with_name("FRACTAL.md").write_text("\n".join(lines))
     print("\n".join(lines))
+
+
+def section(only: str, table: list[str], repeat: int) -> None:
+    """Replace (or append) FRACTAL.md's section for the ``--only`` cases."""
+    path = Path(__file__).with_name("FRACTAL.md")
+    text = path.read_text()
+    head = f"## Cases matching `{only}`"
+    body = [head, "", f"Median of {repeat} runs, same run for every row; columns as above.", "", *table, ""]
+    if head in text:
+        start = text.index(head)
+        end = text.find("\n## ", start + len(head))
+        text = text[:start] + "\n".join(body) + (text[end + 1:] if end >= 0 else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + "\n".join(body)
+    path.write_text(text)
+    print("\n".join(body))
 
 
 if __name__ == "__main__":

@@ -530,7 +530,7 @@ mod tests {
 
     #[test]
     fn menger_bounds_hold() {
-        let o = schemes::menger::MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0 };
+        let o = schemes::menger::MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, ..Default::default() };
         for m in [primitives::cube(), primitives::tetrahedron(), primitives::dodecahedron()] {
             let (lo, hi) = predict::menger(&Counts::of(&m));
             let got = Counts::of(&schemes::menger::menger(&m, &o).unwrap());

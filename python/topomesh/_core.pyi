@@ -359,6 +359,8 @@ class Mesh:
         progress: bool = False,
         *,
         correspondence: Literal[False] = False,
+        reduce_thickness: bool = True,
+        report: Literal[False] = False,
     ) -> Mesh: ...
     @overload
     def menger(
@@ -370,7 +372,35 @@ class Mesh:
         progress: bool = False,
         *,
         correspondence: Literal[True],
+        reduce_thickness: bool = True,
+        report: Literal[False] = False,
     ) -> tuple[Mesh, Correspondence]: ...
+    @overload
+    def menger(
+        self,
+        iterations: int = 1,
+        thickness: float = 1.0 / 3.0,
+        absolute: bool = False,
+        collapse_angle: float = 90.0,
+        progress: bool = False,
+        *,
+        correspondence: Literal[False] = False,
+        reduce_thickness: bool = True,
+        report: Literal[True],
+    ) -> tuple[Mesh, dict[str, Any]]: ...
+    @overload
+    def menger(
+        self,
+        iterations: int = 1,
+        thickness: float = 1.0 / 3.0,
+        absolute: bool = False,
+        collapse_angle: float = 90.0,
+        progress: bool = False,
+        *,
+        correspondence: Literal[True],
+        reduce_thickness: bool = True,
+        report: Literal[True],
+    ) -> tuple[Mesh, Correspondence, dict[str, Any]]: ...
     # --- printing (src/python/printing.rs, topomesh.printing) ---
     def wall_thickness(self) -> npt.NDArray[np.float64]: ...
     def printable(self, min_thickness: float) -> PrintReport: ...

@@ -71,10 +71,25 @@ impl PyMesh {
     ///     vertex/face origins as for the smoothing schemes; the positions
     ///     are not linear in the input's, so it has no subdivision matrix,
     ///     only the attribute ``transfer``.
+    /// reduce_thickness : bool, default True, keyword-only
+    ///     Where an iteration's output has crossing triangle pairs (exact
+    ///     predicate, the whole output), halve the offset depth of the input
+    ///     faces whose structure crosses and rebuild, keeping the build with
+    ///     the fewest pairs (``src/schemes/menger/mod.rs``, "Thickness
+    ///     reduction"). Outputs without crossings are unchanged. False: the
+    ///     construction without it (no whole-output scan; faster).
+    /// report : bool, default False, keyword-only
+    ///     Also return a dict of per-iteration lists: ``face_factor``
+    ///     (float64 array per input face of that iteration: the factor its
+    ///     offset depth was multiplied by, 1 where not reduced),
+    ///     ``reduced_faces``, ``min_factor``, ``rounds`` (rebuilds kept),
+    ///     ``crossing_pairs`` (crossing triangle pairs left in the output,
+    ///     None with ``reduce_thickness=False``) and ``crossing_vertices``.
     ///
     /// Returns
     /// -------
-    /// Mesh, or (Mesh, Correspondence) with ``correspondence=True``
+    /// Mesh, or (Mesh, Correspondence) with ``correspondence=True``, with
+    /// the report dict appended (a tuple) when ``report=True``
     ///     Per iteration on a connected mesh: genus ``2g + F - 1``. On the
     ///     cube the first iteration is the classic level-1 sponge. Face
     ///     attributes are inherited from the parent faces (a strip's from a
@@ -95,44 +110,92 @@ impl PyMesh {
     /// -----
     /// The result is always a valid oriented manifold, but free of
     /// geometric self-intersections only where measured so: the cube's
-    /// iterations 1-4, the tetrahedron's 1-3 and the dodecahedron's 1-2.
-    /// Vertices whose local result crosses itself are rebuilt with all their
-    /// pipes meeting in one point; the dodecahedron's third iteration still
-    /// has 1080 crossing triangle pairs (46610 faces), its fourth 82383
-    /// (660191 faces), the tetrahedron's fourth 5754 (114260 faces); see
-    /// ``src/schemes/menger/mod.rs``.
+    /// iterations 1-4, the tetrahedron's 1-3, the octahedron's, the
+    /// icosahedron's and the dodecahedron's 1-2, the torus's and the genus-2
+    /// surface's 1. Vertices whose local result crosses itself are rebuilt
+    /// with all their pipes meeting in one point, then the thickness is
+    /// reduced where crossings remain; the measured figures (crossing pairs
+    /// left, per case) are in ``docs/schemes/menger.md``.
     ///
     /// Warns
     /// -----
     /// GeometryWarning
-    ///     Once per iteration whose crossing check ended with vertices that
-    ///     still cross (their count is in the message). The check tests
-    ///     each vertex's own faces, so no warning is not a proof that the
-    ///     result is free of self-intersections.
-    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false))]
+    ///     Once per iteration whose thickness was reduced (how many faces,
+    ///     the smallest factor) or whose output still has crossing triangle
+    ///     pairs (their count, from the exact whole-output check). With
+    ///     ``reduce_thickness=False``, when the per-vertex check left
+    ///     vertices crossing (that check alone can miss pairs).
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false, reduce_thickness = true, report = false))]
     #[allow(clippy::too_many_arguments)]
-    fn menger<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, absolute: bool, collapse_angle: f64, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle };
-        // (iteration, vertices still crossing) for every iteration left with crossings
-        let left = std::sync::Mutex::new(Vec::<(usize, usize)>::new());
-        let done = std::sync::atomic::AtomicUsize::new(0);
+    fn menger<'py>(
+        &self,
+        py: Python<'py>,
+        #[pyo3(from_py_with = big_int)] iterations: i128,
+        thickness: f64,
+        absolute: bool,
+        collapse_angle: f64,
+        progress: bool,
+        correspondence: bool,
+        reduce_thickness: bool,
+        report: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle, reduce_thickness };
+        // every iteration's report, in order
+        let reports = std::sync::Mutex::new(Vec::<mg::MengerReport>::new());
         let spec = super::levels::Spec::nonlinear("menger", predict::menger);
         let out = super::levels::run(py, self, iterations, progress, spec, correspondence, |m, req| {
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            let (lv, crossing) = crate::schemes::menger_level::menger_level(m, &o, req)?;
-            if crossing > 0 {
-                left.lock().unwrap_or_else(|e| e.into_inner()).push((k, crossing));
-            }
+            let (lv, r) = crate::schemes::menger_level::menger_level(m, &o, req)?;
+            reports.lock().unwrap_or_else(|e| e.into_inner()).push(r);
             Ok(lv)
         })?;
-        for (k, n) in left.into_inner().unwrap_or_else(|e| e.into_inner()) {
-            let msg = format!(
-                "menger: iteration {k} of {iterations} self-intersects: the crossing check left {n} input vertices whose pipes or inner surface cross other faces (the mesh is a valid closed manifold; see the Mesh.menger notes for the measured cases)"
-            );
-            let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
-            PyErr::warn(py, &py.get_type::<GeometryWarning>(), &msg, 1)?;
+        let reports = reports.into_inner().unwrap_or_else(|e| e.into_inner());
+        for (k, r) in reports.iter().enumerate() {
+            if let Some(msg) = warning_text(k + 1, iterations, r) {
+                let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
+                PyErr::warn(py, &py.get_type::<GeometryWarning>(), &msg, 1)?;
+            }
         }
-        Ok(out)
+        if !report {
+            return Ok(out);
+        }
+        let d = pyo3::types::PyDict::new(py);
+        let factors: Vec<Bound<'py, numpy::PyArray1<f64>>> = reports.iter().map(|r| numpy::PyArray1::from_slice(py, &r.face_factor)).collect();
+        d.set_item("face_factor", factors)?;
+        d.set_item("reduced_faces", reports.iter().map(|r| r.reduced().0).collect::<Vec<_>>())?;
+        d.set_item("min_factor", reports.iter().map(|r| r.reduced().1).collect::<Vec<_>>())?;
+        d.set_item("rounds", reports.iter().map(|r| r.rounds).collect::<Vec<_>>())?;
+        d.set_item("crossing_pairs", reports.iter().map(|r| r.crossing_pairs).collect::<Vec<_>>())?;
+        d.set_item("crossing_vertices", reports.iter().map(|r| r.crossing_vertices).collect::<Vec<_>>())?;
+        let items: Vec<Bound<'py, PyAny>> = match out.cast::<pyo3::types::PyTuple>() {
+            Ok(t) => t.iter().collect(),
+            Err(_) => vec![out.clone()],
+        };
+        let mut items = items;
+        items.push(d.into_any());
+        Ok(pyo3::types::PyTuple::new(py, items)?.into_any())
+    }
+}
+
+/// The `GeometryWarning` of iteration `k` (none when it is free of
+/// crossings at the requested thickness): where the thickness was reduced
+/// (module docs of `schemes::menger`, "Thickness reduction") and what
+/// crossings remain, so no crossing is output silently.
+fn warning_text(k: usize, iterations: i128, r: &mg::MengerReport) -> Option<String> {
+    let (n, fmin) = r.reduced();
+    let nf = r.face_factor.len();
+    let reduced = (n > 0).then(|| format!("the thickness was reduced on {n} of {nf} faces (smallest factor {fmin:.4}; per face: report=True)"));
+    match (r.crossing_pairs, reduced) {
+        (Some(0), None) => None,
+        (Some(0), Some(red)) => Some(format!("menger: iteration {k} of {iterations}: {red} to keep it free of crossings")),
+        (Some(p), red) => Some(format!(
+            "menger: iteration {k} of {iterations} self-intersects: {p} crossing triangle pairs remain (exact predicate){}; the mesh is a valid closed manifold (see the Mesh.menger notes for the measured cases)",
+            red.map_or(String::new(), |s| format!(" after {s}, the most the reduction could remove"))
+        )),
+        (None, _) if r.crossing_vertices > 0 => Some(format!(
+            "menger: iteration {k} of {iterations} self-intersects: the crossing check left {} input vertices whose pipes or inner surface cross other faces (reduce_thickness=False: no whole-mesh count; the mesh is a valid closed manifold)",
+            r.crossing_vertices
+        )),
+        (None, _) => None,
     }
 }
 

@@ -25,15 +25,15 @@
 //! where it lies (`a + t (b − a)`).
 
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
-use super::menger::{checked_build, MengerOptions};
+use super::menger::{checked_build, MengerOptions, MengerReport};
 use super::stencil::Stencils;
 use crate::error::Result;
 use crate::mesh::Mesh;
 
-/// One iteration with what `req` asks for (see the module docs) and the
-/// number of input vertices still crossing (as [`super::menger::menger_checked`]).
+/// One iteration with what `req` asks for (see the module docs) and what
+/// its thickness reduction did ([`super::menger::menger_reported`]).
 /// `req.stencils` asks for the attribute transfer.
-pub fn menger_level(m: &Mesh, o: &MengerOptions, req: &Request) -> Result<(Level, usize)> {
+pub fn menger_level(m: &Mesh, o: &MengerOptions, req: &Request) -> Result<(Level, MengerReport)> {
     let ((built, mesh), crossing) = checked_build(m, o)?;
     let (nv, ne) = (m.n_vertices(), m.n_edges());
     let t_end = nv + 2 * ne;

@@ -4,7 +4,7 @@
 //! fully collapsed, for a few rounds.
 
 use super::remesh::{build_polygons, Built};
-use super::MengerOptions;
+use super::{MengerOptions, MengerReport, Reduction};
 use crate::error::Result;
 use crate::geometry::crossing::local_crossings;
 use crate::geometry::triangles_with_points;
@@ -19,7 +19,7 @@ const CROSSING_ROUNDS: usize = 3;
 /// rules of VII.3–VII.5, then every input vertex whose local result crosses
 /// itself is rebuilt fully collapsed, for up to [`CROSSING_ROUNDS`] rounds.
 /// Also returns how many input vertices still cross at the end.
-pub(super) fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), usize)> {
+pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) -> Result<((Built, Mesh), usize)> {
     let mut full = vec![false; m.n_vertices()];
     // after the first round only vertices next to a change are checked again
     let mut recheck = vec![false; m.n_vertices()];
@@ -28,7 +28,7 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh),
     let mut round = 0;
     loop {
         // (the previous round's build is dropped before this one is made)
-        let cur = build_once(m, o, &full)?;
+        let cur = build_once(m, o, &full, red)?;
         let (tris, tri_pos) = triangles_with_points(&cur.1);
         let only = (round > 0).then_some(&recheck[..]);
         let mut lc = local_crossings(&tri_pos, &tris, &cur.0.owner, cur.0.first_inner, only);
@@ -72,14 +72,123 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh),
 /// One build with the given fully collapsed vertices: with the `4D` miter
 /// bound and the near weld, or, when that does not give a manifold, with a
 /// `2D` miter bound and coincident points welded only.
-pub(super) fn build_once(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<(Built, Mesh)> {
-    let b = build_polygons(m, o, true, full)?;
+pub(super) fn build_once(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Reduction>) -> Result<(Built, Mesh)> {
+    let b = build_polygons(m, o, true, full, red)?;
     match Mesh::from_polygons(b.pos.clone(), &b.sizes, &b.idx, BuildOptions::default()) {
         Ok(mesh) => Ok((b, mesh)),
         Err(_) => {
-            let b = build_polygons(m, o, false, full)?;
+            let b = build_polygons(m, o, false, full, red)?;
             let mesh = Mesh::from_polygons(b.pos.clone(), &b.sizes, &b.idx, BuildOptions::default())?;
             Ok((b, mesh))
         }
+    }
+}
+
+/// Rebuilds of the thickness reduction (module docs, "Thickness
+/// reduction"): each halves the offset depth of the faces involved in a
+/// crossing.
+pub const REDUCTION_ROUNDS: usize = 6;
+/// The smallest thickness factor a face is reduced to.
+pub const REDUCTION_FLOOR: f64 = 1.0 / 32.0;
+
+/// Crossing triangle pairs of the output, with coplanar contacts
+/// ([`crate::geometry::crossing::triangles_meet`], what
+/// `Mesh.self_intersections` counts), each given by the two output faces
+/// it came from.
+///
+/// Two triangles of the outer remeshing (every corner below `first_inner`)
+/// lie in the input's faces and cannot cross (as in the per-vertex check),
+/// so only pairs with another triangle are tested.
+fn output_crossings(mesh: &Mesh, first_inner: u32) -> Vec<(u32, u32)> {
+    let t = mesh.triangulate();
+    let mut p = mesh.positions().to_vec();
+    p.extend_from_slice(&t.points);
+    let focus: Vec<bool> = t.tris.iter().map(|tv| tv.iter().any(|&v| v >= first_inner)).collect();
+    let pairs = crate::geometry::crossing::crossing_pairs(&p, &t.tris, Some(&focus), true);
+    pairs.iter().map(|&(i, j)| (t.tri_face[i as usize], t.tri_face[j as usize])).collect()
+}
+
+/// The input faces whose thickness placed an output face: its origin face,
+/// the two faces of its origin edge or the faces around its origin vertex
+/// (`Origins` kinds), and the faces around every input vertex whose rule
+/// placed one of its corners (merged corners and meeting points follow the
+/// depths of all the faces around their vertex).
+fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
+    use crate::schemes::level::{EDGE, FACE};
+    let around = |v: u32, out: &mut Vec<u32>| {
+        for h in m.vertex_halfedges(crate::mesh::VertexId(v)) {
+            out.push(m.face(h).0);
+        }
+    };
+    match b.face_origin[face as usize] {
+        (FACE, f) => out.push(f),
+        (EDGE, e) => {
+            let h = crate::mesh::EdgeId(e).halfedge();
+            out.push(m.face(h).0);
+            out.push(m.face(h.twin()).0);
+        }
+        (_, v) => around(v, out),
+    }
+    for v in mesh.face_vertices(crate::mesh::FaceId(face)) {
+        if let Some(&o) = b.owner.get(v.idx()) {
+            if o != u32::MAX {
+                around(o, out);
+            }
+        }
+    }
+}
+
+/// One iteration with the thickness reduction (module docs, "Thickness
+/// reduction"): [`build_valid`], then, while the output has crossing
+/// triangle pairs (exact predicate, the whole output), the faces involved
+/// get half their thickness and the level is rebuilt; faces already at
+/// [`REDUCTION_FLOOR`] stay there. Without `reduce`, one [`build_valid`]
+/// and no whole-output scan.
+pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
+    let nf = m.n_faces();
+    let mut red = Reduction { depth: vec![1.0; nf] };
+    let factor = |r: &Reduction, f: usize| r.depth[f];
+    let mut rounds = 0;
+    let mut hit: Vec<u32> = Vec::new();
+    // the build with the fewest crossing pairs so far
+    let mut best: Option<((Built, Mesh), MengerReport)> = None;
+    loop {
+        let ((b, mesh), vertices) = build_valid(m, o, (rounds > 0).then_some(&red))?;
+        if !reduce {
+            let report = MengerReport { face_factor: vec![1.0; nf], rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
+            return Ok(((b, mesh), report));
+        }
+        let pairs = output_crossings(&mesh, b.first_inner);
+        crate::cancel::check()?;
+        if best.as_ref().is_some_and(|(_, r)| r.crossing_pairs.is_some_and(|n| n <= pairs.len())) {
+            // this round did not lower the count: the best so far stands
+            return Ok(best.expect("set"));
+        }
+        hit.clear();
+        for &(a, c) in &pairs {
+            implicated(m, &b, &mesh, a, &mut hit);
+            implicated(m, &b, &mesh, c, &mut hit);
+        }
+        hit.sort_unstable();
+        hit.dedup();
+        let report = MengerReport { face_factor: (0..nf).map(|f| factor(&red, f)).collect(), rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices };
+        let last = pairs.is_empty() || rounds == REDUCTION_ROUNDS;
+        drop(pairs);
+        best = Some(((b, mesh), report));
+        if last {
+            return Ok(best.expect("set"));
+        }
+        let mut changed = false;
+        for &f in &hit {
+            let f = f as usize;
+            if factor(&red, f) > REDUCTION_FLOOR * (1.0 + 1e-9) {
+                red.depth[f] *= 0.5;
+                changed = true;
+            }
+        }
+        if !changed {
+            return Ok(best.expect("set"));
+        }
+        rounds += 1;
     }
 }

@@ -33,12 +33,12 @@ fn clip_to_miter_vertices(m: &Mesh, pl: &Plan, ip: &mut [DVec3]) {
         for h in m.vertex_halfedges(v) {
             let g = pl.group[h.idx()] as usize;
             let f = m.face(h).idx();
-            let (n, d) = (pl.face_n[f], pl.face_d[f]);
+            let (n, d, dd) = (pl.face_n[f], pl.face_d[f], pl.face_depth[f]);
             let (w1, w2, convex) = corner_sides(m, n, h);
             if gsize[g] != 1 || !convex {
                 continue;
             }
-            let on_plane = |x: DVec3| (n.dot(x) - (n.dot(pv) - d)).abs() <= 1e-7 * d;
+            let on_plane = |x: DVec3| (n.dot(x) - (n.dot(pv) - dd)).abs() <= 1e-7 * dd;
             if let Some(&i) = ends.iter().find(|&&i| on_plane(ip[i]) && inside_corner(ip[i], pv, (w1, w2), d * (1.0 - 1e-7))) {
                 ip[g] = ip[i];
             }
@@ -80,7 +80,7 @@ pub(super) fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) ->
             // edge, then slide along L_e towards the offset planes of the
             // other faces around the vertex (least squares), or to the
             // middle of the two offset corners when none of them fixes it
-            let x0 = DMat3::from_cols(n1, n2, u).transpose().inverse() * DVec3::new(n1.dot(pv) - pl.face_d[f1], n2.dot(pv) - pl.face_d[f2], u.dot(pv));
+            let x0 = DMat3::from_cols(n1, n2, u).transpose().inverse() * DVec3::new(n1.dot(pv) - pl.face_depth[f1], n2.dot(pv) - pl.face_depth[f2], u.dot(pv));
             if !x0.is_finite() {
                 return Err(MeshError::InvalidArgument(format!("menger: edge {} folds back on itself (φ = 360°)", e.0)));
             }
@@ -88,12 +88,12 @@ pub(super) fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) ->
             let mut dmin = f64::INFINITY;
             for hh in m.vertex_halfedges(m.vertex(c1)) {
                 let f = m.face(hh).idx();
-                dmin = dmin.min(pl.face_d[f]);
+                dmin = dmin.min(pl.face_depth[f]);
                 if f == f1 || f == f2 {
                     continue;
                 }
                 let n = pl.face_n[f];
-                num += (n.dot(x0) - (n.dot(pv) - pl.face_d[f])) * n.dot(u);
+                num += (n.dot(x0) - (n.dot(pv) - pl.face_depth[f])) * n.dot(u);
                 den += n.dot(u) * n.dot(u);
             }
             let (r1, r2) = (pl.group_pos[pl.group[c1.idx()] as usize], pl.group_pos[pl.group[c2.idx()] as usize]);
@@ -137,7 +137,7 @@ pub(super) fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) ->
         let mut h = h0;
         loop {
             cyc.push(pl.group[h.idx()]);
-            dmin = dmin.min(pl.face_d[m.face(h).idx()]);
+            dmin = dmin.min(pl.face_depth[m.face(h).idx()]);
             if pl.kind[h.edge().idx()] == EdgeKind::Miter {
                 cyc.push((ng + 2 * h.edge().idx() + (h.0 & 1) as usize) as u32);
             }

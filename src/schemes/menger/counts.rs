@@ -1,6 +1,6 @@
 //! The count formulas of the module docs of [`super`], evaluated on an input.
 
-use super::check::build_valid;
+use super::check::build_reduced;
 use super::offset::plan;
 use super::{EdgeKind, MengerOptions};
 use crate::error::Result;
@@ -29,11 +29,11 @@ pub struct MengerCounts {
 /// `V' = V + 4E + inner vertices`, `F' = 6E + inner faces`,
 /// `genus' = 2g + F − 1` per component, `E' = V' + F' − χ'`.
 pub fn menger_counts(m: &Mesh, o: &MengerOptions) -> Result<MengerCounts> {
-    let pl = plan(m, o, &vec![false; m.n_vertices()])?;
+    let pl = plan(m, o, &vec![false; m.n_vertices()], None)?;
     let (e, f) = (m.n_edges(), m.n_faces());
     let n_miter = pl.kind.iter().filter(|&&k| k == EdgeKind::Miter).count();
     let n_coll = pl.kind.iter().filter(|&&k| k == EdgeKind::Collapse).count();
-    let built = build_valid(m, o)?.0 .0;
+    let built = build_reduced(m, o, true)?.0 .0;
     let inner_vertices = built.inner_vertices;
     let inner_faces = built.sizes.len() - built.split_extra - 3 * m.n_halfedges();
     let chi2 = 2 * m.euler_characteristic() - 2 * f as i64;

@@ -2,7 +2,7 @@
 //! inset corners, the remeshing face's corners at distance `D` from both
 //! side lines (module docs of [`super`], "Thickness, welding, planarity").
 
-use super::MengerOptions;
+use super::{MengerOptions, Reduction};
 use crate::error::{MeshError, Result};
 use crate::mesh::{HalfedgeId, Mesh};
 use glam::DVec3;
@@ -24,10 +24,11 @@ pub(super) fn inside_corner(x: DVec3, pv: DVec3, (w1, w2): (DVec3, DVec3), dist:
     (x - pv).dot(w1) >= dist && (x - pv).dot(w2) >= dist
 }
 
-/// Unit face normals, thickness `D` per face and the inset corner per
-/// half-edge (the corner at its tail in its face), after checking the
-/// options and the input's faces.
-pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions) -> Result<(Vec<DVec3>, Vec<f64>, Vec<DVec3>)> {
+/// Unit face normals, thickness `D` per face, the offset depth per face
+/// (`D` unless `red` reduces it, module docs "Thickness reduction") and the
+/// inset corner per half-edge (the corner at its tail in its face), after
+/// checking the options and the input's faces.
+pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) -> Result<Faces> {
     if !(o.thickness > 0.0 && o.thickness.is_finite()) || (o.relative && o.thickness >= 0.5) {
         return Err(MeshError::InvalidArgument(format!(
             "menger: thickness must be positive{} (got {})",
@@ -106,6 +107,14 @@ pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions) -> Result<(Vec<DVec3
         }
         face_d.iter_mut().for_each(|d| *d = o.thickness);
     }
+    // a reduced face's depth (factors of exactly 1 elsewhere, so
+    // unreduced faces are bit for bit what they were)
+    let mut face_depth = face_d.clone();
+    if let Some(r) = red {
+        for f in 0..nf {
+            face_depth[f] = face_d[f] * r.depth[f];
+        }
+    }
     // --- inset corners
     let mut q = vec![DVec3::ZERO; nh];
     for h in m.halfedges() {
@@ -124,5 +133,13 @@ pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions) -> Result<(Vec<DVec3
         }
         q[h.idx()] = pv + face_d[f] * (w1 + w2) / den;
     }
-    Ok((face_n, face_d, q))
+    Ok(Faces { face_n, face_d, face_depth, q })
+}
+
+/// What [`faces_and_insets`] derives per face and per corner.
+pub(super) struct Faces {
+    pub(super) face_n: Vec<DVec3>,
+    pub(super) face_d: Vec<f64>,
+    pub(super) face_depth: Vec<f64>,
+    pub(super) q: Vec<DVec3>,
 }

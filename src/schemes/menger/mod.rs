@@ -150,6 +150,47 @@
 //! corner's offset): a sharp vertex would otherwise push it `D / sin(½·angle)`
 //! deep, through a thin corner.
 //!
+//! # Thickness reduction (never a silent crossing)
+//!
+//! After the crossing check of step 3 (which tests each vertex's own
+//! triangles only), the whole output is scanned with the exact predicate
+//! ([`crate::geometry::crossing::crossing_pairs`], coplanar contacts
+//! included, as `Mesh.self_intersections`). While it finds crossing pairs,
+//! every input face that placed one of their faces (its origin face, the
+//! faces of its origin edge or around its origin vertex, and the faces
+//! around every input vertex whose rule placed one of its corners: merged
+//! corners follow the depths of all the faces around their vertex) gets
+//! half its offset depth, and the level is rebuilt. Only the depth is
+//! reduced, not the inset `D` (the frame width): a uniform scale of both
+//! around a vertex is a similarity of its local structure and cannot undo
+//! a crossing there, while a pipe shallower than its frame fits into a
+//! sharp wedge (depth below `D·tan φ`, see Status). The build with the
+//! fewest pairs is kept; the rounds stop at zero pairs, when a round does
+//! not lower the count, after [`REDUCTION_ROUNDS`] rebuilds, or when every
+//! face involved is at [`REDUCTION_FLOOR`]. An output the first build
+//! leaves free of crossings is returned as built (bit for bit the
+//! construction without the reduction, e.g. the cube's iterations 1–4).
+//! [`MengerReport`] gives the per-face factors and the pairs left, and the
+//! Python binding raises a `GeometryWarning` with both whenever a face was
+//! reduced or a pair is left. `reduce_thickness: false` skips the scan and
+//! the rounds (the per-vertex check alone, which can miss pairs between
+//! two vertices' structures: the torus's second iteration had 706 pairs
+//! and no vertex flagged).
+//!
+//! Measured (crossing pairs with contacts, before → after; faces reduced,
+//! smallest factor): see the table in `docs/schemes/menger.md`. The
+//! reduction removes the contacts of the tetrahedron's third iteration and
+//! the proper crossings of the torus's second, and lowers the others by
+//! 0–40 %; it does not make the third iterations of the octahedron,
+//! icosahedron and dodecahedron crossing-free. Reducing the depth around
+//! such a vertex changes which corners merge and where, and past one round
+//! the count grows again (octahedron 3: 816 → 624 → 816 → 1056 with
+//! further halvings; halving inset and depth together: 816 → 984 → 1176,
+//! or 816 → 1584 → 1752 counting only the faces of the crossing triangles
+//! themselves). That is the structural cause of item 1 of issue 17 (one
+//! merged point per group cannot express two pipe corners on one line),
+//! which no thickness fixes.
+//!
 //! # Status (measured)
 //!
 //! Cube, iterations 1–4: quads only, genus 5, 81, 1121, 15585, the first two
@@ -178,8 +219,11 @@
 //!
 //! [`menger_checked`] returns how many input vertices still cross when the
 //! check ends (180 in the dodecahedron's third iteration, 1056 in the
-//! tetrahedron's fourth, 0 wherever the table says crossing-free); the Python binding raises
-//! `topomesh.GeometryWarning` with that number.
+//! tetrahedron's fourth, 0 wherever the table says crossing-free). The
+//! figures in this table are before the thickness reduction (section
+//! "Thickness reduction", and `docs/schemes/menger.md` for the figures
+//! after it); the Python binding's `GeometryWarning` gives the crossing
+//! pairs the whole-output scan finds.
 //!
 //! Where the dodecahedron's third iteration crosses (measured): every one
 //! of the 1080 pairs is a pipe wall triangle crossing an outer corner or
@@ -351,13 +395,53 @@ pub struct MengerOptions {
     /// Edges whose interior dihedral angle is at most this (degrees) are
     /// collapsed (VII.4); default 90.
     pub collapse_angle: f64,
+    /// Whether the thickness of faces whose result crosses is reduced until
+    /// it does not (module docs, "Thickness reduction"); default true.
+    pub reduce_thickness: bool,
 }
 
 impl Default for MengerOptions {
     fn default() -> Self {
-        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0 }
+        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, reduce_thickness: true }
     }
 }
+
+/// Per-face factors of the offset depth (module docs, "Thickness
+/// reduction"); the inset `D` keeps its value.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Reduction {
+    pub(crate) depth: Vec<f64>,
+}
+
+/// What one iteration's thickness reduction did (module docs, "Thickness
+/// reduction").
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct MengerReport {
+    /// Per input face, the factor its requested offset depth was multiplied
+    /// by: 1 where it was not reduced, down to [`REDUCTION_FLOOR`].
+    pub face_factor: Vec<f64>,
+    /// Rebuilds made by the reduction (0 when the first build had no
+    /// crossing, or the reduction is off).
+    pub rounds: usize,
+    /// Crossing triangle pairs of the output by the exact predicate, with
+    /// coplanar contacts ([`crate::geometry::crossing::mesh_crossing_pairs`]
+    /// with `coplanar`, as `Mesh.self_intersections`); `None` when the
+    /// reduction is off (no whole-output scan).
+    pub crossing_pairs: Option<usize>,
+    /// Input vertices whose own triangles still cross when the per-vertex
+    /// check of step 3 ends (see [`menger_checked`]).
+    pub crossing_vertices: usize,
+}
+
+impl MengerReport {
+    /// Faces whose thickness was reduced, and the smallest factor (1 if none).
+    pub fn reduced(&self) -> (usize, f64) {
+        let n = self.face_factor.iter().filter(|&&x| x < 1.0).count();
+        (n, self.face_factor.iter().copied().fold(1.0, f64::min))
+    }
+}
+
+pub use check::{REDUCTION_FLOOR, REDUCTION_ROUNDS};
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(super) enum EdgeKind {
@@ -385,19 +469,26 @@ pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
 /// self-intersections when this is not zero. Zero does not prove the output
 /// free of them: the check tests each vertex's own triangles only.
 pub fn menger_checked(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, usize)> {
-    let ((_, mesh), crossing) = checked_build(m, o)?;
-    Ok((mesh, crossing))
+    let ((_, mesh), report) = checked_build(m, o)?;
+    Ok((mesh, report.crossing_vertices))
 }
 
-/// [`menger_checked`] with the polygons it was built from.
-pub(crate) fn checked_build(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), usize)> {
+/// One iteration and what its thickness reduction did (module docs,
+/// "Thickness reduction").
+pub fn menger_reported(m: &Mesh, o: &MengerOptions) -> Result<(Mesh, MengerReport)> {
+    let ((_, mesh), report) = checked_build(m, o)?;
+    Ok((mesh, report))
+}
+
+/// [`menger_reported`] with the polygons it was built from.
+pub(crate) fn checked_build(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh), MengerReport)> {
     m.refuse_open(
         "menger",
         "the generalized sponge (dissertation ch. VII.3) thickens every face into a wall, a remeshing face joined by \
          a pipe to its inward offset copy, and has no rule for the rim such a wall would need at a boundary; treating \
          the holes as faces would fill them, so open meshes are refused; close the holes with faces first",
     )?;
-    let ((built, mesh), crossing) = check::build_valid(m, o)?;
+    let ((built, mesh), crossing) = check::build_reduced(m, o, o.reduce_thickness)?;
     // a thickness under the face-width bound can still exceed what the body
     // allows (a thin slab of wide faces): an outward input must stay outward
     if !o.relative && m.signed_volume() > 0.0 && !(mesh.signed_volume() > 0.0) {

@@ -4,8 +4,8 @@
 //! the meeting point of a fully collapsed vertex (module docs of
 //! [`super`], step 3 and "Crossing check").
 
-use super::inset::{corner_sides, faces_and_insets};
-use super::{EdgeKind, MengerOptions, ANGLE_TOL};
+use super::inset::{corner_sides, faces_and_insets, Faces};
+use super::{EdgeKind, MengerOptions, Reduction, ANGLE_TOL};
 use crate::error::Result;
 use crate::mesh::{HalfedgeId, Mesh};
 use glam::{DMat3, DVec3};
@@ -13,7 +13,10 @@ use glam::{DMat3, DVec3};
 /// Everything one iteration derives from the input's geometry.
 pub(super) struct Plan {
     pub(super) face_n: Vec<DVec3>,
+    /// The inset `D` per face (step 1) and its offset depth (step 2; `D`
+    /// unless reduced, module docs "Thickness reduction").
     pub(super) face_d: Vec<f64>,
+    pub(super) face_depth: Vec<f64>,
     /// Inset corner per half-edge (the corner at its tail in its face).
     pub(super) q: Vec<DVec3>,
     pub(super) kind: Vec<EdgeKind>,
@@ -38,8 +41,8 @@ fn least_squares_from(a: DMat3, b: DVec3, x0: DVec3) -> DVec3 {
     x
 }
 
-pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
-    let (face_n, face_d, q) = faces_and_insets(m, o)?;
+pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Reduction>) -> Result<Plan> {
+    let Faces { face_n, face_d, face_depth, q } = faces_and_insets(m, o, red)?;
     let pos = m.positions();
     let p = |h: HalfedgeId| pos[m.vertex(h).idx()];
     let nh = m.n_halfedges();
@@ -98,15 +101,15 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
         .map(|hs| {
             let raw = |h: u32| {
                 let f = m.face(HalfedgeId(h)).idx();
-                q[h as usize] - face_d[f] * face_n[f]
+                q[h as usize] - face_depth[f] * face_n[f]
             };
             if hs.len() == 1 {
                 return raw(hs[0]);
             }
             let pv = p(HalfedgeId(hs[0]));
-            let dmin = hs.iter().map(|&h| face_d[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
+            let dmin = hs.iter().map(|&h| face_depth[m.face(HalfedgeId(h)).idx()]).fold(f64::INFINITY, f64::min);
             if full[m.vertex(HalfedgeId(hs[0])).idx()] {
-                if let Some(y) = pipe_meeting_point(m, &face_n, &face_d, hs, pv, dmin) {
+                if let Some(y) = pipe_meeting_point(m, &face_n, (&face_d, &face_depth), hs, pv, dmin) {
                     return y;
                 }
                 let normals: Vec<DVec3> = hs.iter().map(|&h| face_n[m.face(HalfedgeId(h)).idx()]).collect();
@@ -122,7 +125,7 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
                 let f = m.face(HalfedgeId(h)).idx();
                 let n = face_n[f];
                 a += DMat3::from_cols(n * n.x, n * n.y, n * n.z);
-                b += n * (n.dot(pv) - face_d[f]);
+                b += n * (n.dot(pv) - face_depth[f]);
             }
             let x = least_squares_from(a, b, avg);
             // a sharp vertex amplifies the offset (D / sin of its half
@@ -133,7 +136,7 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
             if off.length() > dmax * (1.0 + 1e-9) { pv + off * (dmax / off.length()) } else { x }
         })
         .collect();
-    Ok(Plan { face_n, face_d, q, kind, group, group_pos })
+    Ok(Plan { face_n, face_d, face_depth, q, kind, group, group_pos })
 }
 
 /// The meeting point of all pipes at a fully collapsed vertex (module docs,
@@ -143,12 +146,12 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool]) -> Result<Plan> {
 /// quad perpendicular to its face (as at the cube's corners). `None` when
 /// no point does (a saddle whose corners' projections cannot all hold it).
 /// `pv` is the vertex, `dmin` the smallest `D` of its faces.
-fn pipe_meeting_point(m: &Mesh, face_n: &[DVec3], face_d: &[f64], hs: &[u32], pv: DVec3, dmin: f64) -> Option<DVec3> {
+fn pipe_meeting_point(m: &Mesh, face_n: &[DVec3], (face_d, face_depth): (&[f64], &[f64]), hs: &[u32], pv: DVec3, dmin: f64) -> Option<DVec3> {
     let mut planes: Vec<(DVec3, f64)> = Vec::with_capacity(3 * hs.len());
     for &h in hs {
         let f = m.face(HalfedgeId(h)).idx();
         let (n, d) = (face_n[f], face_d[f]);
-        planes.push((n, n.dot(pv) - d));
+        planes.push((n, n.dot(pv) - face_depth[f]));
         let (w1, w2, convex) = corner_sides(m, n, HalfedgeId(h));
         if convex {
             planes.push((-w1, -w1.dot(pv) - 0.5 * d));

@@ -23,13 +23,13 @@ pub(super) fn window_corners(m: &Mesh, pl: &Plan, inner: &Inner) -> Vec<DVec3> {
     // corner is not convex
     for h in m.halfedges() {
         let f = m.face(h).idx();
-        let (n, d) = (pl.face_n[f], pl.face_d[f]);
+        let (n, d, dd) = (pl.face_n[f], pl.face_d[f], pl.face_depth[f]);
         let pv = pos[m.vertex(h).idx()];
         let r = inner.pos[inner.rep[pl.group[h.idx()] as usize] as usize];
         let depth = (pv - r).dot(n);
         let x = r + depth * n;
         let (w1, w2, convex) = corner_sides(m, n, h);
-        let ok = convex && depth >= 0.5 * d && inside_corner(x, pv, (w1, w2), 0.5 * d);
+        let ok = convex && depth >= 0.5 * dd && inside_corner(x, pv, (w1, w2), 0.5 * d);
         out_pos.push(if ok { x } else { pl.q[h.idx()] });
     }
     out_pos

@@ -6,7 +6,7 @@
 use super::connect::{inner_points, split_cycle, Inner};
 use super::offset::{plan, Plan};
 use super::pipe::window_corners;
-use super::{EdgeKind, MengerOptions};
+use super::{EdgeKind, MengerOptions, Reduction};
 use crate::error::Result;
 use crate::mesh::{HalfedgeId, Mesh};
 use glam::DVec3;
@@ -112,8 +112,8 @@ pub(crate) struct Built {
     pub(crate) face_origin: Vec<(u8, u32)>,
 }
 
-pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool]) -> Result<Built> {
-    let pl = plan(m, o, full)?;
+pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool], red: Option<&Reduction>) -> Result<Built> {
+    let pl = plan(m, o, full, red)?;
     let inner = inner_points(m, &pl, refined, full)?;
     let pos = m.positions();
     let (nv, ne, nh) = (m.n_vertices(), m.n_edges(), m.n_halfedges());

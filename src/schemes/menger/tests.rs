@@ -133,7 +133,7 @@ mod intersection_tests {
     fn local_check_matches_global_scan() {
         let o = MengerOptions::default();
         let t2 = menger_iterated(&primitives::tetrahedron(), 2, &o).unwrap();
-        let (b, mesh) = build_once(&t2, &o, &vec![false; t2.n_vertices()]).unwrap();
+        let (b, mesh) = build_once(&t2, &o, &vec![false; t2.n_vertices()], None).unwrap();
         let (tris, p) = triangles_with_points(&mesh);
         let global = crossing_pairs(&mesh);
         assert!(!global.is_empty());
@@ -143,7 +143,7 @@ mod intersection_tests {
             let owners: Vec<u32> = tris[i as usize].iter().chain(&tris[j as usize]).map(|&v| b.owner.get(v as usize).copied().unwrap_or(u32::MAX)).filter(|&x| x != u32::MAX).collect();
             assert!(owners.iter().any(|x| local.binary_search(x).is_ok()), "pair ({i}, {j}) unseen");
         }
-        let (b, mesh) = build_once(&primitives::cube(), &o, &vec![false; 8]).unwrap();
+        let (b, mesh) = build_once(&primitives::cube(), &o, &vec![false; 8], None).unwrap();
         let (tris, p) = triangles_with_points(&mesh);
         assert!(local_crossings(&p, &tris, &b.owner, b.first_inner, None).is_empty());
     }
