@@ -325,6 +325,8 @@ NOT_NUMERIC = {
     "vertex", "face", "corner", "sharpness",
     # issue 16: index lists and a point
     "edges", "center",
+    # issue 17: flags of the Menger thickness reduction
+    "reduce_thickness", "report",
 }
 
 
