@@ -11,6 +11,7 @@
 use super::mesh::PyMesh;
 use crate::mesh::Mesh;
 use crate::schemes::creases::{ring, Creases, SubdivOptions};
+use crate::schemes::corner_linear::Primal;
 use crate::schemes::face_varying::{FaceVarying, Interpolation};
 use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use crate::schemes::stencil::Stencils;
@@ -77,13 +78,23 @@ impl Spec {
 /// A level function that also interpolates vertex data.
 pub(crate) type DataLevel = fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)>;
 
+/// Corner data of a scheme with face-varying rules.
+enum Corner {
+    /// Exported corner rows under `FVAR_LINEAR_ALL`, read off each level's
+    /// numbering ([`crate::schemes::corner_linear`]).
+    Linear(Vec<f64>, usize),
+    /// On its face-varying mesh (every other choice, or a level the linear
+    /// path does not describe).
+    Mesh(FaceVarying),
+}
+
 struct State<'a> {
     options: SubdivOptions,
     want_matrix: bool,
     want_origins: bool,
     creases: Option<Creases>,
     attrs: Vec<(Vec<f64>, usize)>,
-    corners: Vec<FaceVarying>,
+    corners: Vec<Corner>,
     /// Per-corner rows of the schemes without face-varying rules.
     corner_rows: Vec<(Vec<f64>, usize)>,
     matrix: Option<Stencils>,
@@ -138,9 +149,13 @@ pub(crate) fn run<'py>(
                 corner_shapes.push(shape.len());
                 continue;
             }
-            let (ids, table) = dedupe(a.as_slice()?, k);
-            let cr = if spec.uses_creases { slf.data.creases.as_ref() } else { None };
-            corners.push(py.detach(|| FaceVarying::new(input, &ids, &table, k, cr)).map_err(super::err)?);
+            if spec.face_varying == Some(Interpolation::All) {
+                corners.push(Corner::Linear(a.as_slice()?.to_vec(), k));
+            } else {
+                let (ids, table) = dedupe(a.as_slice()?, k);
+                let cr = if spec.uses_creases { slf.data.creases.as_ref() } else { None };
+                corners.push(Corner::Mesh(py.detach(|| FaceVarying::new(input, &ids, &table, k, cr)).map_err(super::err)?));
+            }
             corner_shapes.push(shape.len());
         }
     }
@@ -201,9 +216,23 @@ pub(crate) fn run<'py>(
         if !st.corners.is_empty() {
             let interp = spec.face_varying.unwrap_or_default();
             let geometry_creases = st.creases.clone();
-            for fv in &mut st.corners {
-                let cur = std::mem::replace(fv, FaceVarying { mesh: Mesh::new(), values: vec![], k: 0, creases: None });
-                *fv = cur.with_creases(m, geometry_creases.as_ref(), st.options)?.with_plus_corners(m, interp)?.level(&level, interp, st.options)?;
+            let primal = if spec.name == "loop" { Primal::Triangles } else { Primal::Quads };
+            for c in &mut st.corners {
+                let fv = match c {
+                    Corner::Linear(rows, k) => match crate::schemes::corner_linear::level(m, &lv.mesh, primal, rows, *k)? {
+                        Some(next) => {
+                            *rows = next;
+                            continue;
+                        }
+                        // not the layout the linear path reads: the data's own mesh from here on
+                        None => {
+                            let (ids, table) = dedupe(rows, *k);
+                            FaceVarying::new(m, &ids, &table, *k, None)?
+                        }
+                    },
+                    Corner::Mesh(fv) => std::mem::replace(fv, FaceVarying { mesh: Mesh::new(), values: vec![], k: 0, creases: None }),
+                };
+                *c = Corner::Mesh(fv.with_creases(m, geometry_creases.as_ref(), st.options)?.with_plus_corners(m, interp)?.level(&level, interp, st.options)?);
             }
         }
         if transfer {
@@ -243,13 +272,19 @@ pub(crate) fn run<'py>(
         arr.getattr("flags")?.setattr("writeable", false)?;
         data.corner.push((name.clone(), arr.unbind()));
     }
-    for (((name, _), fv), nd) in slf.data.corner.iter().zip(&st.corners).zip(corner_shapes) {
-        let rows = py.detach(|| fv.corner_rows()).map_err(super::err)?;
-        let k = fv.k;
-        let mut v = Vec::with_capacity(rows.len() * k);
-        for r in rows {
-            v.extend_from_slice(&fv.values[r as usize * k..(r as usize + 1) * k]);
-        }
+    for (((name, _), c), nd) in slf.data.corner.iter().zip(st.corners).zip(corner_shapes) {
+        let (v, k) = match c {
+            Corner::Linear(v, k) => (v, k),
+            Corner::Mesh(fv) => {
+                let rows = py.detach(|| fv.corner_rows()).map_err(super::err)?;
+                let k = fv.k;
+                let mut v = Vec::with_capacity(rows.len() * k);
+                for r in rows {
+                    v.extend_from_slice(&fv.values[r as usize * k..(r as usize + 1) * k]);
+                }
+                (v, k)
+            }
+        };
         let n = v.len() / k.max(1);
         let arr = PyArray1::from_vec(py, v);
         let arr = if nd == 2 { arr.reshape([n, k])?.into_any() } else { arr.into_any() };

@@ -9,6 +9,7 @@ pub(crate) mod corner_origins;
 pub mod corner_transfer;
 pub mod creases;
 pub mod face_varying;
+pub mod corner_linear;
 pub mod level;
 pub mod limit;
 pub mod stencil;
