@@ -68,6 +68,12 @@ impl Spec {
         Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, linear: true }
     }
 
+    /// The scheme's own masks interpolate vertex data (no stencils built
+    /// where they apply).
+    pub fn with_direct(self, with_data: DataLevel) -> Spec {
+        Spec { with_data: Some(with_data), ..self }
+    }
+
     /// A scheme whose positions are not linear in the input's: its levels'
     /// stencils carry attributes but are no subdivision matrix.
     pub fn nonlinear(name: &'static str, predict: crate::budget::Predictor) -> Spec {

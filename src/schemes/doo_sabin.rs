@@ -70,8 +70,22 @@ pub fn doo_sabin(m: &Mesh) -> Result<Mesh> {
     with_point_spheres("doo_sabin", m, step)
 }
 
+/// Faces of at most this many corners read their weights from a table
+/// (a cosine per stencil term was an eighth of a level with stencils).
+const TABLED: usize = 16;
+
 /// Doo & Sabin's weight αᵢ for an n-gon.
 pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
+    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    if n <= TABLED && i < n {
+        // row n starts at n(n-1)/2; the values are weight_of's, bit for bit
+        let t = TABLE.get_or_init(|| (1..=TABLED).flat_map(|n| (0..n).map(move |i| weight_of(n, i))).collect());
+        return t[n * (n - 1) / 2 + i];
+    }
+    weight_of(n, i)
+}
+
+fn weight_of(n: usize, i: usize) -> f64 {
     let nf = n as f64;
     let w = (3.0 + 2.0 * (std::f64::consts::TAU * i as f64 / nf).cos()) / (4.0 * nf);
     if i == 0 {
@@ -210,6 +224,80 @@ fn step(m: &Mesh) -> Result<Mesh> {
     // every output vertex (an input corner) first shows up in its F-face
     cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(c, o)| *o = 2 * c as u32);
     Mesh::from_columns(cols)
+}
+
+/// [`doo_sabin_level`] that also interpolates vertex data (`(rows, k)`
+/// row-major arrays) with the level's weights: by the scheme's own masks on
+/// a closed mesh without point-spheres (no stencils built), else through the
+/// stencils.
+pub fn doo_sabin_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    let fl = std::cell::OnceCell::new();
+    super::level::level_with_data(m, req, data, doo_sabin_level, |a, k| {
+        let fl = match fl.get() {
+            Some(fl) => fl,
+            None => {
+                let _ = fl.set(FaceLayout::new(m)?);
+                fl.get().expect("just set")
+            }
+        };
+        direct_data(m, fl, a, k)
+    })
+}
+
+/// The closed-mesh masks of [`step`] on rows of `k` numbers: per corner `k`
+/// of an n-gon, `x_k/4 + 3/(4n) Σx + 1/(2n) (C cos θk + S sin θk)` with
+/// `C, S = Σ x_i (cos, sin) θi`, `θ = 2π/n` (the weights αᵢ expanded by
+/// `cos θ(i−k) = cos θi cos θk + sin θi sin θk`), so a face costs O(n k).
+fn direct_data(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f64>> {
+    let (nf, nh) = (m.n_faces(), fl.fh.len());
+    let vert = &m.he_vert;
+    let mut out = vec![0.0; nh * k];
+    if k == 0 {
+        return Ok(out);
+    }
+    let mut chunks: Vec<&mut [f64]> = Vec::with_capacity(nf);
+    let mut rest: &mut [f64] = &mut out;
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        let (x, y) = std::mem::take(&mut rest).split_at_mut(fl.degree(f) * k);
+        chunks.push(x);
+        rest = y;
+    }
+    let row = |h: u32| &a[vert[h as usize] as usize * k..(vert[h as usize] as usize + 1) * k];
+    chunks.into_par_iter().with_min_len(MIN_LEN).enumerate().for_each_init(Vec::new, |sums, (f, o)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
+        let hs = fl.corners(f);
+        let n = hs.len();
+        if n == 1 {
+            o.copy_from_slice(row(hs[0]));
+            return;
+        }
+        sums.clear();
+        sums.resize(3 * k, 0.0);
+        let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
+        let (mut cs, mut sn) = (1.0, 0.0);
+        for &h in hs {
+            for (j, x) in row(h).iter().enumerate() {
+                sums[j] += x;
+                sums[k + j] += x * cs;
+                sums[2 * k + j] += x * sn;
+            }
+            (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
+        }
+        let nf64 = n as f64;
+        let (b, w) = (0.75 / nf64, 0.5 / nf64);
+        let (mut ck, mut sk) = (1.0, 0.0);
+        for (c, &h) in hs.iter().enumerate() {
+            for (j, (o, x)) in o[c * k..(c + 1) * k].iter_mut().zip(row(h)).enumerate() {
+                *o = x * 0.25 + sums[j] * b + (sums[k + j] * ck + sums[2 * k + j] * sk) * w;
+            }
+            (ck, sk) = (ck * dc - sk * ds, sk * dc + ck * ds);
+        }
+    });
+    crate::cancel::check()?;
+    Ok(out)
 }
 
 /// One level with what `req` asks for (see the module docs); without
@@ -561,6 +649,35 @@ mod tests {
             Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("doo_sabin"), "{msg}"),
             other => panic!("{other:?}"),
         }
+    }
+
+    #[test]
+    fn tabled_weights_are_the_formula_bit_for_bit() {
+        for n in 1..=TABLED + 3 {
+            for i in 0..n {
+                assert_eq!(doo_sabin_weight(n, i).to_bits(), weight_of(n, i).to_bits(), "n = {n}, i = {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn direct_data_equals_the_stencils_on_corpus() {
+        let mut n = 0;
+        for (name, m) in corpus() {
+            let k = 3;
+            let a: Vec<f64> = (0..m.n_vertices() * k).map(|i| ((i * 7919) % 613) as f64 * 0.1 - 3.0).collect();
+            let with = Request { stencils: true, ..Default::default() };
+            let st = doo_sabin_level(&m, &with).unwrap().stencils.unwrap();
+            let want = st.apply(&a, k).unwrap();
+            let (lv, got) = doo_sabin_level_with(&m, &Request::default(), &[(a.clone(), k)]).unwrap();
+            assert!(lv.stencils.is_none(), "{name}: no stencils asked for");
+            assert_eq!(got[0].len(), want.len(), "{name}");
+            for (i, (x, y)) in got[0].iter().zip(&want).enumerate() {
+                assert!((x - y).abs() < 1e-12, "{name}: value {i}: {x} vs {y}");
+            }
+            n += 1;
+        }
+        assert!(n >= 10);
     }
 
     #[test]
