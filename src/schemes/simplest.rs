@@ -40,7 +40,7 @@ use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{Columns, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -51,6 +51,73 @@ pub fn simplest(m: &Mesh) -> Result<Mesh> {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
+    let fl = FaceLayout::new(m)?;
+    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let p = &m.pos;
+    let pos: Vec<_> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+        // cancelled: zeros, the check below reports it
+        if crate::cancel::requested() {
+            DVec3::ZERO
+        } else {
+            (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5
+        }
+    }).collect();
+    crate::cancel::check()?;
+    // Connectivity straight into the columns (issue 19), numbered exactly as
+    // `from_corner_twins` numbered the corners `[F-corners | V-slots]` it was
+    // given (the `output_hashes` test holds it to that). Every F-corner c
+    // (half-edge h = fh[c], side m(h) → m(next h)) precedes its twin, a
+    // V-slot, so it is the first corner of edge c: it gets half-edge 2c and
+    // its twin 2c + 1, the side m(x) → m(prev x) of the V-face of vert[x]
+    // with x = next h (inside face[h], cutting its corner at vert[x]).
+    // Walking on: the F-face goes to next h; the V-face rotates x to
+    // prev[x] ^ 1 = h ^ 1, whose slot side starts the edge of prev(h ^ 1).
+    // So each pair (2c, 2c + 1) is a lookup, written in order.
+    let mut cols = Columns::new(pos, 2 * nh, nf + nv);
+    let nfu = nf as u32;
+    cols.he_next
+        .par_chunks_exact_mut(2)
+        .zip(cols.he_prev.par_chunks_exact_mut(2))
+        .zip(cols.he_vert.par_chunks_exact_mut(2))
+        .zip(cols.he_face.par_chunks_exact_mut(2))
+        .with_min_len(MIN_LEN)
+        .enumerate()
+        .for_each(|(c, (((hn, hp), hv), hf))| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
+            let h = fl.fh[c] as usize;
+            let x = next[h] as usize;
+            let ci = |k: u32| 2 * fl.cidx[k as usize];
+            hn[0] = ci(x as u32);
+            hp[0] = ci(prev[h]);
+            hv[0] = (h >> 1) as u32;
+            hf[0] = face[h];
+            hn[1] = ci(prev[h ^ 1]) + 1;
+            // the slot before x's in its rotation is next(x ^ 1)'s, whose side starts the edge of x ^ 1
+            hp[1] = ci((x ^ 1) as u32) + 1;
+            hv[1] = (x >> 1) as u32;
+            hf[1] = nfu + vert[x];
+        });
+    crate::cancel::check()?;
+    // a face starts at its first corner: F-face f at corner off[f], V-face v
+    // at the slot of v_out[v] (the layout starts every rotation there)
+    let (fs_f, fs_v) = cols.f_start.split_at_mut(nf);
+    fs_f.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, s)| *s = 2 * fl.off[f]);
+    fs_v.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, s)| *s = 2 * fl.cidx[prev[m.v_out[v] as usize] as usize] + 1);
+    // midpoint e is first seen at the lower of its two F-corners (every
+    // F-corner comes before every V-slot)
+    cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| *o = 2 * fl.cidx[2 * e].min(fl.cidx[2 * e + 1]));
+    Mesh::from_columns(cols)
+}
+
+/// The builder [`step`] replaced (corners and twins through
+/// [`Mesh::from_corner_twins`]), kept as the reference it must equal.
+#[cfg(test)]
+fn step_via_twins(m: &Mesh) -> Result<Mesh> {
     check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
     let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m)?;
@@ -346,6 +413,18 @@ mod tests {
             // a second level works on the output (open input again)
             let two = simplest_level(r, &full_request()).unwrap();
             check_level(name, r, &two);
+        }
+    }
+
+    #[test]
+    fn direct_columns_equal_the_twin_builder() {
+        for (name, m) in corpus() {
+            let (mut a, mut b) = (m.clone(), m.clone());
+            for level in 1..=2 {
+                let (na, nb) = (with_point_spheres("simplest", &a, step).unwrap(), with_point_spheres("simplest", &b, step_via_twins).unwrap());
+                assert_eq!(na, nb, "{name} level {level}");
+                (a, b) = (na, nb);
+            }
         }
     }
 
