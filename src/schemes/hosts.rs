@@ -6,7 +6,7 @@
 //! face points]`), the output faces and the twin of every output corner are
 //! computed from the half-edge columns of the input, and
 //! [`Mesh::from_corner_twins`] assembles the result; the primal host,
-//! Doo-Sabin and the dual go one step further and write the half-edge
+//! Doo-Sabin, the dual, simplest and closed √3 go one step further and write the half-edge
 //! columns themselves ([`Mesh::from_columns`], see `primal_columns.rs`). Nothing is ever paired by
 //! vertex ids, so self-loops, multi-edges, one-gons, two-gons and repeated
 //! vertices in a face are handled like any other element: a self-loop's two

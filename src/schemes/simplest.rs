@@ -40,7 +40,7 @@ use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{Columns, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -53,9 +53,8 @@ pub fn simplest(m: &Mesh) -> Result<Mesh> {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m)?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
-    let (next, vert, _) = m.halfedge_columns();
+    let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
     let p = &m.pos;
     let pos: Vec<_> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
@@ -67,38 +66,52 @@ fn step(m: &Mesh) -> Result<Mesh> {
         }
     }).collect();
     crate::cancel::check()?;
-    let hu = nh as u32;
-    let mut cv = vec![0u32; 2 * nh];
-    let mut tw = vec![0u32; 2 * nh];
-    {
-        let (cf, cvf) = cv.split_at_mut(nh);
-        let (tf, tvf) = tw.split_at_mut(nh);
-        cf.par_iter_mut().zip(tf.par_iter_mut()).with_min_len(MIN_LEN).enumerate().for_each(|(c, (v, t))| {
+    // Connectivity straight into the columns (issue 19), numbered exactly as
+    // `from_corner_twins` numbered the corners `[F-corners | V-slots]` it was
+    // given (the `output_hashes` test holds it to that). Every F-corner c
+    // (half-edge h = fh[c], side m(h) → m(next h)) precedes its twin, a
+    // V-slot, so it is the first corner of edge c: it gets half-edge 2c and
+    // its twin 2c + 1, the side m(x) → m(prev x) of the V-face of vert[x]
+    // with x = next h (inside face[h], cutting its corner at vert[x]).
+    // Walking on: the F-face goes to next h; the V-face rotates x to
+    // prev[x] ^ 1 = h ^ 1, whose slot side starts the edge of prev(h ^ 1).
+    // So each pair (2c, 2c + 1) is a lookup, written in order.
+    let mut cols = Columns::new(pos, 2 * nh, nf + nv);
+    let nfu = nf as u32;
+    cols.he_next
+        .par_chunks_exact_mut(2)
+        .zip(cols.he_prev.par_chunks_exact_mut(2))
+        .zip(cols.he_vert.par_chunks_exact_mut(2))
+        .zip(cols.he_face.par_chunks_exact_mut(2))
+        .with_min_len(MIN_LEN)
+        .enumerate()
+        .for_each(|(c, (((hn, hp), hv), hf))| {
             if crate::cancel::requested() {
                 return; // the check after the loop reports it
             }
-            let h = fl.fh[c];
-            *v = h >> 1;
-            *t = hu + vl.vidx[next[h as usize] as usize];
+            let h = fl.fh[c] as usize;
+            let x = next[h] as usize;
+            let ci = |k: u32| 2 * fl.cidx[k as usize];
+            hn[0] = ci(x as u32);
+            hp[0] = ci(prev[h]);
+            hv[0] = (h >> 1) as u32;
+            hf[0] = face[h];
+            hn[1] = ci(prev[h ^ 1]) + 1;
+            // the slot before x's in its rotation is next(x ^ 1)'s, whose side starts the edge of x ^ 1
+            hp[1] = ci((x ^ 1) as u32) + 1;
+            hv[1] = (x >> 1) as u32;
+            hf[1] = nfu + vert[x];
         });
-        let (pc, pt) = (super::hosts::SyncPtr(cvf.as_mut_ptr()), super::hosts::SyncPtr(tvf.as_mut_ptr()));
-        (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|x| {
-            if crate::cancel::requested() {
-                return; // the check after the loop reports it
-            }
-            let slot = vl.vidx[x] as usize;
-            // SAFETY: vidx is a permutation of 0..nh.
-            unsafe {
-                *pc.get().add(slot) = (x >> 1) as u32;
-                *pt.get().add(slot) = fl.cidx[prev[x] as usize];
-            }
-        });
-    }
     crate::cancel::check()?;
-    let mut sizes = Vec::with_capacity(nf + nv);
-    sizes.extend((0..nf).map(|f| fl.degree(f) as u32));
-    sizes.extend((0..nv).map(|v| vl.valence(v)));
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+    // a face starts at its first corner: F-face f at corner off[f], V-face v
+    // at the slot of v_out[v] (the layout starts every rotation there)
+    let (fs_f, fs_v) = cols.f_start.split_at_mut(nf);
+    fs_f.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, s)| *s = 2 * fl.off[f]);
+    fs_v.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, s)| *s = 2 * fl.cidx[prev[m.v_out[v] as usize] as usize] + 1);
+    // midpoint e is first seen at the lower of its two F-corners (every
+    // F-corner comes before every V-slot)
+    cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| *o = 2 * fl.cidx[2 * e].min(fl.cidx[2 * e + 1]));
+    Mesh::from_columns(cols)
 }
 
 /// One level with what `req` asks for (see the module docs); without
@@ -151,122 +164,83 @@ pub fn simplest_level(m: &Mesh, req: &Request) -> Result<Level> {
 /// One level on a mesh with hole faces (no point-spheres): boundary
 /// vertices kept, boundary edges split (module docs). Faces are
 /// `[F-faces of real faces | V-faces | holes]`.
+///
+/// The columns are written directly (issue 19), numbered as
+/// `from_corner_twins_with_holes` numbered the corners it was given
+/// (`reference::open_level_via_twins`, held to it by a test and by
+/// `output_hashes`): corners `[F-corners | V-face corners | hole corners]`,
+/// each edge numbered by its first corner. Every F-corner (side m(h) →
+/// m(next h) of real h) comes before its twin, the V-side m(next h) →
+/// m(h): F-corner c is edge c. In the V-face corners the only firsts are
+/// the two sides around a kept boundary vertex w = vert[x] of a hole
+/// half-edge x, m(x) → w and w → m(prev x) (their twins are hole corners),
+/// so with r(x) the rank of x among the hole half-edges in rotation order
+/// they are edges N + 2r(x) and N + 2r(x) + 1 (N = number of F-corners);
+/// every hole corner is a second.
 fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     use crate::mesh::NONE;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     check_output_size("simplest", 2 * nh + nh, ne + nv)?;
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
-    let hole = |h: u32| m.f_hole[face[h as usize] as usize];
-    // boundary vertices, in vertex order, after the edge midpoints
+    let hole = |h: usize| m.f_hole[face[h] as usize];
+    // boundary vertices, in order of their first hole half-edge, after the edge midpoints
     let mut bidx = vec![NONE; nv];
     let mut bverts = Vec::new();
-    for h in 0..nh as u32 {
-        let v = vert[h as usize] as usize;
+    for h in 0..nh {
+        let v = vert[h] as usize;
         if hole(h) && bidx[v] == NONE {
             bidx[v] = bverts.len() as u32;
             bverts.push(v as u32);
         }
     }
-    // corner numbering
-    let (mut fc, mut vc, mut vx, mut ca) = (vec![NONE; nh], vec![NONE; nh], vec![NONE; nh], vec![NONE; nh]);
-    let mut sizes = Vec::with_capacity(nf + nv);
-    let mut holes = Vec::with_capacity(nf + nv);
-    let mut c = 0u32;
-    let cycle = |f: usize| {
-        let s = m.f_start[f];
-        let mut h = s;
-        let mut out = Vec::new();
-        loop {
-            out.push(h);
-            h = next[h as usize];
-            if h == s {
-                break out;
-            }
-        }
-    };
+    let fl = FaceLayout::new(m)?;
+    // output face of every input face, and each real face's first F-corner
+    let (mut fid, mut fbase) = (vec![0u32; nf], vec![0u32; nf]);
+    let (mut n_real, mut n_fc) = (0u32, 0u32);
     for f in 0..nf {
-        crate::cancel::poll(f)?;
         if !m.f_hole[f] {
-            let hs = cycle(f);
-            for &h in &hs {
-                fc[h as usize] = c;
-                c += 1;
-            }
-            sizes.push(hs.len() as u32);
-            holes.push(false);
+            (fid[f], fbase[f]) = (n_real, n_fc);
+            n_real += 1;
+            n_fc += fl.degree(f) as u32;
         }
     }
-    for v in 0..nv {
-        crate::cancel::poll(v)?;
-        let start = c;
-        for x in super::creases::ring(m, m.v_out[v]) {
-            vc[x as usize] = c;
-            c += 1;
-            if hole(x) {
-                vx[x as usize] = c; // the kept boundary vertex, after m(x)
-                c += 1;
-            }
-        }
-        sizes.push(c - start);
-        holes.push(false);
-    }
-    let mut hole_faces = Vec::new();
+    let mut n_holes = 0u32;
     for f in 0..nf {
         if m.f_hole[f] {
-            let hs = cycle(f);
-            for &k in &hs {
-                ca[k as usize] = c; // [w, m(k)]: the two halves of side k
-                c += 2;
-            }
-            sizes.push(2 * hs.len() as u32);
-            holes.push(true);
-            hole_faces.push(f as u32);
+            fid[f] = n_real + nv as u32 + n_holes;
+            n_holes += 1;
         }
     }
-    let n = c as usize;
-    let (mut cv, mut tw) = (vec![0u32; n], vec![0u32; n]);
-    let mut co = vec![(0u8, 0u32); if req.origins { n } else { 0 }];
+    // rank of every hole half-edge in rotation order, and of each vertex's first one
+    let (mut rank, mut r0) = (vec![NONE; nh], vec![0u32; nv]);
+    let mut nb = 0u32;
+    for v in 0..nv {
+        crate::cancel::poll(v)?;
+        r0[v] = nb;
+        for x in super::creases::ring(m, m.v_out[v]) {
+            if hole(x as usize) {
+                rank[x as usize] = nb;
+                nb += 1;
+            }
+        }
+    }
+    let n_out_h = 2 * (n_fc as usize + 2 * nb as usize);
+    let fc = |h: usize| fbase[face[h] as usize] + fl.cidx[h] - fl.off[face[h] as usize];
+    // the edge of m(x) → w (the one of w → m(prev x) is the next)
+    let ev = |x: usize| n_fc + 2 * rank[x];
+    // half-edge of: the F-side of real h; the V-side leaving m(x) (its twin
+    // is the F-side of prev x, or for a hole x the hole side w → m(x)); the
+    // V-side leaving w; the hole sides w → m(k) and m(k) → w'
+    let he_f = |h: usize| 2 * fc(h);
+    let he_slot = |x: usize| if hole(x) { 2 * ev(x) } else { 2 * fc(prev[x] as usize) + 1 };
+    let he_vx = |x: usize| 2 * (ev(x) + 1);
+    let he_a = |k: usize| 2 * ev(k) + 1;
+    let he_a1 = |k: usize| 2 * (ev(next[k] as usize) + 1) + 1;
+    let n_out_v = ne + bverts.len();
     let bv = |w: u32| (ne as u32) + bidx[w as usize];
-    for h in 0..nh {
-        crate::cancel::poll(h)?;
-        let hu = h as u32;
-        let mid = hu >> 1;
-        if !hole(hu) {
-            // F-face side m(h) → m(next h), cutting the corner at vert[next h]
-            let i = fc[h] as usize;
-            cv[i] = mid;
-            tw[i] = vc[next[h] as usize];
-            // V-face side m(h) → m(prev h) inside face[h]
-            let j = vc[h] as usize;
-            cv[j] = mid;
-            tw[j] = fc[prev[h] as usize];
-            if req.origins {
-                co[i] = (FACE, face[h]);
-                co[j] = (FACE, face[h]);
-            }
-        } else {
-            // V-face of w = vert[h]: m(h) → w → m(prev h) along the boundary
-            let (j, x) = (vc[h] as usize, vx[h] as usize);
-            cv[j] = mid;
-            tw[j] = ca[h];
-            cv[x] = bv(vert[h]);
-            tw[x] = ca[prev[h] as usize] + 1;
-            // the hole: w → m(h) → (next corner)
-            let a = ca[h] as usize;
-            cv[a] = bv(vert[h]);
-            tw[a] = vc[h];
-            cv[a + 1] = mid;
-            tw[a + 1] = vx[next[h] as usize];
-            if req.origins {
-                co[j] = (EDGE, mid);
-                co[x] = (EDGE, prev[h] >> 1);
-                co[a] = (EDGE, mid);
-                co[a + 1] = (EDGE, mid);
-            }
-        }
-    }
-    let st = Stencils::build(ne + bverts.len(), nv, |i, row| {
+    let vface = |x: usize| n_real + vert[x];
+    let st = Stencils::build(n_out_v, nv, |i, row| {
         if i < ne {
             row.add(vert[2 * i], 0.5);
             row.add(vert[2 * i + 1], 0.5);
@@ -275,15 +249,89 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
         }
     })?;
     let pos = st.apply_points(&m.pos)?;
-    let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
+    let mut cols = Columns::new(pos, n_out_h, (n_real + n_holes) as usize + nv);
+    {
+        let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
+        let (pn, pp, pv, pf) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face));
+        let put = |i: u32, n: u32, v: u32, f: u32| {
+            // SAFETY: every output half-edge is written once below (the ids
+            // above are a bijection onto 0..n_out_h), and is the next of one
+            unsafe {
+                *pn.get().add(i as usize) = n;
+                *pp.get().add(n as usize) = i;
+                *pv.get().add(i as usize) = v;
+                *pf.get().add(i as usize) = f;
+            }
+        };
+        (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
+            let mid = (h >> 1) as u32;
+            let rot = (prev[h] ^ 1) as usize;
+            if !hole(h) {
+                // F-face side m(h) → m(next h); V-face side m(h) → m(prev h)
+                put(he_f(h), he_f(next[h] as usize), mid, fid[face[h] as usize]);
+                put(he_slot(h), he_slot(rot), mid, vface(h));
+            } else {
+                // V-face of w: m(h) → w → m(prev h); the hole: w → m(h) → (next corner)
+                let w = bv(vert[h]);
+                put(he_slot(h), he_vx(h), mid, vface(h));
+                put(he_vx(h), he_slot(rot), w, vface(h));
+                put(he_a(h), he_a1(h), w, fid[face[h] as usize]);
+                put(he_a1(h), he_a(next[h] as usize), mid, fid[face[h] as usize]);
+            }
+        });
+    }
+    crate::cancel::check()?;
+    // faces start at their first corner: the cycle from f_start, the ring from v_out
+    for f in 0..nf {
+        let s = m.f_start[f] as usize;
+        cols.f_start[fid[f] as usize] = if m.f_hole[f] { he_a(s) } else { he_f(s) };
+        cols.f_hole[fid[f] as usize] = m.f_hole[f];
+    }
+    for v in 0..nv {
+        cols.f_start[(n_real as usize) + v] = he_slot(m.v_out[v] as usize);
+    }
+    // each vertex leaves from its first corner: a midpoint from its lower
+    // F-corner (F-corners come first), or, with holes on both sides, from
+    // its V-side of lower rank; a kept vertex w from its V-face's w → m(prev x)
+    // at its first hole half-edge x
+    for e in 0..ne {
+        let (a, b) = (2 * e, 2 * e + 1);
+        cols.v_out[e] = match (hole(a), hole(b)) {
+            (false, false) => 2 * fc(a).min(fc(b)),
+            (false, true) => 2 * fc(a),
+            (true, false) => 2 * fc(b),
+            (true, true) => 2 * (n_fc + 2 * rank[a].min(rank[b])),
+        };
+    }
+    for (i, &w) in bverts.iter().enumerate() {
+        cols.v_out[ne + i] = 2 * (n_fc + 2 * r0[w as usize] + 1);
+    }
+    let mesh = Mesh::from_columns(cols)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind = std::iter::repeat(EDGE).take(ne).chain(std::iter::repeat(VERTEX).take(bverts.len())).collect();
         o.vertex = (0..ne as u32).chain(bverts.iter().copied()).collect();
         let real: Vec<u32> = (0..nf as u32).filter(|&f| !m.f_hole[f as usize]).collect();
+        let hole_faces: Vec<u32> = (0..nf as u32).filter(|&f| m.f_hole[f as usize]).collect();
         o.face_kind = std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(VERTEX).take(nv)).chain(std::iter::repeat(FACE).take(hole_faces.len())).collect();
         o.face = real.iter().copied().chain(0..nv as u32).chain(hole_faces.iter().copied()).collect();
-        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        // a real side cuts a corner of its face; the two sides at a kept
+        // vertex are halves of the boundary edges they run along
+        o.edge_kind = vec![0; mesh.n_edges()];
+        o.edge = vec![0; mesh.n_edges()];
+        for h in 0..nh {
+            if !hole(h) {
+                let e = fc(h) as usize;
+                (o.edge_kind[e], o.edge[e]) = (FACE, face[h]);
+            } else {
+                let e = ev(h) as usize;
+                (o.edge_kind[e], o.edge[e]) = (EDGE, (h >> 1) as u32);
+                (o.edge_kind[e + 1], o.edge[e + 1]) = (EDGE, prev[h] >> 1);
+            }
+        }
         Some(o)
     } else {
         None
@@ -356,3 +404,8 @@ mod tests {
         assert_eq!(r.face_size_histogram().get(&4), Some(&6));
     }
 }
+
+/// The builders the direct column fills replaced, kept as references.
+#[cfg(test)]
+#[path = "simplest_reference.rs"]
+mod reference;

@@ -31,13 +31,16 @@
 mod boundary;
 #[cfg(test)]
 mod boundary_tests;
+/// The builder [`columns`] replaced, kept as the reference it must equal.
+#[cfg(test)]
+mod reference;
 
 use super::hosts::{check_output_size, neighbor_sum, with_point_spheres, FaceLayout, MIN_LEN};
 use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{Columns, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -69,9 +72,8 @@ pub(super) fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut super::ste
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
-    let (nv, nh, nf) = (m.n_vertices(), m.n_halfedges(), m.n_faces());
-    let (next, vert, face) = m.halfedge_columns();
-    let prev = &m.he_prev;
+    let (nv, nf) = (m.n_vertices(), m.n_faces());
+    let (next, vert, _) = m.halfedge_columns();
     let p = &m.pos;
     let mut pos = vec![DVec3::ZERO; nv + nf];
     let (vp, fp) = pos.split_at_mut(nv);
@@ -108,24 +110,108 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
     );
     crate::cancel::check()?;
-    let nvu = nv as u32;
-    let mut cv = vec![0u32; 3 * nh];
-    let mut tw = vec![0u32; 3 * nh];
-    cv.par_chunks_mut(3).zip(tw.par_chunks_mut(3)).with_min_len(MIN_LEN).enumerate().for_each(|(h, (c, t))| {
-        if crate::cancel::requested() {
-            return; // the check after the loop reports it
-        }
-        let t_h = h ^ 1;
-        c[0] = vert[h];
-        c[1] = nvu + face[t_h];
-        c[2] = nvu + face[h];
-        t[0] = 3 * next[t_h] + 2;
-        t[1] = 3 * t_h as u32 + 1;
-        t[2] = 3 * (prev[h] ^ 1);
-    });
+    Mesh::from_columns(columns(m, pos)?)
+}
+
+/// Elements per task of the edge-numbering scan.
+const SCAN_CHUNK: usize = 1 << 14;
+
+/// The output connectivity written straight into the columns (issue 19),
+/// numbered as `from_corner_twins` numbered the corners it was given
+/// (`reference::step_via_twins`, held to it by a test and by
+/// `output_hashes`): triangle h has corners 3h, 3h + 1, 3h + 2 (at a, c_g,
+/// c_f), and each edge is numbered by its first corner, the one before its
+/// twin. The flipped edge's corners are 3h + 1 and 3(h ^ 1) + 1 (the even
+/// h's first); spoke corner 3h pairs with 3j + 2, j = next(h ^ 1), and 3h
+/// is first exactly when h ≤ j. A prefix over the triangles of their first
+/// corners gives every edge id; then each column entry is a lookup.
+fn columns(m: &Mesh, pos: Vec<DVec3>) -> Result<Columns> {
+    let (nv, nh) = (m.n_vertices(), m.n_halfedges());
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let first0 = |h: usize| h <= next[h ^ 1] as usize;
+    let first2 = |h: usize| h < (prev[h] ^ 1) as usize;
+    let count = |h: usize| (h & 1 == 0) as u32 + first0(h) as u32 + first2(h) as u32;
+    let sums: Vec<u32> = (0..nh.div_ceil(SCAN_CHUNK))
+        .into_par_iter()
+        .map(|k| if crate::cancel::requested() { 0 } else { (k * SCAN_CHUNK..((k + 1) * SCAN_CHUNK).min(nh)).map(count).sum() })
+        .collect();
     crate::cancel::check()?;
-    let sizes = vec![3u32; nh];
-    Mesh::from_corner_twins(pos, &sizes, &cv, &tw)
+    let mut acc = 0u32;
+    let starts: Vec<u32> = sums
+        .iter()
+        .map(|&c| {
+            let s = acc;
+            acc += c;
+            s
+        })
+        .collect();
+    if 2 * acc as usize != 3 * nh {
+        return Err(crate::error::MeshError::Invariant(format!("sqrt3: {} corners but {} half-edges", 3 * nh, 2 * acc)));
+    }
+    // the first edge id of triangle h
+    let mut base = vec![0u32; nh];
+    base.par_chunks_mut(SCAN_CHUNK).enumerate().for_each(|(k, ch)| {
+        let mut e = starts[k];
+        for (i, b) in ch.iter_mut().enumerate() {
+            *b = e;
+            e += count(k * SCAN_CHUNK + i);
+        }
+    });
+    let e1 = |h: usize| base[h] + first0(h) as u32;
+    let e2 = |h: usize| e1(h) + (h & 1 == 0) as u32;
+    // output half-edge of corners 3h, 3h + 1, 3h + 2
+    let id0 = |h: usize| if first0(h) { 2 * base[h] } else { 2 * e2(next[h ^ 1] as usize) + 1 };
+    let id1 = |h: usize| if h & 1 == 0 { 2 * e1(h) } else { 2 * e1(h ^ 1) + 1 };
+    let id2 = |h: usize| if first2(h) { 2 * e2(h) } else { 2 * base[(prev[h] ^ 1) as usize] + 1 };
+    let mut cols = Columns::new(pos, 3 * nh, nh);
+    let nvu = nv as u32;
+    {
+        let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
+        let (pn, pp, pv, pf) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face));
+        cols.f_start.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(h, fs)| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
+            let ids = [id0(h), id1(h), id2(h)];
+            let verts = [vert[h], nvu + face[h ^ 1], nvu + face[h]];
+            *fs = ids[0];
+            for k in 0..3 {
+                let (i, n) = (ids[k] as usize, ids[(k + 1) % 3]);
+                // SAFETY: the ids are a bijection from the 3H corners onto
+                // 0..3H, so every half-edge is written (and is a next) once.
+                unsafe {
+                    *pn.get().add(i) = n;
+                    *pp.get().add(n as usize) = i as u32;
+                    *pv.get().add(i) = verts[k];
+                    *pf.get().add(i) = h as u32;
+                }
+            }
+        });
+    }
+    crate::cancel::check()?;
+    // a vertex leaves from its first corner: old vertex v from the corner
+    // 3h of its lowest outgoing h; centroid f from the lowest of 3(k ^ 1) + 1
+    // and 3k + 2 over the half-edges k of f
+    let (vo, fo) = cols.v_out.split_at_mut(nv);
+    vo.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
+        let h = super::creases::ring(m, m.v_out[v]).min().unwrap_or(0) as usize;
+        *o = id0(h);
+    });
+    fo.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
+        let s = m.f_start[f];
+        let (mut k, mut best) = (s, u32::MAX);
+        loop {
+            best = best.min(3 * (k ^ 1) + 1).min(3 * k + 2);
+            k = next[k as usize];
+            if k == s {
+                break;
+            }
+        }
+        let h = (best / 3) as usize;
+        *o = if best % 3 == 1 { id1(h) } else { id2(h) };
+    });
+    Ok(cols)
 }
 
 /// One level with what `req` asks for (see the module docs); without
