@@ -70,24 +70,11 @@ pub fn doo_sabin(m: &Mesh) -> Result<Mesh> {
     with_point_spheres("doo_sabin", m, step)
 }
 
-/// Faces of at most this many corners read their weights from a table
-/// (a cosine per stencil term was an eighth of a level with stencils).
-const TABLED: usize = 16;
-
-/// Doo & Sabin's weight αᵢ for an n-gon.
+/// Doo & Sabin's weight αᵢ for an n-gon (its cosine from
+/// [`super::hosts::turn_cos`]'s table).
 pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
-    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
-    if n <= TABLED && i < n {
-        // row n starts at n(n-1)/2; the values are weight_of's, bit for bit
-        let t = TABLE.get_or_init(|| (1..=TABLED).flat_map(|n| (0..n).map(move |i| weight_of(n, i))).collect());
-        return t[n * (n - 1) / 2 + i];
-    }
-    weight_of(n, i)
-}
-
-fn weight_of(n: usize, i: usize) -> f64 {
     let nf = n as f64;
-    let w = (3.0 + 2.0 * (std::f64::consts::TAU * i as f64 / nf).cos()) / (4.0 * nf);
+    let w = (3.0 + 2.0 * super::hosts::turn_cos(i, n)) / (4.0 * nf);
     if i == 0 {
         w + 0.25
     } else {
@@ -648,15 +635,6 @@ mod tests {
         match doo_sabin(&cube_with_hole()) {
             Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("doo_sabin"), "{msg}"),
             other => panic!("{other:?}"),
-        }
-    }
-
-    #[test]
-    fn tabled_weights_are_the_formula_bit_for_bit() {
-        for n in 1..=TABLED + 3 {
-            for i in 0..n {
-                assert_eq!(doo_sabin_weight(n, i).to_bits(), weight_of(n, i).to_bits(), "n = {n}, i = {i}");
-            }
         }
     }
 

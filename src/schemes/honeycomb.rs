@@ -207,7 +207,7 @@ pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) ->
                     a
                 } else {
                     let k = (n + nn - mm) % nn;
-                    (3.0 + 2.0 * turn_cos(k, nn)) * (1.0 - a) / (3.0 * nn as f64 - 5.0)
+                    (3.0 + 2.0 * super::hosts::turn_cos(k, nn)) * (1.0 - a) / (3.0 * nn as f64 - 5.0)
                 };
                 if w != 0.0 {
                     row.add(vert[g as usize], w * (1.0 - t));
@@ -277,20 +277,6 @@ pub fn check_args(t: f64, tension: Option<f64>) -> Result<()> {
     Ok(())
 }
 
-/// `cos(2πk/n)`, from a table for n ≤ 16 (the same expression, so the
-/// same bits): a cosine per stencil term was a sixth of a level with
-/// stencils.
-fn turn_cos(k: usize, n: usize) -> f64 {
-    const TABLED: usize = 16;
-    let of = |k: usize, n: usize| (std::f64::consts::TAU * k as f64 / n as f64).cos();
-    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
-    if n <= TABLED && k < n {
-        let t = TABLE.get_or_init(|| (1..=TABLED).flat_map(|n| (0..n).map(move |k| of(k, n))).collect());
-        return t[n * (n - 1) / 2 + k];
-    }
-    of(k, n)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -299,7 +285,7 @@ mod tests {
     fn tabled_cosines_are_the_expression_bit_for_bit() {
         for n in 1..=20usize {
             for k in 0..n {
-                assert_eq!(turn_cos(k, n).to_bits(), (std::f64::consts::TAU * k as f64 / n as f64).cos().to_bits(), "n = {n}, k = {k}");
+                assert_eq!(super::super::hosts::turn_cos(k, n).to_bits(), (std::f64::consts::TAU * k as f64 / n as f64).cos().to_bits(), "n = {n}, k = {k}");
             }
         }
     }

@@ -51,6 +51,20 @@ impl<T> SyncPtr<T> {
 /// Below this many elements a parallel loop runs on one thread.
 pub(crate) const MIN_LEN: usize = 2048;
 
+/// `cos(2πk/n)`, from a table for n ≤ 16 (the same expression, so the
+/// same bits): a cosine per stencil term was a sixth to an eighth of a
+/// level with stencils (honeycomb, Doo-Sabin).
+pub(crate) fn turn_cos(k: usize, n: usize) -> f64 {
+    const TABLED: usize = 16;
+    let of = |k: usize, n: usize| (std::f64::consts::TAU * k as f64 / n as f64).cos();
+    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    if n <= TABLED && k < n {
+        let t = TABLE.get_or_init(|| (1..=TABLED).flat_map(|n| (0..n).map(move |k| of(k, n))).collect());
+        return t[n * (n - 1) / 2 + k];
+    }
+    of(k, n)
+}
+
 /// The corners of every face in cycle order, laid out face after face.
 ///
 /// Built in O(H + F). A point-sphere face has no half-edge and owns no
