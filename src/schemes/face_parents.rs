@@ -190,4 +190,66 @@ mod tests {
         let (_, p) = traced(&m, || crate::schemes::loop_subdivision::loop_subdivision(&conway::kis(&m, None)?)).unwrap();
         assert!(p.is_none());
     }
+    /// Every TopMod scheme built through `Out` gives parents on the corpus
+    /// (point-spheres, self-loops, two-gons, genus included); the schemes
+    /// that keep a face per input face keep every id.
+    #[test]
+    fn topmod_schemes_have_parents() {
+        use crate::schemes::topmod::{self as tm, extrude::{Extrusion, Kind}};
+        type Scheme = fn(&Mesh) -> Result<Mesh>;
+        let all: [(&str, Scheme, bool); 19] = [
+            ("stellate", |m| tm::stellate::stellate(m, 0.1), true),
+            ("double_stellate", |m| tm::stellate::double_stellate(m, 0.1), true),
+            ("stellate_edge_removal", |m| tm::stellate::stellate_edge_removal(m, 0.0), false),
+            ("double_stellate_misc", |m| tm::stellate::double_stellate_misc(m, 0.1, 0.1), false),
+            ("linear_vertex_insertion", tm::linear::linear_vertex_insertion, true),
+            ("corner_cutting", |m| tm::corner_cutting::corner_cutting(m, 0.5), true),
+            ("modified_corner_cutting", |m| tm::corner_cutting::modified_corner_cutting(m, 0.25), true),
+            ("loop_style", |m| tm::loop_style::loop_style(m, 1.0), true),
+            ("root4", |m| tm::loop_style::root4(m, 0.0, 0.0), true),
+            ("fractal", |m| tm::loop_style::fractal(m, 1.0), true),
+            ("pentagonalize", |m| tm::pentagonal::pentagonalize(m, 0.0), true),
+            ("pentagon_preserving", |m| tm::pentagonal::pentagon_preserving(m, 0.75), true),
+            ("dual_12_6_4", |m| tm::twelve_six_four::dual_12_6_4(m, 0.7), true),
+            ("remesh_12_6_4", |m| tm::compose::remesh_12_6_4(m, 0.7), false),
+            ("checkerboard", |m| tm::checkerboard::checkerboard(m, 0.33), true),
+            ("dual_checkerboard", |m| tm::compose::dual_checkerboard(m, 0.33), true),
+            ("doo_sabin_bc_new", |m| tm::doo_sabin_bc_new::doo_sabin_bc_new(m, 1.0, 1.0), true),
+            ("dome", |m| tm::extrude::dome(m, 1.0, 1.0), true),
+            ("extrude", |m| tm::extrude::extrude(m, &[0], &Extrusion { kind: Kind::Cubical, length: 1.0, scale: 1.0, twist: 0.0, segments: 2, angle: None, lengths: None }), true),
+        ];
+        for (mesh, m) in crate::schemes::topmod::tests::meshes() {
+            for (name, f, every) in all {
+                if name == "extrude" && m.face_halfedge(crate::FaceId(0)).is_none() {
+                    continue;
+                }
+                let (out, p) = traced(&m, || f(&m)).unwrap();
+                let p = p.unwrap_or_else(|| panic!("{name} on {mesh}: no parents"));
+                assert_eq!(p.len(), out.n_faces(), "{name} on {mesh}");
+                assert!(p.iter().all(|&f| (f as usize) < m.n_faces()), "{name} on {mesh}");
+                if every {
+                    let got: std::collections::BTreeSet<u32> = p.iter().copied().collect();
+                    assert_eq!(got.len(), m.n_faces(), "{name} on {mesh}: every input face has a child");
+                }
+            }
+        }
+    }
+
+    /// The corpus through every Conway operator: point-spheres map to
+    /// themselves and chains compose.
+    #[test]
+    fn conway_on_the_corpus() {
+        for (mesh, m) in crate::schemes::topmod::tests::meshes() {
+            for o in conway::OPERATORS {
+                let (out, p) = traced(&m, || conway::Op::apply(conway::parse(&o.letter.to_string()).unwrap().ops[0], &m)).unwrap();
+                let p = p.unwrap_or_else(|| panic!("{} on {mesh}: no parents", o.letter));
+                assert_eq!(p.len(), out.n_faces());
+                for f in 0..out.n_faces() {
+                    // a point-sphere's face inherits from a point-sphere
+                    let pt = out.face_halfedge(crate::FaceId(f as u32)).is_none();
+                    assert_eq!(pt, m.face_halfedge(crate::FaceId(p[f])).is_none(), "{} on {mesh}: face {f}", o.letter);
+                }
+            }
+        }
+    }
 }
