@@ -18,8 +18,10 @@
 //! * a face born around an input edge e (chamfer's hexagons) has the face of
 //!   e's first side, `face(2e)`;
 //! * a face born around an input vertex v (dual, ambo) has the parent of v:
-//!   `face(v_out(v))` for a vertex of the input (the first face of its ring,
-//!   as for the smoothing schemes' vertex faces), and along a chain the
+//!   the lowest-index face around it for a vertex of the input (the
+//!   smoothing schemes take the first face of its ring from `v_out`; the
+//!   lowest one does not depend on half-edge numbering, so a chain gives
+//!   the same parents in one call as in several), and along a chain the
 //!   parent of the element v was born from (a dual's vertex f is face f, an
 //!   ambo vertex is its edge), so truncate's `F` faces (`dkd`: born around
 //!   the kis mesh's vertices, which are the dual's vertices, which are the
@@ -109,18 +111,20 @@ pub(crate) fn identity(m: &Mesh) -> Step {
     Step { in_v: m.n_vertices(), in_f: m.n_faces(), face: (0..m.n_faces() as u32).collect(), vertex: (0..m.n_vertices() as u32).map(|v| VERT | v).collect() }
 }
 
-/// The input face a source of `m` names: the face itself, or for vertex v
-/// the face of its first outgoing half-edge (a point-sphere's own face).
-pub(crate) fn resolve(m: &Mesh, s: u32) -> u32 {
-    if s & VERT == 0 {
-        return s;
+/// The input face of every vertex of `m` for sources naming it: the
+/// lowest-index face around it (a point-sphere's own face). Lowest, not the
+/// face of `v_out`, so the parents do not depend on half-edge numbering and
+/// a chain gives the same parents in one call or in several: the keyed
+/// builder's vertices and faces keep their input's order, so the lowest
+/// output face around a kept vertex descends from the lowest input face.
+fn vertex_faces(m: &Mesh) -> Vec<u32> {
+    let (_, vert, face) = m.halfedge_columns();
+    let mut out: Vec<u32> = m.v_out.iter().map(|&o| if o & POINT != 0 { o & !POINT } else { NONE }).collect();
+    for (&v, &f) in vert.iter().zip(face) {
+        let x = &mut out[v as usize];
+        *x = (*x).min(f);
     }
-    let o = m.v_out[(s & !VERT) as usize];
-    if o & POINT != 0 {
-        o & !POINT
-    } else {
-        m.halfedge_columns().2[o as usize]
-    }
+    out
 }
 
 /// Runs `build` (which must build its output from `m` through the recording
@@ -135,7 +139,8 @@ pub fn traced(m: &Mesh, build: impl FnOnce() -> Result<Mesh>) -> Result<(Mesh, O
     let out = out?;
     let step = if steps.is_empty() { Some(identity(m)) } else { chain(steps) };
     let parents = step.filter(|s| s.in_f == m.n_faces() && s.in_v == m.n_vertices() && s.face.len() == out.n_faces() && s.vertex.len() == out.n_vertices()).map(|s| {
-        let p: Vec<u32> = s.face.iter().map(|&x| resolve(m, x)).collect();
+        let vf = if s.face.iter().any(|&x| x & VERT != 0) { vertex_faces(m) } else { Vec::new() };
+        let p: Vec<u32> = s.face.iter().map(|&x| if x & VERT != 0 { vf[(x & !VERT) as usize] } else { x }).collect();
         debug_assert!(p.iter().all(|&f| f != NONE && (f as usize) < m.n_faces()));
         p
     });
@@ -181,6 +186,15 @@ mod tests {
         let t = parents("t", &m);
         assert_eq!(&t[..m.n_faces()], &(0..m.n_faces() as u32).collect::<Vec<_>>()[..]);
         assert_eq!(parents("t", &m), parents("dkd", &m));
+    }
+
+    /// One call or several: `dk` in one chain and kis then dual agree.
+    #[test]
+    fn chains_agree_across_calls() {
+        let m = crate::schemes::hosts::test_meshes::handle_cube();
+        let (k, pk) = traced(&m, || conway::kis(&m, None)).unwrap();
+        let (_, pd) = traced(&k, || crate::schemes::dual::dual(&k)).unwrap();
+        assert_eq!(compose_parents(&pk.unwrap(), &pd.unwrap()), parents("dk", &m));
     }
 
     /// A non-recording build inside the chain gives no parents.
