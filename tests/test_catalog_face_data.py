@@ -2,13 +2,13 @@
 TopMod's schemes built through the keyed builder give every output face the attributes
 of the input face it descends from (``src/schemes/face_parents.rs``).
 
-The rule (the smoothing schemes' ``face_parents`` rule applied to these operators): a
+The rule: a
 face built inside input face f (a kis triangle, a shrunk copy, a corner pentagon) comes
 from f; a face born around an input edge (chamfer's hexagons, join's quads) from the face
 of the edge's first side; a face born around an input vertex (dual, ambo, truncate's
-corner faces) from the first face of the vertex's ring. Along a chain (``t = dkd``,
+corner faces) from the lowest-index face around the vertex. Along a chain (``t = dkd``,
 TopMod's "dual + X + dual", iterations) the parents compose, so truncate's octagons on
-the cube keep their own square's data.
+the cube keep their own square's data, and one call gives what several give.
 
 Operators that keep a copy of every input face (an ``F`` term in F') or split every face
 (kis, gyro) keep every input face's value; the others (dual, join, needle, ...) keep a
