@@ -1,9 +1,10 @@
 """Data through the Conway operators, TopMod's remeshing schemes and the object tools
 (issue 15, item 4: attributes must never vanish unannounced).
 
-These operators rebuild the faces and edges from keyed corners and carry positions only:
-a mesh with creases or attributes gets a ``GeometryWarning`` that names every dropped
-array. The operators that only move positions (``canonicalize``, ``planarize``,
+These operators rebuild the faces and edges: a mesh with creases or attributes gets a
+``GeometryWarning`` that names every dropped array. The Conway operators and TopMod's
+schemes built through the keyed builder carry face attributes to the child faces and drop
+the rest. The operators that only move positions (``canonicalize``, ``planarize``,
 ``spherize``) keep all of it, and ``reflect`` (same vertices, same faces in the same order)
 keeps the vertex and face attributes.
 """
@@ -28,6 +29,15 @@ def with_all(m: tm.Mesh) -> tm.Mesh:
 
 
 DROPPING = {
+    "root3": lambda m: m.root3(),
+    "subdivide_all_edges": lambda m: m.subdivide_all_edges(),
+    "wireframe": lambda m: m.wireframe(0.1),
+    "cut_faces": lambda m: m.cut_faces([0]),
+}
+
+# the catalog built through the keyed builder: face attributes are inherited by the
+# child faces (tests/test_catalog_face_data.py), the rest is named and dropped
+INHERITING = {
     "truncate": lambda m: m.truncate(),
     "kis": lambda m: m.kis(),
     "ambo": lambda m: m.ambo(),
@@ -36,11 +46,7 @@ DROPPING = {
     "conway": lambda m: m.conway("tk"),
     "stellate": lambda m: m.stellate(),
     "corner_cutting": lambda m: m.corner_cutting(),
-    "root3": lambda m: m.root3(),
     "extrude": lambda m: m.extrude([0]),
-    "subdivide_all_edges": lambda m: m.subdivide_all_edges(),
-    "wireframe": lambda m: m.wireframe(0.1),
-    "cut_faces": lambda m: m.cut_faces([0]),
 }
 
 
@@ -61,6 +67,26 @@ def test_rebuilding_operators_name_what_they_drop(name: str) -> None:
         op(c.with_attributes(face={"material": np.arange(6)}))
     named = str(rec[0].message).split(" (this operator")[0]
     assert "vertex" not in named and "creases" not in named
+
+
+@pytest.mark.parametrize("name", sorted(INHERITING))
+def test_catalog_names_what_it_drops_and_keeps_face_data(name: str) -> None:
+    op = INHERITING[name]
+    c = tm.cube()
+    plain = op(c)
+    with pytest.warns(tm.GeometryWarning) as rec:
+        out = op(with_all(c))
+    msg = str(rec[0].message)
+    assert msg.startswith(name)
+    for part in ("creases", 'vertex attributes ["rgb"]', 'corner attributes ["uv"]'):
+        assert part in msg, (part, msg)
+    assert "face attributes" not in msg.split(" (this operator")[0]
+    assert out == plain and not out.vertex_attributes and not out.corner_attributes
+    assert set(out.face_attributes) == {"material"} and len(out.face_attributes["material"]) == len(out.face_sizes)
+    # face data alone: nothing dropped, no warning (filterwarnings = error)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        op(c.with_attributes(face={"material": np.arange(6)}))
 
 
 @pytest.mark.parametrize("name", ["canonicalize", "planarize", "spherize"])

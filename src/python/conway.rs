@@ -8,21 +8,21 @@ use crate::schemes::conway::{self, canonical, seeds::MAX_SIDES, Op};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-fn run(py: Python<'_>, m: &crate::Mesh, name: &str, op: Op) -> PyResult<PyMesh> {
-    run_interruptible(py, || conway::apply_all(name, m, &[op])).map(PyMesh::wrap)
+fn run(py: Python<'_>, m: &crate::Mesh, want: bool, name: &str, op: Op) -> PyResult<(crate::Mesh, Option<Vec<u32>>)> {
+    run_interruptible(py, || super::data::build_traced(want, m, || conway::apply_all(name, m, &[op])))
 }
 
 /// The output with what it keeps of the input's data: reflect keeps its
 /// vertices and faces in order (vertex and face attributes survive); every
-/// other operator rebuilds both, and the data it drops is named in a
-/// `GeometryWarning`.
-fn data_of(py: Python<'_>, data: &super::data::MeshData, name: &str, op: Op, out: PyMesh) -> PyResult<PyMesh> {
-    if data.is_empty() {
-        return Ok(out);
+/// other operator rebuilds both and its faces inherit the face attributes
+/// of the input face they descend from (`crate::schemes::face_parents`);
+/// the data it drops is named in a `GeometryWarning`.
+fn data_of(py: Python<'_>, data: &super::data::MeshData, name: &str, op: Op, input: &crate::Mesh, (out, parents): (crate::Mesh, Option<Vec<u32>>)) -> PyResult<PyMesh> {
+    if op == Op::Reflect && !data.is_empty() {
+        let d = super::data::kept(py, data, name, false, true, true)?;
+        return Ok(PyMesh::with_data(out, d));
     }
-    let keep = op == Op::Reflect;
-    let d = super::data::kept(py, data, name, false, keep, keep)?;
-    Ok(PyMesh::with_data(out.inner, d))
+    super::data::inherited(py, data, name, input, out, parents)
 }
 
 fn sides(name: &str, n: Option<&Bound<'_, PyAny>>) -> PyResult<Option<usize>> {
@@ -36,7 +36,7 @@ macro_rules! plain_op {
         impl PyMesh {
             #[doc = $doc]
             fn $name(&self, py: Python<'_>) -> PyResult<PyMesh> {
-                data_of(py, &self.data, stringify!($name), $op, run(py, &self.inner, stringify!($name), $op)?)
+                data_of(py, &self.data, stringify!($name), $op, &self.inner, run(py, &self.inner, !self.data.face.is_empty(), stringify!($name), $op)?)
             }
         }
     };
@@ -51,7 +51,7 @@ macro_rules! sized_op {
             #[pyo3(signature = (n = None))]
             fn $name(&self, py: Python<'_>, n: Option<&Bound<'_, PyAny>>) -> PyResult<PyMesh> {
                 let n = sides(stringify!($name), n)?;
-                data_of(py, &self.data, stringify!($name), $op(n), run(py, &self.inner, stringify!($name), $op(n))?)
+                data_of(py, &self.data, stringify!($name), $op(n), &self.inner, run(py, &self.inner, !self.data.face.is_empty(), stringify!($name), $op(n))?)
             }
         }
     };
@@ -134,8 +134,9 @@ impl PyMesh {
     ///     letter in ``notation``, boundary loops, or an output beyond the
     ///     memory budget.
     fn conway(&self, py: Python<'_>, notation: &str) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "conway")?;
-        run_interruptible(py, || conway::conway(notation, Some(&self.inner))).map(PyMesh::wrap)
+        let m = &self.inner;
+        let r = run_interruptible(py, || super::data::build_traced(!self.data.face.is_empty(), m, || conway::conway(notation, Some(m))))?;
+        super::data::inherited(py, &self.data, "conway", m, r.0, r.1)
     }
 
     /// Hart's canonical form: planar faces, every edge tangent to the unit

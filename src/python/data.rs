@@ -25,12 +25,50 @@ pub struct MeshData {
 }
 
 /// Warns (`GeometryWarning`) that operator `op` returns a mesh without the
-/// input's creases and attributes: the local operators, the Conway
-/// operators, TopMod's remeshing schemes and the object tools rebuild faces
-/// and edges and carry positions only, and data must never vanish
-/// unannounced. The message names what is dropped.
+/// input's creases and attributes: the local operators and the object
+/// tools rebuild faces and edges and carry positions only (the Conway
+/// operators and TopMod's remeshing schemes carry face attributes, see
+/// [`inherited`]), and data must never vanish unannounced. The message
+/// names what is dropped.
 pub(crate) fn warn_dropped(data: &MeshData, op: &str) -> PyResult<()> {
     warn_dropping(data, op, false, false)
+}
+
+/// The output of a remeshing operator (Conway, TopMod) from `input`, with
+/// the input's face attributes inherited through `parents` (per output
+/// face, the input face it descends from:
+/// `crate::schemes::face_parents`), after warning about the rest. Without
+/// parents (a step of the chain does not record them) everything is
+/// dropped with the warning, as before issue 15.
+pub(crate) fn inherited(py: Python<'_>, data: &MeshData, op: &str, input: &crate::Mesh, out: crate::Mesh, parents: Option<Vec<u32>>) -> PyResult<PyMesh> {
+    if data.is_empty() {
+        return Ok(PyMesh::wrap(out));
+    }
+    // these operators refuse holes, so internal face ids are the exported ones
+    let usable = |p: &Vec<u32>| p.len() == out.n_faces() && input.n_holes() == 0 && out.n_holes() == 0;
+    let Some(p) = parents.filter(|p| !data.face.is_empty() && usable(p)) else {
+        warn_dropped(data, op)?;
+        return Ok(PyMesh::wrap(out));
+    };
+    warn_dropping(data, op, false, true)?;
+    let idx = numpy::PyArray1::from_vec(py, p.into_iter().map(i64::from).collect::<Vec<i64>>());
+    let mut d = MeshData::default();
+    for (name, a) in &data.face {
+        let arr = a.bind(py).call_method1("take", (&idx, 0))?;
+        arr.getattr("flags")?.setattr("writeable", false)?;
+        d.face.push((name.clone(), arr.unbind()));
+    }
+    Ok(PyMesh::with_data(out, d))
+}
+
+/// Runs `build` from `input`, recording face parents when `want` (the
+/// input has face attributes to inherit), else plainly.
+pub(crate) fn build_traced(want: bool, input: &crate::Mesh, build: impl FnOnce() -> crate::Result<crate::Mesh>) -> crate::Result<(crate::Mesh, Option<Vec<u32>>)> {
+    if want {
+        crate::schemes::face_parents::traced(input, build)
+    } else {
+        Ok((build()?, None))
+    }
 }
 
 /// The names of what `data` holds beside what is kept (`vertex`, `face`:

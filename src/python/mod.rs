@@ -169,20 +169,40 @@ pub(crate) fn run_interruptible<T: Send>(py: Python<'_>, work: impl FnOnce() -> 
 /// refusal is a `MeshError` naming the call, level, bytes and budget.
 /// `iterations` outside `0..` is a `MeshError` naming the scheme; 0 returns
 /// an equal mesh.
-pub(crate) fn iterate(
+///
+/// For the remeshing schemes built through the keyed builder: the output
+/// inherits `data`'s face attributes through the face parents composed
+/// over the levels (`crate::schemes::face_parents`), and the rest of the
+/// data is dropped with a warning ([`data::inherited`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn iterate_traced(
     py: Python<'_>,
     mesh: &crate::Mesh,
+    data: &data::MeshData,
     iterations: i128,
     progress: bool,
     name: &str,
     predict: crate::budget::Predictor,
     step: impl Fn(&crate::Mesh) -> crate::Result<crate::Mesh> + Sync,
 ) -> PyResult<mesh::PyMesh> {
-    let (out, ()) = iterate_with(py, mesh, iterations, progress, name, predict, (), |m, _| step(m))?;
-    Ok(mesh::PyMesh::wrap(out.unwrap_or_else(|| mesh.clone())))
+    use crate::schemes::face_parents::{compose_parents, traced};
+    // None: not wanted (no face attributes) or a level recorded nothing
+    let start = (!data.face.is_empty()).then(|| (0..mesh.n_faces() as u32).collect::<Vec<u32>>());
+    let (out, parents) = iterate_with(py, mesh, iterations, progress, name, predict, start, |m, st| {
+        if st.is_none() {
+            return step(m);
+        }
+        let (out, p) = traced(m, || step(m))?;
+        *st = match (st.take(), p) {
+            (Some(a), Some(b)) => Some(compose_parents(&a, &b)),
+            _ => None,
+        };
+        Ok(out)
+    })?;
+    data::inherited(py, data, name, mesh, out.unwrap_or_else(|| mesh.clone()), parents)
 }
 
-/// [`iterate`] with a state carried from level to level (attributes,
+/// [`iterate_traced`] with a state carried from level to level (attributes,
 /// stencils, origins); returns the last level's mesh (None for 0 levels)
 /// and the state.
 #[allow(clippy::too_many_arguments)]

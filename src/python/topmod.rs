@@ -3,7 +3,7 @@
 //! released and checked against the memory budget from its count formulas.
 
 use super::mesh::PyMesh;
-use super::{arg_err, big_int, err, finite_in, iterate, run_interruptible};
+use super::{arg_err, big_int, err, finite_in, iterate_traced, run_interruptible};
 use crate::budget::{self, Counts};
 use crate::schemes::topmod::{checkerboard as cb, compose, corner_cutting as cc, doo_sabin_bc_new as dsn, extrude as ex, linear, loop_style as ls, pentagonal as pt, stellate as st, twelve_six_four as t64};
 use pyo3::prelude::*;
@@ -99,9 +99,8 @@ impl PyMesh {
     ///     A parameter out of range, an open mesh, or the memory budget.
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "stellate")?;
         let d = finite_in("stellate", "offset", offset, 0.0, 10.0)?;
-        iterate(py, &self.inner, iterations, progress, "stellate", p_stellate, |m| st::stellate(m, d))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "stellate", p_stellate, |m| st::stellate(m, d))
     }
 
     /// Double stellate (TopMod's *Double Stellation*, ``starSubdivide``):
@@ -122,9 +121,8 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn double_stellate(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "double_stellate")?;
         let d = finite_in("double_stellate", "offset", offset, 0.0, 10.0)?;
-        iterate(py, &self.inner, iterations, progress, "double_stellate", p_double_stellate, |m| st::double_stellate(m, d))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "double_stellate", p_double_stellate, |m| st::double_stellate(m, d))
     }
 
     /// Double stellate, TopMod's second variant (*Double Stellate (Misc.)*,
@@ -150,10 +148,9 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, height = 0.0, curve = 0.0, progress = false))]
     fn double_stellate_misc(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, height: f64, curve: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "double_stellate_misc")?;
         let h = finite_in("double_stellate_misc", "height", height, -1.0, 1.0)?;
         let c = finite_in("double_stellate_misc", "curve", curve, -1.0, 1.0)?;
-        iterate(py, &self.inner, iterations, progress, "double_stellate_misc", p_double_stellate_misc, |m| st::double_stellate_misc(m, h, c))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "double_stellate_misc", p_double_stellate_misc, |m| st::double_stellate_misc(m, h, c))
     }
 
     /// Stellate with edge removal (TopMod's ``stellateSubdivide``): stellate,
@@ -173,8 +170,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn stellate_edge_removal(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "stellate_edge_removal")?;
-        iterate(py, &self.inner, iterations, progress, "stellate_edge_removal", p_join, |m| st::stellate_edge_removal(m, 0.0))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "stellate_edge_removal", p_join, |m| st::stellate_edge_removal(m, 0.0))
     }
 
     /// Linear vertex insertion (TopMod's *Linear Vertex Insertion*,
@@ -193,8 +189,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn linear_vertex_insertion(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "linear_vertex_insertion")?;
-        iterate(py, &self.inner, iterations, progress, "linear_vertex_insertion", p_linear, linear::linear_vertex_insertion)
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "linear_vertex_insertion", p_linear, linear::linear_vertex_insertion)
     }
 
     /// Corner cutting (TopMod's ``cornerCuttingSubdivide``): Doo-Sabin's
@@ -216,11 +211,10 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, alpha = 0.5625, progress = false))]
     fn corner_cutting(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, alpha: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "corner_cutting")?;
         if !(alpha.is_finite() && alpha >= 1.0 / 3.0 && alpha < 1.0) {
             return Err(arg_err(format!("corner_cutting: alpha = {alpha} is out of range; it must be a finite number in [1/3, 1)")));
         }
-        iterate(py, &self.inner, iterations, progress, "corner_cutting", p_dual_host, |m| cc::corner_cutting(m, alpha))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "corner_cutting", p_dual_host, |m| cc::corner_cutting(m, alpha))
     }
 
     /// Modified corner cutting (TopMod's ``modifiedCornerCuttingSubdivide``):
@@ -241,9 +235,8 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, thickness = 0.25, progress = false))]
     fn modified_corner_cutting(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "modified_corner_cutting")?;
         let t = unit("modified_corner_cutting", "thickness", thickness)?;
-        iterate(py, &self.inner, iterations, progress, "modified_corner_cutting", p_dual_host, |m| cc::modified_corner_cutting(m, t))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "modified_corner_cutting", p_dual_host, |m| cc::modified_corner_cutting(m, t))
     }
 
     /// Root-3 as TopMod composes it (``subdivideRoot3``: dual, honeycomb,
@@ -261,8 +254,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn root3(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "root3")?;
-        iterate(py, &self.inner, iterations, progress, "root3", p_stellate, compose::root3)
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "root3", p_stellate, compose::root3)
     }
 
     /// Loop-style remeshing (TopMod's ``loopStyleSubdivide``): edges split at
@@ -285,9 +277,8 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, length = 1.0, progress = false))]
     fn loop_style(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "loop_style")?;
         let l = unit("loop_style", "length", length)?;
-        iterate(py, &self.inner, iterations, progress, "loop_style", p_loop_style, |m| ls::loop_style(m, l))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "loop_style", p_loop_style, |m| ls::loop_style(m, l))
     }
 
     /// Root-4 (TopMod's ``root4Subdivide``): an inner face per face from the
@@ -312,27 +303,24 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn root4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "root4")?;
         let (w, t) = (unit("root4", "weight", weight)?, unit("root4", "twist", twist)?);
-        iterate(py, &self.inner, iterations, progress, "root4", p_root4, |m| ls::root4(m, w, t))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "root4", p_root4, |m| ls::root4(m, w, t))
     }
 
     /// Dual Loop-style remeshing: TopMod's menu entry of that name runs
     /// root-4 (:meth:`root4`, same parameters and counts).
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn dual_loop_style(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_loop_style")?;
         let (w, t) = (unit("dual_loop_style", "weight", weight)?, unit("dual_loop_style", "twist", twist)?);
-        iterate(py, &self.inner, iterations, progress, "dual_loop_style", p_root4, |m| ls::root4(m, w, t))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_loop_style", p_root4, |m| ls::root4(m, w, t))
     }
 
     /// Hexagon preserving remeshing: TopMod's menu entry runs root-4
     /// (:meth:`root4`, same parameters and counts).
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn hexagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "hexagon_preserving")?;
         let (w, t) = (unit("hexagon_preserving", "weight", weight)?, unit("hexagon_preserving", "twist", twist)?);
-        iterate(py, &self.inner, iterations, progress, "hexagon_preserving", p_root4, |m| ls::root4(m, w, t))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "hexagon_preserving", p_root4, |m| ls::root4(m, w, t))
     }
 
     /// Dual hexagon preserving (TopMod: dual, root-4, dual).
@@ -341,9 +329,8 @@ impl PyMesh {
     /// 2E triangles).
     #[pyo3(signature = (iterations = 1, weight = 0.0, twist = 0.0, progress = false))]
     fn dual_hexagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, weight: f64, twist: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_hexagon_preserving")?;
         let (w, t) = (unit("dual_hexagon_preserving", "weight", weight)?, unit("dual_hexagon_preserving", "twist", twist)?);
-        iterate(py, &self.inner, iterations, progress, "dual_hexagon_preserving", p_loop_style, |m| compose::dual_hexagon_preserving(m, w, t))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_hexagon_preserving", p_loop_style, |m| compose::dual_hexagon_preserving(m, w, t))
     }
 
     /// Dual Loop (TopMod's ``subdivideDualLoop``: dual, Loop, dual); every
@@ -351,8 +338,7 @@ impl PyMesh {
     /// dualised.
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn dual_loop(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_loop")?;
-        iterate(py, &self.inner, iterations, progress, "dual_loop", p_dual_loop, compose::dual_loop)
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_loop", p_dual_loop, compose::dual_loop)
     }
 
     /// Pentagonalization (TopMod's ``pentagonalSubdivide``): edges trisected,
@@ -374,18 +360,16 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn pentagonalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "pentagonalize")?;
         let o = unit("pentagonalize", "offset", offset)?;
-        iterate(py, &self.inner, iterations, progress, "pentagonalize", p_pentagonal, |m| pt::pentagonalize(m, o))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "pentagonalize", p_pentagonal, |m| pt::pentagonalize(m, o))
     }
 
     /// Cubic pentagonalization (TopMod: pentagonalization, dual, dual):
     /// :meth:`pentagonalize`'s counts, positions averaged twice.
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn cubic_pentagonalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "cubic_pentagonalize")?;
         let o = unit("cubic_pentagonalize", "offset", offset)?;
-        iterate(py, &self.inner, iterations, progress, "cubic_pentagonalize", p_pentagonal, |m| compose::cubic_pentagonalize(m, o))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "cubic_pentagonalize", p_pentagonal, |m| compose::cubic_pentagonalize(m, o))
     }
 
     /// Dual pentagonalization (TopMod: dual, pentagonalization, dual).
@@ -394,9 +378,8 @@ impl PyMesh {
     /// one k-gon per valence-k vertex, 2E triangles).
     #[pyo3(signature = (iterations = 1, offset = 0.0, progress = false))]
     fn dual_pentagonalize(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_pentagonalize")?;
         let o = unit("dual_pentagonalize", "offset", offset)?;
-        iterate(py, &self.inner, iterations, progress, "dual_pentagonalize", p_dual_pentagonal, |m| compose::dual_pentagonalize(m, o))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_pentagonalize", p_dual_pentagonal, |m| compose::dual_pentagonalize(m, o))
     }
 
     /// Pentagon preserving remeshing (TopMod's ``pentagonalSubdivide2``):
@@ -419,9 +402,8 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 0.75, progress = false))]
     fn pentagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "pentagon_preserving")?;
         let sc = unit("pentagon_preserving", "scale", scale)?;
-        iterate(py, &self.inner, iterations, progress, "pentagon_preserving", p_pentagon_preserving, |m| pt::pentagon_preserving(m, sc))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "pentagon_preserving", p_pentagon_preserving, |m| pt::pentagon_preserving(m, sc))
     }
 
     /// Dual pentagon preserving (TopMod: dual, pentagon preserving, dual).
@@ -430,9 +412,8 @@ impl PyMesh {
     /// V' = V + S, E' = 2E + 2S, F' = F + E + S.
     #[pyo3(signature = (iterations = 1, scale = 0.75, progress = false))]
     fn dual_pentagon_preserving(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_pentagon_preserving")?;
         let sc = unit("dual_pentagon_preserving", "scale", scale)?;
-        iterate(py, &self.inner, iterations, progress, "dual_pentagon_preserving", p_dual_pentagon_preserving, |m| compose::dual_pentagon_preserving(m, sc))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_pentagon_preserving", p_dual_pentagon_preserving, |m| compose::dual_pentagon_preserving(m, sc))
     }
 
     /// Dual 12.6.4 (TopMod's ``dual1264Subdivide``): each n-gon becomes a
@@ -454,8 +435,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 0.7, progress = false))]
     fn dual_12_6_4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_12_6_4")?;
-        iterate(py, &self.inner, iterations, progress, "dual_12_6_4", p_dual_1264, |m| t64::dual_12_6_4(m, scale))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_12_6_4", p_dual_1264, |m| t64::dual_12_6_4(m, scale))
     }
 
     /// 12.6.4 remeshing (TopMod's ``subdivide1264``: dual, dual 12.6.4, dual).
@@ -463,8 +443,7 @@ impl PyMesh {
     /// Per iteration V' = V + E + F, E' = 6E, F' = 4E (all triangles).
     #[pyo3(signature = (iterations = 1, scale = 0.7, progress = false))]
     fn remesh_12_6_4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "remesh_12_6_4")?;
-        iterate(py, &self.inner, iterations, progress, "remesh_12_6_4", p_1264, |m| compose::remesh_12_6_4(m, scale))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "remesh_12_6_4", p_1264, |m| compose::remesh_12_6_4(m, scale))
     }
 
     /// Checkerboard remeshing (TopMod's ``checkerBoardRemeshing``): each face
@@ -486,8 +465,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, thickness = 0.33, progress = false))]
     fn checkerboard(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "checkerboard")?;
-        iterate(py, &self.inner, iterations, progress, "checkerboard", p_checker, |m| cb::checkerboard(m, thickness))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "checkerboard", p_checker, |m| cb::checkerboard(m, thickness))
     }
 
     /// Dual checkerboard (TopMod: dual, checkerboard, dual).
@@ -495,8 +473,7 @@ impl PyMesh {
     /// Per iteration V' = V + 4E, E' = 9E, F' = F + 4E.
     #[pyo3(signature = (iterations = 1, thickness = 0.33, progress = false))]
     fn dual_checkerboard(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dual_checkerboard")?;
-        iterate(py, &self.inner, iterations, progress, "dual_checkerboard", p_checker, |m| compose::dual_checkerboard(m, thickness))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_checkerboard", p_checker, |m| compose::dual_checkerboard(m, thickness))
     }
 
     /// Doo-Sabin BC (TopMod's ``dooSabinSubdivideBC``: every edge split at its
@@ -506,8 +483,7 @@ impl PyMesh {
     /// n-gons, 2E quads, E two-gons, one k-gon per valence-k vertex).
     #[pyo3(signature = (iterations = 1, progress = false))]
     fn doo_sabin_bc(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "doo_sabin_bc")?;
-        iterate(py, &self.inner, iterations, progress, "doo_sabin_bc", p_doo_sabin_bc, compose::doo_sabin_bc)
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "doo_sabin_bc", p_doo_sabin_bc, compose::doo_sabin_bc)
     }
 
     /// Doo-Sabin BC New (TopMod's ``dooSabinSubdivideBCNew``): every edge
@@ -534,12 +510,11 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 1.0, length = 1.0, progress = false))]
     fn doo_sabin_bc_new(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, length: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "doo_sabin_bc_new")?;
         if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
             return Err(arg_err(format!("doo_sabin_bc_new: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
         }
         let l = finite_in("doo_sabin_bc_new", "length", length, 0.0, 1.0)?;
-        iterate(py, &self.inner, iterations, progress, "doo_sabin_bc_new", p_doo_sabin_bc_new, |m| dsn::doo_sabin_bc_new(m, scale, l))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "doo_sabin_bc_new", p_doo_sabin_bc_new, |m| dsn::doo_sabin_bc_new(m, scale, l))
     }
 
     /// Dome remeshing (TopMod's ``domeSubdivide``): every edge cut in four,
@@ -564,12 +539,11 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, length = 1.0, scale = 1.0, progress = false))]
     fn dome(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, scale: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "dome")?;
         let l = finite_in("dome", "length", length, 0.0, 2.0)?;
         if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
             return Err(arg_err(format!("dome: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
         }
-        iterate(py, &self.inner, iterations, progress, "dome", p_dome, |m| ex::dome(m, l, scale))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "dome", p_dome, |m| ex::dome(m, l, scale))
     }
 
     /// Fractal remeshing (TopMod's ``fractalSubdivide``): corners cut off at
@@ -590,9 +564,8 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, offset = 1.0, progress = false))]
     fn fractal(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, offset: f64, progress: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "fractal")?;
         let o = finite_in("fractal", "offset", offset, 0.0, 2.0)?;
-        iterate(py, &self.inner, iterations, progress, "fractal", p_fractal, |m| ls::fractal(m, o))
+        iterate_traced(py, &self.inner, &self.data, iterations, progress, "fractal", p_fractal, |m| ls::fractal(m, o))
     }
 
     /// Subdivide the selected faces (TopMod's ``subdivideFaces``): into quads
@@ -620,14 +593,14 @@ impl PyMesh {
     ///     A face out of range or a point-sphere, an open mesh.
     #[pyo3(signature = (faces, quads = true))]
     fn subdivide_faces(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, quads: bool) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "subdivide_faces")?;
         let sel = faces_arg("subdivide_faces", faces)?;
         // upper bounds: N corners selected, at most N edges split, k <= N
         let c = Counts::of(&self.inner);
         let n: u64 = sel.iter().filter(|&&f| f < self.inner.n_faces()).map(|&f| self.inner.face_degree(crate::FaceId(f as u32)) as u64).sum();
         check_once(py, "subdivide_faces", &self.inner, plain(a(c.v, s(n, 2)), a(c.e, s(n, 2)), a(c.f, n)))?;
         let m = &self.inner;
-        Ok(PyMesh::wrap(run_interruptible(py, || linear::subdivide_faces(m, &sel, quads))?))
+        let r = run_interruptible(py, || super::data::build_traced(!self.data.face.is_empty(), m, || linear::subdivide_faces(m, &sel, quads)))?;
+        super::data::inherited(py, &self.data, "subdivide_faces", m, r.0, r.1)
     }
 
     /// Extrude the selected faces (TopMod's extrusions, ``performExtrusion``).
@@ -688,7 +661,6 @@ impl PyMesh {
     #[pyo3(signature = (faces, kind = "cubical", length = None, scale = 1.0, twist = 0.0, segments = 1, angle = None, lengths = None))]
     #[allow(clippy::too_many_arguments)]
     fn extrude(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, kind: &str, length: Option<f64>, scale: f64, twist: f64, #[pyo3(from_py_with = big_int)] segments: i128, angle: Option<f64>, lengths: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
-        super::data::warn_dropped(&self.data, "extrude")?;
         let k = ex::Kind::parse(kind).ok_or_else(|| arg_err(format!("extrude: kind = {kind:?} is not one of {}", ex::Kind::NAMES)))?;
         let segments = super::usize_in("extrude", "segments", segments, 1, 1 << 20)?;
         let length = finite_in("extrude", "length", length.unwrap_or(k.default_length()), 0.0, 1e6)?;
@@ -700,6 +672,7 @@ impl PyMesh {
         let per = (segments as u64).saturating_mul(n).saturating_mul(9).saturating_add(n.saturating_mul(11));
         check_once(py, "extrude", &self.inner, plain(c.v.saturating_add(per), c.e.saturating_add(per), c.f.saturating_add(per)))?;
         let m = &self.inner;
-        Ok(PyMesh::wrap(run_interruptible(py, || ex::extrude(m, &sel, &e))?))
+        let r = run_interruptible(py, || super::data::build_traced(!self.data.face.is_empty(), m, || ex::extrude(m, &sel, &e)))?;
+        super::data::inherited(py, &self.data, "extrude", m, r.0, r.1)
     }
 }

@@ -137,7 +137,13 @@ fn step(m: &Mesh) -> Result<Mesh> {
         let h = fl.corners(f).iter().copied().min_by_key(|&h| vl.vidx[h as usize]).unwrap_or(0);
         *o = id(h);
     });
-    Mesh::from_columns(cols)
+    let out = Mesh::from_columns(cols)?;
+    if super::face_parents::recording() {
+        // face v is born around vertex v, vertex f is face f's centroid
+        let v = super::face_parents::VERT;
+        super::face_parents::record(Some(super::face_parents::Step { in_v: nv, in_f: nf, face: (0..nv as u32).map(|i| v | i).collect(), vertex: (0..nf as u32).collect() }));
+    }
+    Ok(out)
 }
 
 /// The dual with what `req` asks for; open meshes keep their boundary (see

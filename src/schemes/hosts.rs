@@ -300,7 +300,11 @@ pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) ->
     rest.he_vert = m.he_vert.iter().map(|&v| vmap[v as usize]).collect();
     rest.he_face = m.he_face.iter().map(|&f| fmap[f as usize]).collect();
     crate::cancel::check()?;
+    let mark = super::face_parents::mark();
     let mut out = if rest.n_faces() == 0 { Mesh::new() } else { scheme(&rest)? };
+    if super::face_parents::recording() {
+        record_around_points(m, &rest, &vmap, &fmap, mark, out.n_vertices(), out.n_faces());
+    }
     for p in points {
         let (v, f) = (out.pos.len() as u32, out.f_start.len() as u32);
         out.pos.push(p);
@@ -309,6 +313,42 @@ pub(crate) fn with_point_spheres(name: &str, m: &Mesh, scheme: impl Fn(&Mesh) ->
         out.f_hole.push(false);
     }
     Ok(out)
+}
+
+/// The face parents step of [`with_point_spheres`]: the steps `scheme`
+/// recorded on `rest` since `mark`, composed, renumbered to `m`'s ids, with
+/// the point-spheres (appended after `n_v` vertices and `n_f` faces) their
+/// own origins.
+fn record_around_points(m: &Mesh, rest: &Mesh, vmap: &[u32], fmap: &[u32], mark: usize, n_v: usize, n_f: usize) {
+    use super::face_parents::{chain, record, take_since, Step, VERT};
+    let steps = take_since(mark);
+    let inner = if rest.n_faces() == 0 { Some(Step { in_v: 0, in_f: 0, face: vec![], vertex: vec![] }) } else { chain(steps) };
+    let step = inner.filter(|s| s.in_v == rest.n_vertices() && s.in_f == rest.n_faces() && s.face.len() == n_f && s.vertex.len() == n_v).map(|s| {
+        let mut vback = vec![0u32; rest.n_vertices()];
+        for (v, &r) in vmap.iter().enumerate() {
+            if r != NONE {
+                vback[r as usize] = v as u32;
+            }
+        }
+        let mut fback = vec![0u32; rest.n_faces()];
+        for (f, &r) in fmap.iter().enumerate() {
+            if r != NONE {
+                fback[r as usize] = f as u32;
+            }
+        }
+        let back = |x: u32| if x & VERT != 0 { VERT | vback[(x & !VERT) as usize] } else { fback[x as usize] };
+        let mut face: Vec<u32> = s.face.iter().map(|&x| back(x)).collect();
+        let mut vertex: Vec<u32> = s.vertex.iter().map(|&x| back(x)).collect();
+        // appended in vertex order, as the caller appends them
+        for (v, &o) in m.v_out.iter().enumerate() {
+            if o & POINT != 0 {
+                face.push(o & !POINT);
+                vertex.push(VERT | v as u32);
+            }
+        }
+        Step { in_v: m.n_vertices(), in_f: m.n_faces(), face, vertex }
+    });
+    record(step);
 }
 
 /// Mean of the corner positions of every face (a repeated vertex counts once

@@ -22,13 +22,62 @@ pub(crate) struct Out {
     key: Vec<u32>,
     n_keys: usize,
     start: usize,
+    /// Per output face, the input element it descends from, while a face
+    /// parents trace records ([`crate::schemes::face_parents`]); `None`
+    /// otherwise, so a plain build does no extra work.
+    src: Option<Vec<u32>>,
+    /// The source of the faces to come (set by [`Out::from_face`] and
+    /// [`Out::from_vertex`]; `NONE` until set, which breaks the trace).
+    cur: u32,
+    /// The input's (V, F), given by [`Out::of`].
+    input: Option<(usize, usize)>,
+    /// The first `keep` output vertices are the input's vertices 0..keep.
+    keep: usize,
+    /// Explicit vertex sources after the kept ones (index = output vertex).
+    vsrc: Option<Vec<u32>>,
 }
 
 impl Out {
     /// An output with these vertex positions and `n_keys` edges, expecting
     /// about `faces` faces and `corners` corners.
     pub fn new(pos: Vec<DVec3>, n_keys: usize, faces: usize, corners: usize) -> Out {
-        Out { pos, sizes: Vec::with_capacity(faces), cv: Vec::with_capacity(corners), key: Vec::with_capacity(corners), n_keys, start: 0 }
+        let src = crate::schemes::face_parents::recording().then(|| Vec::with_capacity(faces));
+        Out { pos, sizes: Vec::with_capacity(faces), cv: Vec::with_capacity(corners), key: Vec::with_capacity(corners), n_keys, start: 0, src, cur: NONE, input: None, keep: 0, vsrc: None }
+    }
+
+    /// Names the input this output is built from, for the face parents
+    /// trace (a build without it records nothing usable).
+    pub fn of(mut self, c: &In<'_>) -> Out {
+        self.input = Some((c.nv, c.nf));
+        self
+    }
+
+    /// The faces that follow descend from input face `f` (built inside it,
+    /// or from one of its half-edges).
+    #[inline]
+    pub fn from_face(&mut self, f: usize) {
+        self.cur = f as u32;
+    }
+
+    /// The faces that follow are born around input vertex `v` (their parent
+    /// is the vertex's, see [`crate::schemes::face_parents`]).
+    #[inline]
+    pub fn from_vertex(&mut self, v: usize) {
+        self.cur = crate::schemes::face_parents::VERT | v as u32;
+    }
+
+    /// The first `n` output vertices are the input's vertices 0..n.
+    pub fn keeps_vertices(&mut self, n: usize) {
+        self.keep = n;
+    }
+
+    /// Explicit origins of the output vertices (an input face id or
+    /// `VERT | v`, per output vertex; entries below [`Out::keeps_vertices`]
+    /// are ignored), computed only while a trace records.
+    pub fn vertex_origins(&mut self, f: impl FnOnce() -> Vec<u32>) {
+        if self.src.is_some() {
+            self.vsrc = Some(f());
+        }
     }
 
     /// Appends a corner at vertex `v` to the current face; the side leaving
@@ -56,6 +105,9 @@ impl Out {
         debug_assert!(n > 0);
         self.sizes.push(n as u32);
         self.start = self.cv.len();
+        if let Some(s) = &mut self.src {
+            s.push(self.cur);
+        }
     }
 
     /// Pairs the two sides of every key and builds the mesh. Each key must
@@ -72,10 +124,14 @@ impl Out {
     /// edges in the order of their first corner, that corner `2e`, its twin
     /// `2e + 1`; so is every other column (`tests::same_as_from_corner_twins`
     /// and every scheme test, which in test builds run both builders).
-    pub fn finish(self, scheme: &str) -> Result<Mesh> {
+    pub fn finish(mut self, scheme: &str) -> Result<Mesh> {
         #[cfg(test)]
         let reference = self.clone().finish_by_twins(scheme);
+        let trace = self.src.take().map(|s| (s, self.input, self.keep, self.vsrc.take()));
         let out = self.finish_direct(scheme);
+        if let (Some((src, input, keep, vsrc)), Ok(m)) = (trace, &out) {
+            crate::schemes::face_parents::record(step_of(m, src, input, keep, vsrc));
+        }
         #[cfg(test)]
         match (&out, &reference) {
             (Ok(a), Ok(b)) => assert!(a == b, "{scheme}: the direct keyed builder differs from from_corner_twins"),
@@ -204,6 +260,34 @@ impl Out {
         }
         Mesh::from_corner_twins(self.pos, &self.sizes, &self.cv, &tw)
     }
+}
+
+/// The trace step of a finished build: face sources as recorded, vertex
+/// sources kept, explicit, or else those of the face of the vertex's first
+/// corner (see [`crate::schemes::face_parents`]); `None` when the build did
+/// not name its input or left a face without a source.
+fn step_of(m: &Mesh, face: Vec<u32>, input: Option<(usize, usize)>, keep: usize, vsrc: Option<Vec<u32>>) -> Option<crate::schemes::face_parents::Step> {
+    use crate::schemes::face_parents::{Step, VERT};
+    let (in_v, in_f) = input?;
+    // a source out of range is a bug in a scheme's annotation: record
+    // nothing (the data is dropped with a warning) rather than panic later
+    let ok = |s: u32| if s & VERT != 0 { ((s & !VERT) as usize) < in_v } else { (s as usize) < in_f };
+    if !face.iter().all(|&s| ok(s)) || keep > in_v || vsrc.as_ref().is_some_and(|v| v.len() != m.n_vertices()) {
+        return None;
+    }
+    let hf = m.halfedge_columns().2;
+    let vertex: Vec<u32> = (0..m.n_vertices())
+        .map(|w| {
+            if w < keep {
+                VERT | w as u32
+            } else if let Some(v) = &vsrc {
+                v[w]
+            } else {
+                face[hf[m.v_out[w] as usize] as usize]
+            }
+        })
+        .collect();
+    vertex.iter().all(|&s| ok(s)).then_some(Step { in_v, in_f, face, vertex })
 }
 
 /// The input's columns and face layout, shared by every scheme built here.

@@ -27,5 +27,6 @@ pub mod menger_level;
 pub mod conway;
 pub mod topmod;
 pub(crate) mod keyed;
+pub mod face_parents;
 #[cfg(test)]
 mod output_hashes;

@@ -16,10 +16,13 @@ pub fn ambo(m: &Mesh) -> Result<Mesh> {
         let c = Ctx::new(m)?;
         reserve("ambo", m, c.ne, 2 * c.ne, c.nf + c.nv)?;
         let pos = (0..c.ne).map(|e| c.mid(e)).collect();
-        let mut out = Out::new(pos, c.nh, c.nf + c.nv, 2 * c.nh);
+        let mut out = Out::new(pos, c.nh, c.nf + c.nv, 2 * c.nh).of(&c);
+        // the midpoint of edge e is born from it: the face of its first side
+        out.vertex_origins(|| (0..c.ne).map(|e| c.face[2 * e]).collect());
         face_faces(&c, &mut out, 0);
         for v in 0..c.nv {
             crate::cancel::poll(v)?;
+            out.from_vertex(v);
             // side mid(g) -> mid(rotate g) = mid(prev g): C(g) against the face's way
             out.face(c.rotation(v).map(|g| ((g >> 1) as u32, g as u32)));
         }
@@ -32,6 +35,7 @@ pub fn ambo(m: &Mesh) -> Result<Mesh> {
 /// output vertex `base + e`.
 fn face_faces(c: &Ctx, out: &mut Out, base: usize) {
     for f in 0..c.nf {
+        out.from_face(f);
         out.face(c.corners(f).map(|h| ((base + (h >> 1)) as u32, c.next[h])));
     }
 }
@@ -50,10 +54,14 @@ pub fn subdivide(m: &Mesh) -> Result<Mesh> {
         pos.extend((0..c.ne).map(|e| c.mid(e)));
         // edge ids: C(g) = g, the half S(g) = tail(g)–mid(g) is nh + g
         let half = |g: usize| (c.nh + g) as u32;
-        let mut out = Out::new(pos, 2 * c.nh, c.nf + c.nh, 4 * c.nh);
+        let mut out = Out::new(pos, 2 * c.nh, c.nf + c.nh, 4 * c.nh).of(&c);
+        out.keeps_vertices(c.nv);
+        out.vertex_origins(|| (0..c.nv as u32).map(|v| super::super::face_parents::VERT | v).chain((0..c.ne).map(|e| c.face[2 * e])).collect());
         face_faces(&c, &mut out, c.nv);
         for g in 0..c.nh {
             crate::cancel::poll(g)?;
+            // the corner triangle lies in the face of its corner
+            out.from_face(c.face[g] as usize);
             let p = c.prev[g] as usize;
             let mid = |h: usize| (c.nv + (h >> 1)) as u32;
             out.face([(c.tail(g), half(g)), (mid(g), g as u32), (mid(p), half(p ^ 1))]);
@@ -83,13 +91,17 @@ pub fn quinto(m: &Mesh) -> Result<Mesh> {
         // edge ids: in(h)–mid(h) is h, the half tail(g)–mid(g) is nh + g,
         // in(h)–in(next h) is 2nh + h
         let (half, ring) = (|g: usize| (c.nh + g) as u32, |h: usize| (2 * c.nh + h) as u32);
-        let mut out = Out::new(pos, 3 * c.nh, c.nf + c.nh, 6 * c.nh);
+        let mut out = Out::new(pos, 3 * c.nh, c.nf + c.nh, 6 * c.nh).of(&c);
+        out.keeps_vertices(c.nv);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
+            // the pentagon at the corner between h and next h lies in their face
+            out.from_face(c.face[h] as usize);
             let nx = c.next(h);
             out.face([(inner(h), h as u32), (mid(h), half(h ^ 1)), (c.head(h), half(nx)), (mid(nx), nx as u32), (inner(nx), ring(h))]);
         }
         for f in 0..c.nf {
+            out.from_face(f);
             out.face(c.corners(f).map(|h| (inner(h), ring(h))));
         }
         out.finish("quinto")

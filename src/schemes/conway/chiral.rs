@@ -47,9 +47,12 @@ pub fn gyro(m: &Mesh) -> Result<Mesh> {
         let base = c.nv + c.nf;
         let pt = |h: usize| (base + h) as u32;
         // spoke centre(f)–p(h): id h
-        let mut out = Out::new(pos, 3 * c.nh, c.nh, 5 * c.nh);
+        let mut out = Out::new(pos, 3 * c.nh, c.nh, 5 * c.nh).of(&c);
+        out.keeps_vertices(c.nv);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
+            // every face built per half-edge lies in that half-edge's face
+            out.from_face(c.face[h] as usize);
             let [a, b, d] = edge_run(&c, h, pt);
             let nx = c.next(h);
             out.face([((c.nv + c.face[h] as usize) as u32, h as u32), a, b, d, (pt(nx), nx as u32)]);
@@ -72,13 +75,16 @@ pub fn propellor(m: &Mesh) -> Result<Mesh> {
         third_points(&c, &mut pos);
         let pt = |h: usize| (c.nv + h) as u32;
         // inner side p(h)–p(next h): id h
-        let mut out = Out::new(pos, 3 * c.nh, c.nf + c.nh, 5 * c.nh);
+        let mut out = Out::new(pos, 3 * c.nh, c.nf + c.nh, 5 * c.nh).of(&c);
+        out.keeps_vertices(c.nv);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
+            out.from_face(c.face[h] as usize);
             let [a, b, d] = edge_run(&c, h, pt);
             out.face([a, b, (d.0, d.1), (pt(c.next(h)), h as u32)]);
         }
         for f in 0..c.nf {
+            out.from_face(f);
             out.face(c.corners(f).map(|h| (pt(h), h as u32)));
         }
         out.finish("propellor")
@@ -103,14 +109,17 @@ pub fn whirl(m: &Mesh) -> Result<Mesh> {
         let q = |h: usize| (c.nv + c.nh + h) as u32;
         // q(h)–q(next h): id h; q(h)–p(h): 3nh + h
         let qp = |h: usize| (3 * c.nh + h) as u32;
-        let mut out = Out::new(pos, 4 * c.nh, c.nf + c.nh, 7 * c.nh);
+        let mut out = Out::new(pos, 4 * c.nh, c.nf + c.nh, 7 * c.nh).of(&c);
+        out.keeps_vertices(c.nv);
         for h in 0..c.nh {
             crate::cancel::poll(h)?;
+            out.from_face(c.face[h] as usize);
             let [a, b, d] = edge_run(&c, h, pt);
             let nx = c.next(h);
             out.face([(q(h), qp(h)), a, b, d, (pt(nx), qp(nx)), (q(nx), h as u32)]);
         }
         for f in 0..c.nf {
+            out.from_face(f);
             out.face(c.corners(f).map(|h| (q(h), h as u32)));
         }
         out.finish("whirl")

@@ -27,13 +27,17 @@ pub fn chamfer(m: &Mesh) -> Result<Mesh> {
         let q = |g: usize| (c.nv + g) as u32;
         // q(h)–q(next h): id h; the spoke tail(g)–q(g): nh + g
         let spoke = |g: usize| (c.nh + g) as u32;
-        let mut out = Out::new(pos, 2 * c.nh, c.nf + c.ne, 4 * c.nh);
+        let mut out = Out::new(pos, 2 * c.nh, c.nf + c.ne, 4 * c.nh).of(&c);
+        out.keeps_vertices(c.nv);
         for f in 0..c.nf {
+            out.from_face(f);
             out.face(c.corners(f).map(|h| (q(h), h as u32)));
         }
         for e in 0..c.ne {
             crate::cancel::poll(e)?;
             let (h, t) = (2 * e, 2 * e + 1);
+            // the hexagon of edge e straddles both its faces: the first side's
+            out.from_face(c.face[h] as usize);
             let (nh_, nt) = (c.next(h), c.next(t));
             out.face([
                 (c.tail(h), spoke(nt)),
@@ -82,9 +86,11 @@ pub fn loft(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
         crate::cancel::check()?;
         // edge ids: input edge e is e; spoke tail(g)–i(g) is nh + g; i(h)–i(next h) is 2nh + h
         let (spoke, ring) = (|g: usize| (c.nh + g) as u32, |h: usize| (2 * c.nh + h) as u32);
-        let mut out = Out::new(pos, 3 * c.nh, c.nf + sigma, c.nh + 5 * sigma);
+        let mut out = Out::new(pos, 3 * c.nh, c.nf + sigma, c.nh + 5 * sigma).of(&c);
+        out.keeps_vertices(c.nv);
         for f in 0..c.nf {
             crate::cancel::poll(f)?;
+            out.from_face(f);
             if !chosen(f) {
                 out.face(c.corners(f).map(|h| (c.tail(h), (h >> 1) as u32)));
                 continue;

@@ -64,9 +64,11 @@ pub(crate) fn fan(name: &str, c: &In<'_>, chosen: impl Fn(usize) -> bool, apex: 
     }
     crate::cancel::check()?;
     let spoke = |g: u32| c.ne as u32 + g;
-    let mut out = Out::new(pos, c.ne + c.nh, c.nf + sigma, c.nh + 2 * sigma);
+    let mut out = Out::new(pos, c.ne + c.nh, c.nf + sigma, c.nh + 2 * sigma).of(c);
+    out.keeps_vertices(c.nv);
     for (f, &a) in at.iter().enumerate() {
         crate::cancel::poll(f)?;
+        out.from_face(f);
         let hs = c.fl.corners(f);
         if a == NONE {
             out.face(hs.iter().map(|&h| (c.vert[h as usize], h >> 1)));

@@ -398,8 +398,10 @@ fn check_chain(name: &str, m: &Mesh, ops: &[Op]) -> Result<()> {
 pub fn reflect(m: &Mesh) -> Result<Mesh> {
     let mut r = with_point_spheres("reflect", m, |m| {
         let c = build::Ctx::new(m)?;
-        let mut out = build::Out::new(m.positions().to_vec(), c.ne, c.nf, c.nh);
+        let mut out = build::Out::new(m.positions().to_vec(), c.ne, c.nf, c.nh).of(&c);
+        out.keeps_vertices(c.nv);
         for f in 0..c.nf {
+            out.from_face(f);
             let hs = c.fl.corners(f);
             // side head(h) -> tail(h) along the edge of h, in reverse order
             out.face(hs.iter().rev().map(|&h| (c.head(h as usize), h >> 1)));

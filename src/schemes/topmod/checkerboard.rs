@@ -59,8 +59,10 @@ pub fn checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
         // keys: [0, H) segment at tail(h), [H, H+E) middle segment, [H+E, 2H+E)
         // inset side of corner h, then p(h)–i(h), then i(h)–p(twin prev h)
         let (km, ki, ka, kb) = (nh, nh + ne, 2 * nh + ne, 3 * nh + ne);
-        let mut o = Out::new(pos, 4 * nh + ne, i.nf + 2 * nh, 9 * nh);
+        let mut o = Out::new(pos, 4 * nh + ne, i.nf + 2 * nh, 9 * nh).of(&i);
+        o.keeps_vertices(i.nv);
         for f in 0..i.nf {
+            o.from_face(f);
             for &h in i.fl.corners(f) {
                 o.c(ip(h as usize), (ki + h as usize) as u32);
             }

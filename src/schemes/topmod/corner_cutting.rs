@@ -35,8 +35,11 @@ pub(crate) fn dual_host(i: &In, pts: Vec<DVec3>, name: &str) -> Result<Mesh> {
     let h_n = i.nh as u32;
     // keys: [0, H) the side of corner h's face, [H, 2H) the side of the
     // vertex face from corner h to rotate(h)
-    let mut o = Out::new(pts, 2 * i.nh, i.nf + i.ne + i.nv, 4 * i.nh);
+    let mut o = Out::new(pts, 2 * i.nh, i.nf + i.ne + i.nv, 4 * i.nh).of(i);
+    // the point of corner h lies in h's face
+    o.vertex_origins(|| i.face.to_vec());
     for f in 0..i.nf {
+        o.from_face(f);
         for &h in i.fl.corners(f) {
             o.c(h, h);
         }
@@ -44,6 +47,8 @@ pub(crate) fn dual_host(i: &In, pts: Vec<DVec3>, name: &str) -> Result<Mesh> {
     }
     for e in 0..i.ne {
         let (h, t) = (2 * e, 2 * e + 1);
+        // the quad of edge e straddles both its faces: the first side's
+        o.from_face(i.face[h] as usize);
         let (nh, nt) = (i.next[h], i.next[t]);
         o.c(nh, h as u32);
         o.c(h as u32, h_n + nt);
@@ -52,6 +57,7 @@ pub(crate) fn dual_host(i: &In, pts: Vec<DVec3>, name: &str) -> Result<Mesh> {
         o.end();
     }
     for v in 0..i.nv {
+        o.from_vertex(v);
         let h0 = i.m.v_out[v] as usize;
         let mut k = h0;
         loop {

@@ -80,8 +80,10 @@ fn step(m: &Mesh, scale: f64, length: f64) -> Result<Mesh> {
     // keys: T(h)→M(h) is h, M(h)→T(next h) is H + h, the vertical v–T(h) is
     // 2H + h, the cross edge of edge e is 3H + e
     let (r1, r2, vk, x_) = (|h: u32| h, |h: u32| nh + h, |h: u32| 2 * nh + h, |e: u32| 3 * nh + e);
-    let mut o = Out::new(pos, 3 * i.nh + i.ne, i.nf + 2 * i.ne, 4 * i.nh + 10 * i.ne);
+    let mut o = Out::new(pos, 3 * i.nh + i.ne, i.nf + 2 * i.ne, 4 * i.nh + 10 * i.ne).of(&i);
+    o.keeps_vertices(i.nv);
     for f in 0..i.nf {
+        o.from_face(f);
         for &h in i.fl.corners(f) {
             o.c(t(h), r1(h));
             o.c(mid(h), r2(h));
@@ -91,6 +93,8 @@ fn step(m: &Mesh, scale: f64, length: f64) -> Result<Mesh> {
     for e in 0..ne {
         // the pentagon at the tail of a: [tail a, T(next b), M(b), M(a), T(a)]
         for (a, b) in [(2 * e, 2 * e + 1), (2 * e + 1, 2 * e)] {
+            // it straddles edge e at a's tail: a's face
+            o.from_face(i.face[a as usize] as usize);
             let nb = i.next[b as usize];
             o.c(i.vert[a as usize], vk(nb));
             o.c(t(nb), r2(b));

@@ -332,7 +332,8 @@ fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>, len
         }
     }
     let n_keys = i.ne + de;
-    let mut o = Out::new(i.positions(dv), n_keys, i.nf, 2 * (i.ne + de));
+    let mut o = Out::new(i.positions(dv), n_keys, i.nf, 2 * (i.ne + de)).of(&i);
+    o.keeps_vertices(i.nv);
     let mut next_key = i.ne as u32;
     let mut alloc = |k: usize| {
         let b = next_key;
@@ -343,12 +344,15 @@ fn rings(m: &Mesh, faces: &[usize], steps: &Steps, cap: Option<(f64, bool)>, len
         if selected[f] {
             continue;
         }
+        o.from_face(f);
         for &h in i.fl.corners(f) {
             o.c(i.vert[h as usize], h >> 1);
         }
         o.end();
     }
     for &f in &order {
+        // every face of the extrusion (rings, bands, cap) descends from f
+        o.from_face(f);
         let hs = i.fl.corners(f);
         let n = hs.len();
         let mut ring: Vec<u32> = hs.iter().map(|&h| i.vert[h as usize]).collect();

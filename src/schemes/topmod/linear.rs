@@ -97,8 +97,10 @@ fn faces_step(name: &str, m: &Mesh, faces: &[usize], quads: bool) -> Result<Mesh
     // keys: [0, H) the edges (2e for an unsplit edge, h for the segment at
     // tail(h) of a split one), [H, 2H) the spoke of corner h
     let key_of = |h: usize| if epoint[h >> 1] == NONE { (h & !1) as u32 } else { h as u32 };
-    let mut o = Out::new(pos, 2 * nh, i.nf + nh, 4 * nh);
+    let mut o = Out::new(pos, 2 * nh, i.nf + nh, 4 * nh).of(&i);
+    o.keeps_vertices(i.nv);
     for f in 0..i.nf {
+        o.from_face(f);
         let hs = i.fl.corners(f);
         if !selected[f] {
             for &h in hs {
@@ -157,8 +159,10 @@ pub fn split_edges(m: &Mesh, parts: usize) -> Result<Mesh> {
                 (v + (h >> 1) * (k - 1) + j - 1) as u32
             }
         };
-        let mut o = Out::new(pos, k * i.ne, i.nf, k * i.nh);
+        let mut o = Out::new(pos, k * i.ne, i.nf, k * i.nh).of(&i);
+        o.keeps_vertices(i.nv);
         for f in 0..i.nf {
+            o.from_face(f);
             for &h in i.fl.corners(f) {
                 let h = h as usize;
                 let e = h >> 1;

@@ -65,14 +65,17 @@ pub fn loop_style(m: &Mesh, length: f64) -> Result<Mesh> {
         }
         let mid = |h: usize| (v + (h >> 1)) as u32;
         // keys: [0, H) the half of edge(h) at tail(h), [H, 2H) the inner side of corner h
-        let mut o = Out::new(pos, 2 * nh, i.nf + nh, 4 * nh);
+        let mut o = Out::new(pos, 2 * nh, i.nf + nh, 4 * nh).of(&i);
+        o.keeps_vertices(v);
         for f in 0..i.nf {
+            o.from_face(f);
             for &h in i.fl.corners(f) {
                 o.c(mid(h as usize), nh as u32 + h);
             }
             o.end();
         }
         for f in 0..i.nf {
+            o.from_face(f);
             for &h in i.fl.corners(f) {
                 let (h, p) = (h as usize, i.prev[h as usize] as usize);
                 o.c(mid(p), (p ^ 1) as u32);
@@ -124,8 +127,10 @@ pub fn root4(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
         }
         let inner = |h: usize| (v + h) as u32;
         // keys: [0, H) the inner side of corner h, [H, 2H) the spoke tail(h)–i(h)
-        let mut o = Out::new(pos, 2 * nh, i.nf + i.ne, 4 * nh);
+        let mut o = Out::new(pos, 2 * nh, i.nf + i.ne, 4 * nh).of(&i);
+        o.keeps_vertices(v);
         for f in 0..i.nf {
+            o.from_face(f);
             for &h in i.fl.corners(f) {
                 o.c(inner(h as usize), h);
             }
@@ -133,6 +138,8 @@ pub fn root4(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
         }
         for e in 0..i.ne {
             let (h, t) = (2 * e, 2 * e + 1);
+            // the hexagon of edge e straddles both its faces: the first side's
+            o.from_face(i.face[h] as usize);
             let (nx, nt) = (i.next[h] as usize, i.next[t] as usize);
             o.c(i.vert[t], (nh + nx) as u32);
             o.c(inner(nx), h as u32);
@@ -185,8 +192,10 @@ pub fn fractal(m: &Mesh, offset: f64) -> Result<Mesh> {
         let mid = |h: usize| (v + (h >> 1)) as u32;
         // keys: [0, H) the half of edge(h) at tail(h), [H, 2H) the inner side
         // of corner h, [2H, 3H) the spoke centre–m(h)
-        let mut o = Out::new(pos, 3 * nh, 2 * nh, 6 * nh);
+        let mut o = Out::new(pos, 3 * nh, 2 * nh, 6 * nh).of(&i);
+        o.keeps_vertices(v);
         for f in 0..i.nf {
+            o.from_face(f);
             let c = (v + i.ne + f) as u32;
             for &h in i.fl.corners(f) {
                 let (h, p, nx) = (h as usize, i.prev[h as usize] as usize, i.next[h as usize]);

@@ -46,8 +46,10 @@ pub fn pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
         // keys: [0, H) the segment at tail(h), [H, H + E) the middle segment
         // of edge e, [H + E, 2H + E) the spoke of corner h
         let (mid, spoke) = (nh as u32, (nh + ne) as u32);
-        let mut o = Out::new(pos, 2 * nh + ne, nh, 5 * nh);
+        let mut o = Out::new(pos, 2 * nh + ne, nh, 5 * nh).of(&i);
+        o.keeps_vertices(v);
         for f in 0..i.nf {
+            o.from_face(f);
             let c = (v + nh + f) as u32;
             for &h in i.fl.corners(f) {
                 let (h, nx) = (h as usize, i.next[h as usize]);
@@ -93,8 +95,10 @@ pub fn pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
         // keys: [0, H) the half of edge(h) at tail(h), [H, 2H) the inner side
         // of corner h, [2H, 3H) the spoke m(h)–i(h)
         let (n1, n2) = (nh as u32, 2 * nh as u32);
-        let mut o = Out::new(pos, 3 * nh, i.nf + nh, 7 * nh);
+        let mut o = Out::new(pos, 3 * nh, i.nf + nh, 7 * nh).of(&i);
+        o.keeps_vertices(v);
         for f in 0..i.nf {
+            o.from_face(f);
             let hs = i.fl.corners(f);
             if hs.len() < 3 {
                 for &h in hs {

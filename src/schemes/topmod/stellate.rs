@@ -79,9 +79,14 @@ fn edge_removal_step(m: &Mesh, offset: f64) -> Result<Mesh> {
         pos.push(if offset != 0.0 { c + offset * n[f] } else { c });
     }
     // keys: the spoke of every corner (h)
-    let mut o = Out::new(pos, i.nh, i.ne, 2 * i.nh);
+    let mut o = Out::new(pos, i.nh, i.ne, 2 * i.nh).of(&i);
+    o.keeps_vertices(i.nv);
+    // the centre of face f is born from f (its quads straddle two faces)
+    o.vertex_origins(|| (0..i.nv as u32).map(|v| crate::schemes::face_parents::VERT | v).chain(0..i.nf as u32).collect());
     for e in 0..i.ne {
         let (h, t) = (2 * e, 2 * e + 1);
+        // the quad of edge e straddles both its faces: the first side's
+        o.from_face(i.face[h] as usize);
         o.c(i.vert[t], i.next[h]);
         o.c(v + i.face[h], h as u32);
         o.c(i.vert[h], i.next[t]);

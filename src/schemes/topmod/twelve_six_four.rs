@@ -48,8 +48,11 @@ pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
         }
         // keys: [0, H) the side along h, [H, 2H) the side cutting corner h,
         // [2H, 3H) the quad side at tail(h)
-        let mut o = Out::new(pos, 3 * i.nh, i.nf + i.ne + i.nv, 6 * i.nh);
+        let mut o = Out::new(pos, 3 * i.nh, i.nf + i.ne + i.nv, 6 * i.nh).of(&i);
+        // points 2h, 2h + 1 lie in h's face
+        o.vertex_origins(|| i.face.iter().flat_map(|&f| [f, f]).collect());
         for f in 0..i.nf {
+            o.from_face(f);
             for &h in i.fl.corners(f) {
                 o.c(2 * h, h);
                 o.c(2 * h + 1, nh + i.next[h as usize]);
@@ -58,6 +61,8 @@ pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
         }
         for e in 0..i.ne as u32 {
             let (h, t) = (2 * e, 2 * e + 1);
+            // the quad of edge e straddles both its faces: the first side's
+            o.from_face(i.face[h as usize] as usize);
             o.c(2 * h + 1, h);
             o.c(2 * h, 2 * nh + h);
             o.c(2 * t + 1, t);
@@ -65,6 +70,7 @@ pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
             o.end();
         }
         for v in 0..i.nv {
+            o.from_vertex(v);
             let k0 = m.v_out[v] as usize;
             let mut k = k0;
             loop {
