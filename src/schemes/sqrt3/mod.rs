@@ -214,6 +214,64 @@ fn columns(m: &Mesh, pos: Vec<DVec3>) -> Result<Columns> {
     Ok(cols)
 }
 
+/// [`sqrt3_level`] that also interpolates vertex data (`(rows, k)`
+/// row-major arrays) with the level's weights: by the closed-mesh masks on
+/// a closed mesh without point-spheres (no stencils built), else through
+/// the stencils.
+pub fn sqrt3_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    super::level::level_with_data(m, req, data, sqrt3_level, |a, k| direct_data(m, a, k))
+}
+
+/// Kobbelt's masks on rows of `k` numbers, output `[V | F]` as [`step`]:
+/// `(1 − αₙ) v + αₙ/n Σ neighbours` (§2, eq. 3) and the face centroids.
+fn direct_data(m: &Mesh, a: &[f64], k: usize) -> Result<Vec<f64>> {
+    let (nv, nf) = (m.n_vertices(), m.n_faces());
+    let vert = &m.he_vert;
+    let mut out = vec![0.0; (nv + nf) * k];
+    if k == 0 {
+        return Ok(out);
+    }
+    let row = |v: u32| &a[v as usize * k..(v as usize + 1) * k];
+    let (vp, fp) = out.split_at_mut(nv * k);
+    rayon::join(
+        || {
+            vp.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
+                if crate::cancel::requested() {
+                    return; // the check after the join reports it
+                }
+                let mut n = 0usize;
+                for h in super::creases::ring(m, m.v_out[v]) {
+                    o.iter_mut().zip(row(vert[(h ^ 1) as usize])).for_each(|(o, x)| *o += x);
+                    n += 1;
+                }
+                let al = sqrt3_alpha(n);
+                let w = al / n as f64;
+                o.iter_mut().zip(row(v as u32)).for_each(|(o, x)| *o = x * (1.0 - al) + *o * w);
+            })
+        },
+        || {
+            fp.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
+                if crate::cancel::requested() {
+                    return;
+                }
+                let (s, mut h, mut n) = (m.f_start[f], m.f_start[f], 0usize);
+                loop {
+                    o.iter_mut().zip(row(vert[h as usize])).for_each(|(o, x)| *o += x);
+                    n += 1;
+                    h = m.he_next[h as usize];
+                    if h == s {
+                        break;
+                    }
+                }
+                let w = 1.0 / n as f64;
+                o.iter_mut().for_each(|o| *o *= w);
+            })
+        },
+    );
+    crate::cancel::check()?;
+    Ok(out)
+}
+
 /// One level with what `req` asks for (see the module docs); without
 /// requests it is [`sqrt3`]. Open meshes follow Kobbelt's boundary rule
 /// ([`boundary`]), whose parity is `req.level`.
@@ -268,6 +326,25 @@ pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn direct_data_equals_the_stencils_on_corpus() {
+        let mut n = 0;
+        for (name, m) in crate::schemes::hosts::test_meshes::corpus() {
+            let k = 2;
+            let a: Vec<f64> = (0..m.n_vertices() * k).map(|i| ((i * 7919) % 613) as f64 * 0.1 - 3.0).collect();
+            let st = sqrt3_level(&m, &Request { stencils: true, ..Default::default() }).unwrap().stencils.unwrap();
+            let want = st.apply(&a, k).unwrap();
+            let (lv, got) = sqrt3_level_with(&m, &Request::default(), &[(a.clone(), k)]).unwrap();
+            assert!(lv.stencils.is_none(), "{name}");
+            assert_eq!(got[0].len(), want.len(), "{name}");
+            for (i, (x, y)) in got[0].iter().zip(&want).enumerate() {
+                assert!((x - y).abs() < 1e-12, "{name}: value {i}: {x} vs {y}");
+            }
+            n += 1;
+        }
+        assert!(n >= 10);
+    }
     use crate::schemes::hosts::test_meshes::*;
 
     #[test]
