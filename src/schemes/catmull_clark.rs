@@ -144,13 +144,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
 pub fn catmull_clark_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
     let fl = std::cell::OnceCell::new();
     super::level::level_with_data(m, req, data, catmull_clark_level, |a, k| {
-        let fl = match fl.get() {
-            Some(fl) => fl,
-            None => {
-                let _ = fl.set(FaceLayout::new(m)?);
-                fl.get().expect("just set")
-            }
-        };
+        let fl = super::level::once(&fl, || FaceLayout::new(m))?;
         smooth_apply(m, fl, a, k)
     })
 }

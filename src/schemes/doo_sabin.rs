@@ -220,13 +220,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
 pub fn doo_sabin_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
     let fl = std::cell::OnceCell::new();
     super::level::level_with_data(m, req, data, doo_sabin_level, |a, k| {
-        let fl = match fl.get() {
-            Some(fl) => fl,
-            None => {
-                let _ = fl.set(FaceLayout::new(m)?);
-                fl.get().expect("just set")
-            }
-        };
+        let fl = super::level::once(&fl, || FaceLayout::new(m))?;
         direct_data(m, fl, a, k)
     })
 }

@@ -281,6 +281,17 @@ pub fn with_point_spheres_level(m: &Mesh, req: &Request, step: impl Fn(&Mesh, &R
     Ok(lv)
 }
 
+/// The value of `cell`, made by `make` on first use (what the unstable
+/// `OnceCell::get_or_try_init` does): the data levels build their face
+/// layout or fan once for all the data columns.
+pub(crate) fn once<T>(cell: &std::cell::OnceCell<T>, make: impl FnOnce() -> Result<T>) -> Result<&T> {
+    if let Some(v) = cell.get() {
+        return Ok(v);
+    }
+    let _ = cell.set(make()?);
+    Ok(cell.get().expect("just set"))
+}
+
 /// A level that also interpolates vertex data (row-major `(rows, k)`
 /// arrays): through `direct` (the scheme's masks applied to the data, no
 /// stencils built) on a smooth closed mesh without point-spheres and when

@@ -136,13 +136,7 @@ pub fn loop_level(m: &Mesh, req: &Request) -> Result<Level> {
 pub fn loop_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
     let fan = std::cell::OnceCell::new();
     super::level::level_with_data(m, req, data, loop_level, |a, k| {
-        let fan = match fan.get() {
-            Some(f) => f,
-            None => {
-                let _ = fan.set(fan_triangulate(m)?);
-                fan.get().expect("just set")
-            }
-        };
+        let fan = super::level::once(&fan, || fan_triangulate(m))?;
         let Some(t) = fan else { return smooth_apply(m, a, k) };
         // the fan's centroids follow the input vertices, in face order
         let fl = FaceLayout::new(m)?;
