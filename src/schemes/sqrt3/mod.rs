@@ -72,6 +72,13 @@ pub(super) fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut super::ste
 
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
+    let pos = positions(m)?;
+    Mesh::from_columns(columns(m, pos)?)
+}
+
+/// The closed-mesh output positions `[V | F]`: Kobbelt's smoothed old
+/// vertices and the face centroids.
+pub(super) fn positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let (next, vert, _) = m.halfedge_columns();
     let p = &m.pos;
@@ -110,7 +117,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         },
     );
     crate::cancel::check()?;
-    Mesh::from_columns(columns(m, pos)?)
+    Ok(pos)
 }
 
 /// Elements per task of the edge-numbering scan.

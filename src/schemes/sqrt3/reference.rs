@@ -2,54 +2,17 @@
 //! (issue 19): corners and twins handed to [`Mesh::from_corner_twins`]. The
 //! direct fill must give the same mesh, element order included.
 
-use super::super::hosts::{check_output_size, neighbor_sum, MIN_LEN};
-use super::sqrt3_alpha;
+use super::super::hosts::{check_output_size, MIN_LEN};
 use crate::error::Result;
 use crate::mesh::Mesh;
-use glam::DVec3;
 use rayon::prelude::*;
 
 pub(super) fn step_via_twins(m: &Mesh) -> Result<Mesh> {
     check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
-    let (nv, nh, nf) = (m.n_vertices(), m.n_halfedges(), m.n_faces());
+    let (nv, nh) = (m.n_vertices(), m.n_halfedges());
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
-    let p = &m.pos;
-    let mut pos = vec![DVec3::ZERO; nv + nf];
-    let (vp, fp) = pos.split_at_mut(nv);
-    rayon::join(
-        || {
-            vp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, out)| {
-                if crate::cancel::requested() {
-                    return; // the check after the loop reports it
-                }
-                let (sum, n) = neighbor_sum(m, v);
-                let a = sqrt3_alpha(n);
-                *out = p[v] * (1.0 - a) + sum * (a / n as f64);
-            })
-        },
-        || {
-            fp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, out)| {
-                if crate::cancel::requested() {
-                    return; // the check after the loop reports it
-                }
-                let s = m.f_start[f];
-                let mut h = s;
-                let mut sum = DVec3::ZERO;
-                let mut n = 0usize;
-                loop {
-                    sum += p[vert[h as usize] as usize];
-                    n += 1;
-                    h = next[h as usize];
-                    if h == s {
-                        break;
-                    }
-                }
-                *out = sum / n as f64;
-            })
-        },
-    );
-    crate::cancel::check()?;
+    let pos = super::positions(m)?;
     let nvu = nv as u32;
     let mut cv = vec![0u32; 3 * nh];
     let mut tw = vec![0u32; 3 * nh];
