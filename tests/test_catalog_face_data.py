@@ -201,6 +201,19 @@ def test_chains_compose() -> None:
     np.testing.assert_array_equal(s0.face_attributes["id"], np.arange(len(m.face_sizes)))
 
 
+def test_conway_function_with_a_seed_mesh_keeps_face_data() -> None:
+    # topomesh.conway(notation, seed=m) is m.conway(notation), face data included
+    m = with_face_data(tm.genus_surface(2))
+    a = run_quiet(lambda x: tm.conway("dtk", seed=x), m)
+    b = run_quiet(lambda x: x.conway("dtk"), m)
+    assert a == b
+    np.testing.assert_array_equal(a.face_attributes["id"], b.face_attributes["id"])
+    check_inherited(m, a, False)
+    # a seed letter beside a seed mesh is still refused
+    with pytest.raises(tm.MeshError, match="seed"):
+        tm.conway("dC", seed=m)
+
+
 def test_other_data_is_still_named_and_dropped() -> None:
     c = tm.cube()
     m = c.with_creases({tuple(c.edges[0]): 2.0}).with_attributes(vertex={"w": np.arange(8.0)}, face={"id": np.arange(6)})

@@ -197,7 +197,8 @@ impl PyMesh {
 /// notation : str
 ///     The notation; without a seed letter when ``seed`` is given.
 /// seed : Mesh or None, default None
-///     Any closed mesh to start from instead of a seed letter.
+///     Any closed mesh to start from instead of a seed letter; the result
+///     is ``seed.conway(notation)``, face data included.
 ///
 /// Returns
 /// -------
@@ -212,8 +213,11 @@ impl PyMesh {
 #[pyfunction]
 #[pyo3(name = "conway", signature = (notation, seed = None))]
 fn conway_fn(py: Python<'_>, notation: &str, seed: Option<PyRef<'_, PyMesh>>) -> PyResult<PyMesh> {
-    let seed = seed.as_ref().map(|s| &s.inner);
-    run_interruptible(py, || conway::conway(notation, seed)).map(PyMesh::wrap)
+    match seed {
+        // a seed mesh's face data (material ids …) and vertex data follow as in `Mesh.conway`
+        Some(s) => s.conway(py, notation),
+        None => run_interruptible(py, || conway::conway(notation, None)).map(PyMesh::wrap),
+    }
 }
 
 /// The table of Conway operators.
