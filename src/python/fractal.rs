@@ -43,7 +43,7 @@ impl PyMesh {
     ///     boundary loops; close the holes first.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn sierpinski<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        let spec = super::levels::Spec::plain("sierpinski", predict::sierpinski);
+        let spec = super::levels::Spec::plain("sierpinski", predict::sierpinski).with_corners(crate::schemes::corner_direct::sierpinski);
         super::levels::run(py, self, iterations, progress, spec, correspondence, sp::sierpinski_level)
     }
 

@@ -35,6 +35,10 @@ pub(crate) struct Spec {
     /// The level with vertex data interpolated by the scheme's direct
     /// masks (no stencils built), when it has one.
     pub with_data: Option<DataLevel>,
+    /// Corner data read straight off the level's output numbering
+    /// (`crate::schemes::corner_direct`) where the scheme has such a path
+    /// and it applies; the generic corner transfer otherwise.
+    pub corner_direct: Option<CornerLevel>,
     /// Positions are linear in the input's: the level's stencils are the
     /// subdivision matrix. When false (Menger) they are only the attribute
     /// transfer, and the correspondence says so.
@@ -50,7 +54,7 @@ impl Spec {
         boundary: &str,
         crease_method: &str,
         corner_interpolation: &str,
-        with_data: DataLevel,
+        with_data: impl Fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)> + Send + Sync + 'static,
     ) -> PyResult<Spec> {
         Ok(Spec {
             name,
@@ -58,20 +62,27 @@ impl Spec {
             options: options(name, boundary, crease_method)?,
             uses_creases: true,
             face_varying: Some(self::corner_interpolation(name, corner_interpolation)?),
-            with_data: Some(with_data),
+            with_data: Some(Box::new(with_data)),
+            corner_direct: None,
             linear: true,
         })
     }
 
     /// A scheme without crease, face-varying or direct-data rules.
     pub fn plain(name: &'static str, predict: crate::budget::Predictor) -> Spec {
-        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, linear: true }
+        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, corner_direct: None, linear: true }
     }
 
     /// The scheme's own masks interpolate vertex data (no stencils built
     /// where they apply).
-    pub fn with_direct(self, with_data: DataLevel) -> Spec {
-        Spec { with_data: Some(with_data), ..self }
+    pub fn with_direct(self, with_data: impl Fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)> + Send + Sync + 'static) -> Spec {
+        Spec { with_data: Some(Box::new(with_data)), ..self }
+    }
+
+    /// Corner data goes through `corners` (input, output, rows, k) where it
+    /// applies (it returns `None` where not, and the generic transfer runs).
+    pub fn with_corners(self, corners: impl Fn(&Mesh, &Mesh, &[f64], usize) -> crate::Result<Option<Vec<f64>>> + Send + Sync + 'static) -> Spec {
+        Spec { corner_direct: Some(Box::new(corners)), ..self }
     }
 
     /// A scheme whose positions are not linear in the input's: its levels'
@@ -82,7 +93,11 @@ impl Spec {
 }
 
 /// A level function that also interpolates vertex data.
-pub(crate) type DataLevel = fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)>;
+pub(crate) type DataLevel = Box<dyn Fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> crate::Result<(Level, Vec<Vec<f64>>)> + Send + Sync>;
+
+/// Corner rows of a level's output from its input's (input, output, rows,
+/// k), or `None` where the scheme's direct path does not apply.
+pub(crate) type CornerLevel = Box<dyn Fn(&Mesh, &Mesh, &[f64], usize) -> crate::Result<Option<Vec<f64>>> + Send + Sync>;
 
 /// Corner data of a scheme with face-varying rules.
 enum Corner {
@@ -180,8 +195,11 @@ pub(crate) fn run<'py>(
         level: 0,
     };
     let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |m, st| {
-        let direct = spec.with_data.filter(|_| !st.attrs.is_empty());
-        let transfer = !st.corner_rows.is_empty();
+        let direct = spec.with_data.as_ref().filter(|_| !st.attrs.is_empty());
+        // corner rows: the scheme's direct path where it applies (no stencils or
+        // origins needed), else the generic transfer
+        let corners_direct = spec.corner_direct.as_ref().filter(|_| crate::schemes::corner_direct::applies(m));
+        let transfer = !st.corner_rows.is_empty() && corners_direct.is_none();
         let req = Request {
             stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()) || transfer,
             origins: st.want_origins || transfer,
@@ -241,11 +259,36 @@ pub(crate) fn run<'py>(
                 *c = Corner::Mesh(fv.with_creases(m, geometry_creases.as_ref(), st.options)?.with_plus_corners(m, interp)?.level(&level, interp, st.options)?);
             }
         }
-        if transfer {
-            let (Some(s), Some(o)) = (&lv.stencils, &lv.origins) else {
+        let mut rest: Vec<usize> = Vec::new(); // corner arrays the direct path did not take
+        match corners_direct {
+            Some(f) => {
+                for (i, (rows, k)) in st.corner_rows.iter_mut().enumerate() {
+                    match f(m, &lv.mesh, rows, *k)? {
+                        Some(next) => *rows = next,
+                        None => rest.push(i),
+                    }
+                }
+            }
+            None if transfer => rest.extend(0..st.corner_rows.len()),
+            None => {}
+        }
+        if !rest.is_empty() {
+            // the same level again, with what the transfer reads, when the first did not keep it
+            let full;
+            let lvt = if lv.stencils.is_some() && lv.origins.is_some() {
+                &lv
+            } else {
+                full = level(m, &Request { stencils: true, origins: true, ..req })?;
+                &full
+            };
+            let (Some(s), Some(o)) = (&lvt.stencils, &lvt.origins) else {
                 return Err(crate::MeshError::Precondition(format!("{}: its level has no stencils or origins, so it cannot carry corner attributes", st.name)));
             };
-            crate::schemes::corner_transfer::transfer(m, &lv.mesh, s, o, &mut st.corner_rows)?;
+            let mut arrays: Vec<(Vec<f64>, usize)> = rest.iter().map(|&i| std::mem::take(&mut st.corner_rows[i])).collect();
+            crate::schemes::corner_transfer::transfer(m, &lvt.mesh, s, o, &mut arrays)?;
+            for (&i, a) in rest.iter().zip(arrays) {
+                st.corner_rows[i] = a;
+            }
         }
         if let (Some(o), true) = (lv.origins, st.want_origins) {
             st.origins = Some(match &st.origins {

@@ -55,7 +55,9 @@ impl PyMesh {
         correspondence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         honeycomb::check_args(t, tension).map_err(err)?;
-        let spec = super::levels::Spec::plain("honeycomb", predict::truncation);
+        let spec = super::levels::Spec::plain("honeycomb", predict::truncation)
+            .with_direct(move |m, r, data| honeycomb::honeycomb_level_with(m, t, tension, r, data))
+            .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::honeycomb(i, o, t, tension, rows, k));
         super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| honeycomb::honeycomb_level(m, t, tension, r))
     }
 
@@ -123,7 +125,9 @@ impl PyMesh {
             }
         };
         how.check().map_err(err)?;
-        let spec = super::levels::Spec::plain("vertex_truncation", predict::truncation);
+        let ratio = how.ratio();
+        let spec = super::levels::Spec::plain("vertex_truncation", predict::truncation)
+            .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::truncation(i, o, ratio, rows, k));
         super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| vertex_truncation::vertex_truncation_level(m, how, r))
     }
 }

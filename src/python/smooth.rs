@@ -77,7 +77,7 @@ impl PyMesh {
     /// open into tubes. Parameters, return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn doo_sabin<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("doo_sabin", predict::doo_sabin).with_direct(schemes::doo_sabin::doo_sabin_level_with), correspondence, schemes::doo_sabin::doo_sabin_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("doo_sabin", predict::doo_sabin).with_direct(schemes::doo_sabin::doo_sabin_level_with).with_corners(schemes::corner_direct::doo_sabin), correspondence, schemes::doo_sabin::doo_sabin_level)
     }
 
     /// Loop subdivision (Loop 1987) with Loop's original
@@ -115,7 +115,7 @@ impl PyMesh {
     /// as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn sqrt3<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("sqrt3", predict::sqrt3).with_direct(schemes::sqrt3::sqrt3_level_with), correspondence, schemes::sqrt3::sqrt3_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("sqrt3", predict::sqrt3).with_direct(schemes::sqrt3::sqrt3_level_with).with_corners(schemes::corner_direct::sqrt3), correspondence, schemes::sqrt3::sqrt3_level)
     }
 
     /// The simplest subdivision scheme (Peters & Reif 1997): mid-edge
@@ -129,7 +129,7 @@ impl PyMesh {
     /// :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn simplest<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("simplest", predict::simplest), correspondence, schemes::simplest::simplest_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("simplest", predict::simplest).with_direct(schemes::simplest::simplest_level_with).with_corners(schemes::corner_direct::simplest), correspondence, schemes::simplest::simplest_level)
     }
 
     /// Midpoint (linear) subdivision: triangles split 1 -> 4 at edge
@@ -140,7 +140,9 @@ impl PyMesh {
     /// Parameters, return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn midpoint<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("midpoint", predict::midpoint), correspondence, schemes::midpoint::midpoint_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("midpoint", predict::midpoint).with_direct(schemes::midpoint::midpoint_level_with).with_corners(|i, o, rows, k| {
+            schemes::corner_linear::level(i, o, schemes::corner_linear::Primal::Mixed, rows, k)
+        }), correspondence, schemes::midpoint::midpoint_level)
     }
 
     /// The dual mesh: a vertex at every face centroid, a face around every
@@ -148,7 +150,7 @@ impl PyMesh {
     /// return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn dual<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("dual", predict::dual), correspondence, schemes::dual::dual_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("dual", predict::dual).with_direct(schemes::dual::dual_level_with).with_corners(schemes::corner_direct::dual), correspondence, schemes::dual::dual_level)
     }
 
     /// Limit positions and unit normals of the Catmull-Clark or Loop surface

@@ -34,8 +34,13 @@ use rayon::prelude::*;
 pub enum Primal {
     /// Catmull-Clark: every real `n`-gon into `n` quads around a face point.
     Quads,
-    /// Loop: every real triangle into four.
+    /// Loop: every real triangle into four; other faces are first fanned
+    /// around their centroid, as Loop's level does (`hosts::fan_triangulate`),
+    /// the centroid's value the mean of the face's.
     Triangles,
+    /// Midpoint: triangles into four (as Loop), every other face into n
+    /// quads around its centroid (as Catmull-Clark).
+    Mixed,
 }
 
 /// The exported corner rows (`(C', k)` row-major) of `out`, one level of
@@ -48,6 +53,9 @@ pub fn level(input: &Mesh, out: &Mesh, scheme: Primal, rows: &[f64], k: usize) -
     }
     let fl = FaceLayout::new(input)?;
     let (nv, ne, nf) = (input.n_vertices() as u32, input.n_edges() as u32, input.n_faces());
+    if scheme == Primal::Triangles && (0..nf).any(|f| !input.f_hole[f] && fl.degree(f) != 3) {
+        return fanned(input, &fl, out, rows, k);
+    }
     // per input face: first exported input corner, first output face, first exported output corner
     let mut starts = Vec::with_capacity(nf);
     let (mut ci, mut fo, mut co) = (0usize, 0usize, 0usize);
@@ -59,10 +67,12 @@ pub fn level(input: &Mesh, out: &Mesh, scheme: Primal, rows: &[f64], k: usize) -
             fo += 1;
             continue;
         }
-        match scheme {
-            Primal::Quads => (fo, co) = (fo + n, co + 4 * n),
-            Primal::Triangles if n == 3 => (fo, co) = (fo + 4, co + 12),
-            Primal::Triangles => return Ok(None),
+        if n == 3 && scheme != Primal::Quads {
+            (fo, co) = (fo + 4, co + 12);
+        } else if scheme != Primal::Triangles {
+            (fo, co) = (fo + n, co + 4 * n);
+        } else {
+            return Ok(None);
         }
         ci += n;
     }
@@ -83,10 +93,8 @@ pub fn level(input: &Mesh, out: &Mesh, scheme: Primal, rows: &[f64], k: usize) -
         if input.f_hole[f] {
             continue;
         }
-        let len = match scheme {
-            Primal::Quads => 4 * fl.degree(f),
-            Primal::Triangles => 12,
-        } * k;
+        let n = fl.degree(f);
+        let len = if n == 3 && scheme != Primal::Quads { 12 } else { 4 * n } * k;
         let (a, b) = std::mem::take(&mut rest).split_at_mut(len);
         blocks.push((f, a));
         rest = b;
@@ -116,8 +124,8 @@ pub fn level(input: &Mesh, out: &Mesh, scheme: Primal, rows: &[f64], k: usize) -
                 *o = (x + y) * 0.5;
             }
         };
-        match scheme {
-            Primal::Quads => {
+        match n == 3 && scheme != Primal::Quads {
+            false => {
                 let w = 1.0 / n as f64;
                 let mut fp = vec![0.0; k];
                 for c in 0..n {
@@ -137,7 +145,7 @@ pub fn level(input: &Mesh, out: &Mesh, scheme: Primal, rows: &[f64], k: usize) -
                 }
                 true
             }
-            Primal::Triangles => {
+            true => {
                 let mut got = [0u32; 3];
                 for (j, &h) in hs.iter().enumerate() {
                     let p = iprev[h as usize];
@@ -162,6 +170,45 @@ pub fn level(input: &Mesh, out: &Mesh, scheme: Primal, rows: &[f64], k: usize) -
     });
     crate::cancel::check()?;
     Ok(ok.then_some(res))
+}
+
+/// Loop on a mesh with non-triangles: its level runs on the fan
+/// (`hosts::fan_triangulate`: a triangle kept, an n-gon's triangle `j`
+/// `[x_j, x_{j+1}, centroid]`), so the rows are fanned the same way, the
+/// centroid taking the mean of its face's corners (bilinear: the face
+/// point's value), and read off the fan's level.
+fn fanned(input: &Mesh, fl: &FaceLayout, out: &Mesh, rows: &[f64], k: usize) -> Result<Option<Vec<f64>>> {
+    let Some(fan) = super::hosts::fan_triangulate(input)? else { return Ok(None) };
+    let real: usize = (0..input.n_faces()).filter(|&f| !input.f_hole[f]).map(|f| fl.degree(f)).sum();
+    if rows.len() != real * k {
+        return Ok(None);
+    }
+    let mut fr = Vec::with_capacity(3 * real * k);
+    let mut mean = vec![0.0; k];
+    let mut ci = 0;
+    for f in 0..input.n_faces() {
+        crate::cancel::poll(f)?;
+        if input.f_hole[f] {
+            continue;
+        }
+        let n = fl.degree(f);
+        let r = &rows[ci * k..(ci + n) * k];
+        ci += n;
+        if n == 3 {
+            fr.extend_from_slice(r);
+            continue;
+        }
+        mean.iter_mut().for_each(|x| *x = 0.0);
+        for c in r.chunks_exact(k.max(1)) {
+            mean.iter_mut().zip(c).for_each(|(m, x)| *m += x / n as f64);
+        }
+        for j in 0..n {
+            fr.extend_from_slice(&r[j * k..(j + 1) * k]);
+            fr.extend_from_slice(&r[(j + 1) % n * k..((j + 1) % n + 1) * k]);
+            fr.extend_from_slice(&mean);
+        }
+    }
+    level(&fan, out, Primal::Triangles, &fr, k)
 }
 
 #[cfg(test)]
@@ -191,6 +238,7 @@ mod tests {
         let lvf = |m: &Mesh, r: &Request| match scheme {
             Primal::Quads => catmull_clark_level(m, r),
             Primal::Triangles => loop_level(m, r),
+            Primal::Mixed => unreachable!("midpoint has no face-varying mesh path"),
         };
         let out = lvf(m, &Request::default()).unwrap().mesh;
         let fv = fv.with_creases(m, None, Default::default()).unwrap().level(lvf, Interpolation::All, Default::default()).unwrap();
@@ -225,21 +273,85 @@ mod tests {
         assert!(n >= 5, "{n} corpus meshes");
     }
 
+    /// Triangle meshes, and the others through Loop's fan.
     #[test]
-    fn loop_equals_the_face_varying_mesh_path_on_triangle_meshes() {
-        let mut n = 0;
+    fn loop_equals_the_face_varying_mesh_path_on_the_corpus() {
+        let (mut tri, mut fanned) = (0, 0);
         for (_, m) in crate::schemes::hosts::test_meshes::corpus().into_iter().chain(crate::schemes::hosts::test_meshes::open_meshes()) {
-            let fl = FaceLayout::new(&m).unwrap();
-            let all_tri = (0..m.n_faces()).all(|f| m.f_hole[f] || fl.degree(f) == 3);
-            if !all_tri || m.v_out.iter().any(|&o| o & POINT != 0) {
+            if m.v_out.iter().any(|&o| o & POINT != 0) {
                 continue;
             }
-            check(&m, Primal::Triangles);
-            n += 1;
+            let fl = FaceLayout::new(&m).unwrap();
+            let all_tri = (0..m.n_faces()).all(|f| m.f_hole[f] || fl.degree(f) == 3);
+            if all_tri {
+                check(&m, Primal::Triangles);
+                tri += 1;
+            } else {
+                check_fanned(&m);
+                fanned += 1;
+            }
         }
         let ico = crate::primitives::icosahedron();
         check(&ico, Primal::Triangles);
-        assert!(n >= 1, "{n} triangle meshes in the corpus");
+        assert!(tri >= 1 && fanned >= 5, "{tri} triangle meshes, {fanned} others in the corpus");
+    }
+
+    /// Loop on a mesh with non-triangles: linear everywhere on its fan, so
+    /// corner data equal to the corner's position comes out as the positions
+    /// of the fan's midpoint refinement (the same vertex numbering as Loop's
+    /// level on the fan: vertices, then edge points).
+    fn check_fanned(m: &Mesh) {
+        let fan = crate::schemes::hosts::fan_triangulate(m).unwrap().expect("not all triangles");
+        let lin = crate::schemes::midpoint::midpoint_level(&fan, &Request::default()).unwrap().mesh;
+        let out = loop_level(m, &Request::default()).unwrap().mesh;
+        assert_eq!(out.n_vertices(), lin.n_vertices());
+        let idx = m.to_polygons().indices;
+        let rows: Vec<f64> = idx.iter().flat_map(|&v| m.pos[v as usize].to_array()).collect();
+        let got = level(m, &out, Primal::Triangles, &rows, 3).unwrap().expect("the fan's layout holds");
+        let oidx = out.to_polygons().indices;
+        assert_eq!(got.len(), 3 * oidx.len());
+        for (c, &v) in oidx.iter().enumerate() {
+            let want = lin.pos[v as usize].to_array();
+            for j in 0..3 {
+                assert!((got[3 * c + j] - want[j]).abs() < 1e-12, "corner {c}: {:?} vs {want:?}", &got[3 * c..3 * c + 3]);
+            }
+        }
+    }
+
+    /// Midpoint's mixed split against the generic corner transfer (data per
+    /// (face, vertex), on which the two agree by definition), two levels.
+    #[test]
+    fn midpoint_equals_the_generic_transfer() {
+        use crate::schemes::hosts::test_meshes as tm;
+        let mut n = 0;
+        for (name, m0) in tm::corpus().into_iter().chain(tm::open_meshes()) {
+            if m0.v_out.iter().any(|&o| o & POINT != 0) {
+                continue;
+            }
+            let mut m = m0;
+            for depth in 0..2 {
+                let lv = crate::schemes::midpoint::midpoint_level(&m, &tm::full_request()).unwrap();
+                let p = m.to_polygons();
+                let mut rows = Vec::new();
+                let mut at = 0;
+                for (f, &sz) in p.sizes.iter().enumerate() {
+                    for &v in &p.indices[at..at + sz as usize] {
+                        rows.extend([(f * 31 + v as usize * 7) as f64, (f as f64).sin() - v as f64]);
+                    }
+                    at += sz as usize;
+                }
+                let mut want = vec![(rows.clone(), 2)];
+                crate::schemes::corner_transfer::transfer(&m, &lv.mesh, lv.stencils.as_ref().unwrap(), lv.origins.as_ref().unwrap(), &mut want).unwrap();
+                let got = level(&m, &lv.mesh, Primal::Mixed, &rows, 2).unwrap().unwrap_or_else(|| panic!("{name} level {depth}: the layout holds"));
+                assert_eq!(got.len(), want[0].0.len(), "{name}");
+                for (a, b) in got.iter().zip(&want[0].0) {
+                    assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{name} level {depth}: {a} vs {b}");
+                }
+                m = lv.mesh;
+                n += 1;
+            }
+        }
+        assert!(n >= 20, "{n} levels");
     }
 
     #[test]

@@ -39,6 +39,11 @@
 //! that vertex the mean of those corners' values (only a face with a
 //! repeated vertex, as Sierpinski's output has, can tell them apart).
 //!
+//! On closed meshes without point-spheres every scheme here but Menger
+//! reads the same values straight off its output numbering instead
+//! ([`super::corner_direct`]); this transfer serves open meshes, Menger and
+//! whatever layout those paths do not recognise.
+//!
 //! The result is a [`Stencils`] over corners: row = exported output corner,
 //! column = exported input corner (both in face order, holes skipped), so
 //! `T @ values` carries any `(C, k)` corner array through the level.

@@ -225,13 +225,22 @@ pub fn doo_sabin_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)])
     })
 }
 
-/// The closed-mesh masks of [`step`] on rows of `k` numbers: per corner `k`
-/// of an n-gon, `x_k/4 + 3/(4n) Σx + 1/(2n) (C cos θk + S sin θk)` with
+/// The closed-mesh masks of [`step`] on vertex rows of `k` numbers.
+fn direct_data(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f64>> {
+    let vert = &m.he_vert;
+    face_masks(m, fl, a, k, |_, h| vert[h as usize] as usize)
+}
+
+/// The masks of [`step`] on rows of `k` numbers, one output row per layout
+/// corner (an output vertex of the closed-mesh level): per corner `k` of an
+/// n-gon, `x_k/4 + 3/(4n) Σx + 1/(2n) (C cos θk + S sin θk)` with
 /// `C, S = Σ x_i (cos, sin) θi`, `θ = 2π/n` (the weights αᵢ expanded by
 /// `cos θ(i−k) = cos θi cos θk + sin θi sin θk`), so a face costs O(n k).
-fn direct_data(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f64>> {
+/// The face's `x_i` is row `at(c, h)` of `a` for its layout corner `c`
+/// (half-edge `h`): the vertex's row for vertex data, the corner's own for
+/// corner data (`super::corner_direct`).
+pub(crate) fn face_masks(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize, at: impl Fn(usize, u32) -> usize + Sync) -> Result<Vec<f64>> {
     let (nf, nh) = (m.n_faces(), fl.fh.len());
-    let vert = &m.he_vert;
     let mut out = vec![0.0; nh * k];
     if k == 0 {
         return Ok(out);
@@ -244,23 +253,27 @@ fn direct_data(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f64
         chunks.push(x);
         rest = y;
     }
-    let row = |h: u32| &a[vert[h as usize] as usize * k..(vert[h as usize] as usize + 1) * k];
+    let row = |c: usize, h: u32| {
+        let i = at(c, h);
+        &a[i * k..(i + 1) * k]
+    };
     chunks.into_par_iter().with_min_len(MIN_LEN).enumerate().for_each_init(Vec::new, |sums, (f, o)| {
         if crate::cancel::requested() {
             return; // the check after the loop reports it
         }
         let hs = fl.corners(f);
         let n = hs.len();
+        let c0 = fl.off[f] as usize;
         if n == 1 {
-            o.copy_from_slice(row(hs[0]));
+            o.copy_from_slice(row(c0, hs[0]));
             return;
         }
         sums.clear();
         sums.resize(3 * k, 0.0);
         let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
         let (mut cs, mut sn) = (1.0, 0.0);
-        for &h in hs {
-            for (j, x) in row(h).iter().enumerate() {
+        for (i, &h) in hs.iter().enumerate() {
+            for (j, x) in row(c0 + i, h).iter().enumerate() {
                 sums[j] += x;
                 sums[k + j] += x * cs;
                 sums[2 * k + j] += x * sn;
@@ -271,7 +284,7 @@ fn direct_data(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f64
         let (b, w) = (0.75 / nf64, 0.5 / nf64);
         let (mut ck, mut sk) = (1.0, 0.0);
         for (c, &h) in hs.iter().enumerate() {
-            for (j, (o, x)) in o[c * k..(c + 1) * k].iter_mut().zip(row(h)).enumerate() {
+            for (j, (o, x)) in o[c * k..(c + 1) * k].iter_mut().zip(row(c0 + c, h)).enumerate() {
                 *o = x * 0.25 + sums[j] * b + (sums[k + j] * ck + sums[2 * k + j] * sk) * w;
             }
             (ck, sk) = (ck * dc - sk * ds, sk * dc + ck * ds);

@@ -154,6 +154,28 @@ pub fn dual_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, level_step)
 }
 
+/// [`dual_level`] that also interpolates vertex data (`(rows, k)` row-major
+/// arrays): on a closed mesh without point-spheres each face's mean of its
+/// corners' rows (no stencils built), else through the stencils.
+pub fn dual_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    let fl = std::cell::OnceCell::new();
+    super::level::level_with_data(m, req, data, dual_level, |a, k| {
+        let fl = super::level::once(&fl, || FaceLayout::new(m))?;
+        let vert = &m.he_vert;
+        let mut out = vec![0.0; m.n_faces() * k];
+        out.par_chunks_mut(k.max(1)).with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
+            let hs = fl.corners(f);
+            let w = 1.0 / hs.len() as f64;
+            for &h in hs {
+                let v = vert[h as usize] as usize;
+                o.iter_mut().zip(&a[v * k..(v + 1) * k]).for_each(|(o, x)| *o += x * w);
+            }
+        });
+        crate::cancel::check()?;
+        Ok(out)
+    })
+}
+
 fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     if m.n_holes() == 0 && !req.stencils && !req.origins {
         return Ok(Level::plain(step(m)?));

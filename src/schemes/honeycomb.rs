@@ -60,7 +60,7 @@
 //! old edge → (EDGE, e). Holes are kept on every path, so open meshes get
 //! stencils and origins too; there is no sharpness to carry.
 
-use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout, MIN_LEN};
 use super::corner_origins::edge_origins_by_corner;
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
@@ -253,6 +253,99 @@ pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) ->
         None
     };
     Ok(Level { mesh, stencils, origins, creases: None })
+}
+
+/// [`honeycomb_level`] that also interpolates vertex data (`(rows, k)`
+/// row-major arrays) by the scheme's own masks on a closed mesh without
+/// point-spheres (no stencils built), else through the stencils.
+pub fn honeycomb_level_with(m: &Mesh, t: f64, tension: Option<f64>, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    let fl = std::cell::OnceCell::new();
+    let vert = &m.he_vert;
+    super::level::level_with_data(m, req, data, |m, r| honeycomb_level(m, t, tension, r), |a, k| {
+        let fl = super::level::once(&fl, || FaceLayout::new(m))?;
+        face_masks(m, fl, t, tension, a, k, |_, h| vert[h as usize] as usize)
+    })
+}
+
+/// Eq. 1–2 on rows of `k` numbers, one output row per half-edge `h` (new
+/// vertex `h` of the level): with `x_i` the row `at(c, h)` of `a` for the
+/// face's layout corner `c` (half-edge `h`), the edge points are
+/// `p_i = (1 − t) x_i + t x_{i+1}` along the face and the new row
+/// `a p_n + (1 − a)/(3N − 5) (3 Σp − 5 p_n + 2 (cos θn C + sin θn S))`,
+/// `C, S = Σ p_m (cos, sin) θm`, as in [`honeycomb`]. `at` gives the
+/// vertex's row for vertex data and the corner's own for corner data
+/// (`super::corner_direct`), so a face reads its edge points in itself.
+/// Holes and one-gons keep `p` (module docs).
+pub(crate) fn face_masks(
+    m: &Mesh,
+    fl: &FaceLayout,
+    t: f64,
+    tension: Option<f64>,
+    a: &[f64],
+    k: usize,
+    at: impl Fn(usize, u32) -> usize + Sync,
+) -> Result<Vec<f64>> {
+    check_args(t, tension)?;
+    let (nf, nh) = (m.n_faces(), m.n_halfedges());
+    let mut out = vec![0.0; nh * k];
+    if k == 0 {
+        return Ok(out);
+    }
+    let (next, _, face) = m.halfedge_columns();
+    let row = |c: usize, h: u32| {
+        let i = at(c, h);
+        &a[i * k..(i + 1) * k]
+    };
+    // edge point of the face's corner `i` (layout corner c0 + i, half-edge h)
+    let edge_point = |o: &mut [f64], c0: usize, n: usize, i: usize, h: u32| {
+        let (x, y) = (row(c0 + i, h), row(c0 + (i + 1) % n, next[h as usize]));
+        for ((o, x), y) in o.iter_mut().zip(x).zip(y) {
+            *o = (1.0 - t) * x + t * y;
+        }
+    };
+    // per face: Σp, C, S
+    let mut sums = vec![0.0; nf * 3 * k];
+    sums.par_chunks_mut(3 * k).with_min_len(MIN_LEN).enumerate().for_each_init(
+        || vec![0.0; k],
+        |p, (f, s)| {
+            if crate::cancel::requested() {
+                return; // the check below reports it
+            }
+            let hs = fl.corners(f);
+            let (n, c0) = (hs.len(), fl.off[f] as usize);
+            for (i, &h) in hs.iter().enumerate() {
+                edge_point(p, c0, n, i, h);
+                let (sn, cs) = (std::f64::consts::TAU * i as f64 / n as f64).sin_cos();
+                for j in 0..k {
+                    s[j] += p[j];
+                    s[k + j] += p[j] * cs;
+                    s[2 * k + j] += p[j] * sn;
+                }
+            }
+        },
+    );
+    crate::cancel::check()?;
+    out.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(h, o)| {
+        if crate::cancel::requested() {
+            return;
+        }
+        let f = face[h] as usize;
+        let (n, c0, i) = (fl.degree(f), fl.off[f] as usize, fl.local(h as u32, f as u32));
+        edge_point(o, c0, n, i, h as u32);
+        let a = if n == 1 || m.f_hole[f] { 1.0 } else { tension.unwrap_or_else(|| default_tension(n)) };
+        if a == 1.0 {
+            return;
+        }
+        let s = &sums[f * 3 * k..(f + 1) * 3 * k];
+        let (sn, cs) = (std::f64::consts::TAU * i as f64 / n as f64).sin_cos();
+        let c1 = (1.0 - a) / (3.0 * n as f64 - 5.0);
+        for j in 0..k {
+            let p = o[j];
+            o[j] = a * p + c1 * (3.0 * s[j] - 5.0 * p + 2.0 * (cs * s[k + j] + sn * s[2 * k + j]));
+        }
+    });
+    crate::cancel::check()?;
+    Ok(out)
 }
 
 #[inline]

@@ -103,6 +103,43 @@ pub fn midpoint_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, level_step)
 }
 
+/// [`midpoint_level`] that also interpolates vertex data (`(rows, k)`
+/// row-major arrays): on a closed mesh without point-spheres the rows of
+/// [`positions`] (old rows, edge midpoints, centroids of the non-triangles;
+/// no stencils built), else through the stencils.
+pub fn midpoint_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    let fl = std::cell::OnceCell::new();
+    super::level::level_with_data(m, req, data, midpoint_level, |a, k| {
+        let fl = super::level::once(&fl, || FaceLayout::new(m))?;
+        let (nv, ne) = (m.n_vertices(), m.n_edges());
+        let vert = &m.he_vert;
+        let row = |v: u32| &a[v as usize * k..(v as usize + 1) * k];
+        let mut out = Vec::with_capacity((nv + ne + m.n_faces()) * k);
+        out.extend_from_slice(&a[..nv * k]);
+        out.resize((nv + ne) * k, 0.0);
+        out[nv * k..].par_chunks_mut(k.max(1)).with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
+            for ((o, x), y) in o.iter_mut().zip(row(vert[2 * e])).zip(row(vert[2 * e + 1])) {
+                *o = (x + y) * 0.5;
+            }
+        });
+        for f in 0..m.n_faces() {
+            crate::cancel::poll(f)?;
+            let hs = fl.corners(f);
+            if hs.len() == 3 {
+                continue;
+            }
+            let start = out.len();
+            out.resize(start + k, 0.0);
+            let w = 1.0 / hs.len() as f64;
+            for &h in hs {
+                out[start..].iter_mut().zip(row(vert[h as usize])).for_each(|(o, x)| *o += x * w);
+            }
+        }
+        crate::cancel::check()?;
+        Ok(out)
+    })
+}
+
 fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     if m.n_holes() == 0 && !req.stencils && !req.origins {
         return Ok(Level::plain(step(m)?));

@@ -10,6 +10,7 @@ pub mod corner_transfer;
 pub mod creases;
 pub mod face_varying;
 pub mod corner_linear;
+pub mod corner_direct;
 pub mod level;
 pub mod limit;
 pub mod stencil;

@@ -161,6 +161,24 @@ pub fn simplest_level(m: &Mesh, req: &Request) -> Result<Level> {
     })
 }
 
+/// [`simplest_level`] that also interpolates vertex data (`(rows, k)`
+/// row-major arrays): on a closed mesh without point-spheres each edge's
+/// midpoint row (no stencils built), else through the stencils.
+pub fn simplest_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
+    super::level::level_with_data(m, req, data, simplest_level, |a, k| {
+        let vert = &m.he_vert;
+        let mut out = vec![0.0; m.n_edges() * k];
+        out.par_chunks_mut(k.max(1)).with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
+            let (u, w) = (vert[2 * e] as usize, vert[2 * e + 1] as usize);
+            for ((o, x), y) in o.iter_mut().zip(&a[u * k..(u + 1) * k]).zip(&a[w * k..(w + 1) * k]) {
+                *o = (x + y) * 0.5;
+            }
+        });
+        crate::cancel::check()?;
+        Ok(out)
+    })
+}
+
 /// One level on a mesh with hole faces (no point-spheres): boundary
 /// vertices kept, boundary edges split (module docs). Faces are
 /// `[F-faces of real faces | V-faces | holes]`.
