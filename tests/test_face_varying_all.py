@@ -3,7 +3,8 @@
 Catmull-Clark and Loop subdivide corner data on its face-varying mesh with OpenSubdiv's rules
 (tests/test_creases.py, tests/test_opensubdiv.py, tests/test_face_varying_osd.py); every other
 scheme carries it with the generic corner transfer of ``src/schemes/corner_transfer.rs``: each
-output corner reads its vertex's stencil row with the corner values of one input face.
+output corner reads its vertex's stencil row with the corner values of one input face (on closed
+meshes the schemes read the same values off their output numbering, ``src/schemes/corner_direct/``).
 """
 
 from __future__ import annotations
@@ -166,6 +167,39 @@ def test_degenerate_inputs_carry_corner_data():
         ch = out.corner_attributes["chart"]
         assert ch.shape[0] == len(out.face_indices)
         assert ((np.abs(ch) < 1e-12) | (np.abs(ch - 1) < 1e-12)).all(), name
+
+
+@pytest.mark.parametrize("name", sorted(set(NAMES) - {"menger"}))
+def test_one_call_of_three_levels_equals_three_calls(name):
+    """On closed input the corner data goes through the schemes' direct paths
+    (src/schemes/corner_direct/), which Sierpinski declines from its second level on (self-loops):
+    three levels in one call give the same corner rows as three calls of one level."""
+    m, uv = uv_cube()
+    src = m.with_attributes(corner={"uv": uv, "chart": one_hot(m)})
+    once = run(src, name, 3 if name != "sierpinski" else 2)
+    step = src
+    for _ in range(3 if name != "sierpinski" else 2):
+        step = run(step, name, 1)
+    np.testing.assert_array_equal(once.face_indices, step.face_indices)
+    for key in ("uv", "chart"):
+        np.testing.assert_allclose(once.corner_attributes[key], step.corner_attributes[key], atol=1e-12)
+
+
+def test_loop_all_on_quads_is_bilinear_in_every_face():
+    """Loop fans a quad around its centroid; with corner_interpolation="all" the data is linear on
+    that fan: corner data equal to the corner's position comes out as the positions of the
+    midpoint refinement of the fan (stellate = the centroid fan, the same points)."""
+    m = tm.cube()
+    out = m.with_attributes(corner={"p": m.vertices[m.face_indices]}).loop(1)
+    lin = m.stellate().midpoint(1)
+    got = out.corner_attributes["p"]
+    assert got.shape == (len(out.face_indices), 3)
+    # every corner value is a point of the linear refinement (a vertex of stellate + midpoint)
+    d = np.linalg.norm(got[:, None, :] - lin.vertices[None, :, :], axis=2).min(axis=1)
+    assert d.max() < 1e-12
+    # and an old vertex's corners keep the vertex itself
+    old = out.face_indices < m.n_vertices
+    np.testing.assert_allclose(got[old], m.vertices[out.face_indices[old]], atol=1e-12)
 
 
 def test_zero_iterations_and_plain_calls_are_unchanged():

@@ -118,6 +118,10 @@ struct State<'a> {
     corners: Vec<Corner>,
     /// Per-corner rows of the schemes without face-varying rules.
     corner_rows: Vec<(Vec<f64>, usize)>,
+    /// The scheme's direct corner path declined a level (a layout it does
+    /// not read, such as Sierpinski's self-loops): the later levels, which
+    /// keep that feature, ask for the transfer's stencils up front.
+    corner_direct_declined: bool,
     matrix: Option<Stencils>,
     origins: Option<Origins>,
     name: &'a str,
@@ -189,6 +193,7 @@ pub(crate) fn run<'py>(
         attrs,
         corners,
         corner_rows,
+        corner_direct_declined: false,
         matrix: None,
         origins: None,
         name: spec.name,
@@ -198,7 +203,7 @@ pub(crate) fn run<'py>(
         let direct = spec.with_data.as_ref().filter(|_| !st.attrs.is_empty());
         // corner rows: the scheme's direct path where it applies (no stencils or
         // origins needed), else the generic transfer
-        let corners_direct = spec.corner_direct.as_ref().filter(|_| crate::schemes::corner_direct::applies(m));
+        let corners_direct = spec.corner_direct.as_ref().filter(|_| !st.corner_direct_declined && crate::schemes::corner_direct::applies(m));
         let transfer = !st.corner_rows.is_empty() && corners_direct.is_none();
         let req = Request {
             stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()) || transfer,
@@ -265,7 +270,10 @@ pub(crate) fn run<'py>(
                 for (i, (rows, k)) in st.corner_rows.iter_mut().enumerate() {
                     match f(m, &lv.mesh, rows, *k)? {
                         Some(next) => *rows = next,
-                        None => rest.push(i),
+                        None => {
+                            st.corner_direct_declined = true;
+                            rest.push(i);
+                        }
                     }
                 }
             }
