@@ -34,8 +34,8 @@
 //! The dodecahedron gives 12 pentagons and 20 hexagons (the truncated
 //! icosahedron of Fig. 1); the icosahedron 20 triangles and 12 decagons.
 //!
-//! Built in one pass with [`Mesh::from_corner_twins`]: new vertex `h` is the
-//! one of old half-edge `h`; faces are `[front faces in old face order |
+//! Built in one pass, straight into the mesh columns
+//! (`face_vertex_columns.rs`): new vertex `h` is the one of old half-edge `h`; faces are `[front faces in old face order |
 //! vertex faces in old vertex order]`. Self-loops, one-gons, two-gons,
 //! multi-edges and repeated vertices need no special case. Point-spheres
 //! (no edge to act on) are copied unchanged. O(output) time and memory.
@@ -60,12 +60,12 @@
 //! old edge → (EDGE, e). Holes are kept on every path, so open meshes get
 //! stencils and origins too; there is no sharpness to carry.
 
-use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::hosts::{FaceLayout, VertexLayout};
 use super::corner_origins::edge_origins_by_corner;
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
-use crate::mesh::{FaceId, Mesh, NONE};
+use crate::mesh::{FaceId, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -84,10 +84,9 @@ pub fn default_tension(n: usize) -> f64 {
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m)?;
     let nh = m.n_halfedges();
     let nf = m.n_faces();
-    let (next, vert, face) = m.halfedge_columns();
+    let (_, vert, face) = m.halfedge_columns();
     let pos = m.positions();
 
     // ---- per-face sums of the edge points p_m (relative to the face's first vertex)
@@ -126,7 +125,7 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     crate::cancel::check()?;
 
     // ---- new positions: [one per old half-edge | point-spheres]
-    let mut new_pos: Vec<DVec3> = (0..nh)
+    let new_pos: Vec<DVec3> = (0..nh)
         .into_par_iter()
         .map(|h| {
             if crate::cancel::requested() {
@@ -150,31 +149,9 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         .collect();
     crate::cancel::check()?;
 
-    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex]
-    let faces = FaceThenVertexFaces::new(m, &fl, &vl, 1, 2, &mut new_pos)?;
-    let out_off = &faces.off;
-    let vb = faces.vertex_base();
-    let n_corners = vb as usize + 2 * nh;
-    let mut cv = vec![0u32; n_corners];
-    let mut tw = vec![NONE; n_corners];
-    let front = |h: usize| out_off[face[h] as usize] + fl.local(h as u32, face[h]) as u32;
-    // corners 2j and 2j+1 of the face of vertex w for its j-th outgoing half-edge g:
-    // v'_g, then v'_{prev g} (the back face's edge g -> prev g, then the inserted edge)
-    let vc_even = |g: usize| vb + 2 * vl.vidx[g];
-    for h in 0..nh {
-        crate::cancel::poll(h)?;
-        let hp = m.he_prev[h] as usize;
-        let hn = next[h] as usize;
-        let cf = front(h) as usize;
-        cv[cf] = h as u32;
-        tw[cf] = vc_even(hn);
-        let ce = vc_even(h) as usize;
-        cv[ce] = h as u32;
-        tw[ce] = front(hp);
-        cv[ce + 1] = hp as u32;
-        tw[ce + 1] = vc_even(next[hp ^ 1] as usize) + 1;
-    }
-    faces.build(m, new_pos, cv, &tw)
+    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
+    // written straight into the columns
+    super::face_vertex_columns::honeycomb_columns(m, &fl, new_pos)
 }
 
 /// One step with what `req` asks for (see the module docs); without

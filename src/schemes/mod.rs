@@ -5,6 +5,9 @@ pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
 mod primal_columns;
+mod face_vertex_columns;
+#[cfg(test)]
+mod face_vertex_reference;
 pub(crate) mod corner_origins;
 pub mod corner_transfer;
 pub mod creases;
