@@ -6,7 +6,7 @@
 //! and add one face per vertex after them (old vertex order); point-sphere
 //! faces and their vertices are carried through, hole marks are copied.
 //! The result is what `from_corner_twins` built from the old corner lists
-//! (kept test-only in `face_vertex_reference.rs`), bit for bit:
+//! (kept test-only in `twin_reference.rs`), bit for bit:
 //! `from_corner_twins` numbers edges by their first corner (the one whose
 //! twin comes later in corner order), that corner gets `2e` with `e` the
 //! number of first corners before it, its twin `2e + 1`; each vertex's
@@ -92,7 +92,7 @@ impl Frame {
 /// Raw pointers to the half-edge and face columns of `c`, for the parallel
 /// fills whose writes are disjoint by construction.
 #[derive(Clone, Copy)]
-struct Out {
+pub(super) struct Out {
     next: SyncPtr<u32>,
     prev: SyncPtr<u32>,
     vert: SyncPtr<u32>,
@@ -101,7 +101,7 @@ struct Out {
 }
 
 impl Out {
-    fn of(c: &mut Columns) -> Out {
+    pub(super) fn of(c: &mut Columns) -> Out {
         Out {
             next: SyncPtr(c.he_next.as_mut_ptr()),
             prev: SyncPtr(c.he_prev.as_mut_ptr()),
@@ -116,7 +116,7 @@ impl Out {
     /// `id`, `nx` and `f` are in range, and no other thread writes half-edge
     /// `id`, the `prev` of `nx`, or (through [`Out::start`]) face `f`.
     #[inline]
-    unsafe fn link(self, id: u32, v: u32, f: u32, nx: u32) {
+    pub(super) unsafe fn link(self, id: u32, v: u32, f: u32, nx: u32) {
         unsafe {
             *self.next.get().add(id as usize) = nx;
             *self.prev.get().add(nx as usize) = id;
@@ -127,7 +127,7 @@ impl Out {
     /// # Safety
     /// As [`Out::link`], for `f_start[f]`.
     #[inline]
-    unsafe fn start(self, f: u32, id: u32) {
+    pub(super) unsafe fn start(self, f: u32, id: u32) {
         unsafe { *self.f_start.get().add(f as usize) = id };
     }
 }
@@ -362,7 +362,7 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>,
 
 #[cfg(test)]
 mod tests {
-    use super::super::face_vertex_reference as old;
+    use super::super::twin_reference as old;
     use super::super::hosts::test_meshes as tm;
     use super::*;
     use crate::schemes::{honeycomb, vertex_truncation};

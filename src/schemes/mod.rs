@@ -6,8 +6,9 @@ pub mod vertex_truncation;
 pub(crate) mod hosts;
 mod primal_columns;
 mod face_vertex_columns;
+mod fan_columns;
 #[cfg(test)]
-mod face_vertex_reference;
+mod twin_reference;
 pub(crate) mod corner_origins;
 pub mod corner_transfer;
 pub mod creases;

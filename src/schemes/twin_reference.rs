@@ -1,8 +1,10 @@
-//! The corner-and-twin builds of honeycomb and vertex truncation that
-//! [`super::face_vertex_columns`] replaced (issue 19, item 1), kept as the
-//! reference its tests compare with, bit for bit.
+//! The corner-and-twin builds ([`Mesh::from_corner_twins`]) of honeycomb,
+//! vertex truncation and the fan triangulation that `face_vertex_columns.rs`
+//! and `fan_columns.rs` replaced (issue 19, item 1), kept as the references
+//! their tests compare with, bit for bit.
 
-use super::hosts::{FaceLayout, VertexLayout};
+use super::hosts::{FaceLayout, VertexLayout, MIN_LEN};
+use rayon::prelude::*;
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
 use glam::DVec3;
@@ -145,3 +147,103 @@ pub(crate) fn vertex_truncation(m: &Mesh, mut new_pos: Vec<DVec3>, merge: bool) 
     }
     faces.build(m, new_pos, cv, &tw)
 }
+
+/// The fan triangulation as the old builder made it.
+pub(crate) fn fan_triangulate(m: &Mesh) -> Result<Option<Mesh>> {
+    let nf = m.n_faces();
+    let (next, _, _) = m.halfedge_columns();
+    let all_triangles = m.f_start.par_iter().zip(&m.f_hole).with_min_len(MIN_LEN).all(|(&s, &hole)| {
+        if hole {
+            return true;
+        }
+        let h1 = next[s as usize];
+        let h2 = next[h1 as usize];
+        h1 != s && h2 != s && next[h2 as usize] == s
+    });
+    if all_triangles {
+        return Ok(None);
+    }
+    super::hosts::check_output_size("loop", 3 * m.n_halfedges(), m.n_vertices() + nf)?;
+    let fl = FaceLayout::new(m)?;
+    let (next, vert, face) = m.halfedge_columns();
+    let nv = m.n_vertices();
+    // output corner base per face and centroid vertex per n-gon
+    let mut base = Vec::with_capacity(nf + 1);
+    let mut cvert = vec![NONE; nf];
+    let mut pos = m.pos.clone();
+    let mut n_faces = 0usize;
+    let mut b = 0u32;
+    for f in 0..nf {
+        if f % 65536 == 0 {
+            crate::cancel::check()?;
+        }
+        base.push(b);
+        let n = fl.degree(f);
+        if n == 3 || m.f_hole[f] {
+            // triangles and holes are kept
+            b += n as u32;
+            n_faces += 1;
+        } else {
+            b += 3 * n as u32;
+            n_faces += n;
+            cvert[f] = pos.len() as u32;
+            let hs = fl.corners(f);
+            let s: DVec3 = hs.iter().map(|&h| m.pos[vert[h as usize] as usize]).sum();
+            pos.push(s / n as f64);
+        }
+    }
+    let nc = b as usize;
+    debug_assert!(pos.len() >= nv);
+    let mut sizes = Vec::with_capacity(n_faces);
+    let mut cv = vec![0u32; nc];
+    let mut tw = vec![0u32; nc];
+    // the output corner of the side along input half-edge h
+    let side = |h: u32| -> u32 {
+        let f = face[h as usize];
+        let k = fl.local(h, f) as u32;
+        if cvert[f as usize] == NONE {
+            base[f as usize] + k
+        } else {
+            base[f as usize] + 3 * k
+        }
+    };
+    for f in 0..nf {
+        let hs = fl.corners(f);
+        let b = base[f] as usize;
+        if cvert[f] == NONE {
+            sizes.push(hs.len() as u32);
+            for (k, &h) in hs.iter().enumerate() {
+                cv[b + k] = vert[h as usize];
+                tw[b + k] = side(h ^ 1);
+            }
+        } else {
+            let n = hs.len();
+            for (k, &h) in hs.iter().enumerate() {
+                sizes.push(3);
+                let c = b + 3 * k;
+                cv[c] = vert[h as usize];
+                cv[c + 1] = vert[next[h as usize] as usize];
+                cv[c + 2] = cvert[f];
+                tw[c] = side(h ^ 1);
+                // spoke head(h) -> centroid pairs with centroid -> tail(next h)
+                tw[c + 1] = (b + 3 * ((k + 1) % n) + 2) as u32;
+                tw[c + 2] = (b + 3 * ((k + n - 1) % n) + 1) as u32;
+            }
+        }
+    }
+    let mut out = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
+    if m.n_holes() > 0 {
+        // output faces: one per kept face, n per fanned face, in face order
+        let mut of = 0;
+        for f in 0..nf {
+            if cvert[f] == NONE {
+                out.f_hole[of] = m.f_hole[f];
+                of += 1;
+            } else {
+                of += fl.degree(f);
+            }
+        }
+    }
+    Ok(Some(out))
+}
+
