@@ -86,67 +86,48 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     let fl = FaceLayout::new(m)?;
     let nh = m.n_halfedges();
     let nf = m.n_faces();
-    let (_, vert, face) = m.halfedge_columns();
+    let (_, vert, _) = m.halfedge_columns();
     let pos = m.positions();
 
-    // ---- per-face sums of the edge points p_m (relative to the face's first vertex)
-    #[derive(Clone, Copy, Default)]
-    struct Sums {
-        origin: DVec3,
-        s: DVec3,
-        c: DVec3,
-        sn: DVec3,
-    }
-    let sums: Vec<Sums> = (0..nf)
-        .into_par_iter()
-        .map(|f| {
-            let hs = fl.corners(f);
-            // cancelled: the check below reports it
-            if crate::cancel::requested() {
-                return Sums::default();
-            }
-            let Some(&h0) = hs.first() else {
-                return Sums::default(); // a point-sphere face
-            };
-            let n = hs.len() as f64;
-            let origin = pos[vert[h0 as usize] as usize];
-            let mut out = Sums { origin, ..Sums::default() };
-            for (k, &h) in hs.iter().enumerate() {
-                let h = h as usize;
-                let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
-                let th = std::f64::consts::TAU * k as f64 / n;
-                out.s += p;
-                out.c += p * th.cos();
-                out.sn += p * th.sin();
-            }
-            out
-        })
-        .collect();
-    crate::cancel::check()?;
-
-    // ---- new positions: [one per old half-edge | point-spheres]
-    let new_pos: Vec<DVec3> = (0..nh)
-        .into_par_iter()
-        .map(|h| {
-            if crate::cancel::requested() {
-                return DVec3::ZERO;
-            }
-            let f = face[h] as usize;
-            let nn = fl.degree(f);
+    // ---- new positions, one per old half-edge, face by face: the sums of the
+    // face's edge points p_m (relative to its first vertex), then eq. 2 per corner
+    let mut new_pos = vec![DVec3::ZERO; nh];
+    let np = super::hosts::SyncPtr(new_pos.as_mut_ptr());
+    (0..nf).into_par_iter().with_min_len(super::hosts::MIN_LEN / 4).for_each(|f| {
+        let hs = fl.corners(f);
+        // cancelled: the check below reports it; a point-sphere face has no corner
+        if crate::cancel::requested() || hs.is_empty() {
+            return;
+        }
+        let nn = hs.len();
+        let origin = pos[vert[hs[0] as usize] as usize];
+        let (mut s, mut c, mut sn) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        for (k, &h) in hs.iter().enumerate() {
+            let h = h as usize;
+            let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
+            let (cos, sin) = super::hosts::turn_cos_sin(k, nn);
+            s += p;
+            c += p * cos;
+            sn += p * sin;
+        }
+        // one-gons (section 3's second condition) and holes (module docs) keep p
+        let a = if nn == 1 || m.is_hole(FaceId(f as u32)) { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
+        let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
+        for (k, &h) in hs.iter().enumerate() {
+            let h = h as usize;
             let p = edge_point(pos, vert[h], vert[h ^ 1], t);
-            // one-gons (section 3's second condition) and holes (module docs) keep p
-            let a = if nn == 1 || m.is_hole(FaceId(f as u32)) { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
-            if a == 1.0 {
-                return p;
-            }
-            let sm = &sums[f];
-            let p = p - sm.origin;
-            let th = std::f64::consts::TAU * fl.local(h as u32, f as u32) as f64 / nn as f64;
-            let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
-            let rest = 3.0 * sm.s - 5.0 * p + 2.0 * (th.cos() * sm.c + th.sin() * sm.sn);
-            sm.origin + a * p + c1 * rest
-        })
-        .collect();
+            let q = if a == 1.0 {
+                p
+            } else {
+                let p = p - origin;
+                let (cos, sin) = super::hosts::turn_cos_sin(k, nn);
+                let rest = 3.0 * s - 5.0 * p + 2.0 * (cos * c + sin * sn);
+                origin + a * p + c1 * rest
+            };
+            // SAFETY: every half-edge belongs to one face, whose task alone writes it.
+            unsafe { *np.get().add(h) = q };
+        }
+    });
     crate::cancel::check()?;
 
     // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
@@ -263,6 +244,9 @@ mod tests {
         for n in 1..=20usize {
             for k in 0..n {
                 assert_eq!(super::super::hosts::turn_cos(k, n).to_bits(), (std::f64::consts::TAU * k as f64 / n as f64).cos().to_bits(), "n = {n}, k = {k}");
+                let (c, s) = super::super::hosts::turn_cos_sin(k, n);
+                let th = std::f64::consts::TAU * k as f64 / n as f64;
+                assert_eq!((c.to_bits(), s.to_bits()), (th.cos().to_bits(), th.sin().to_bits()), "n = {n}, k = {k}");
             }
         }
     }
