@@ -6,8 +6,10 @@
 //! face points]`), the output faces and the twin of every output corner are
 //! computed from the half-edge columns of the input, and
 //! [`Mesh::from_corner_twins`] assembles the result; the primal host,
-//! Doo-Sabin, the dual, simplest and closed √3 go one step further and write the half-edge
-//! columns themselves ([`Mesh::from_columns`], see `primal_columns.rs`). Nothing is ever paired by
+//! Doo-Sabin, the dual, simplest, closed √3, honeycomb, vertex truncation
+//! and the fan triangulation go one step further and write the half-edge
+//! columns themselves ([`Mesh::from_columns`], see `primal_columns.rs`,
+//! `face_vertex_columns.rs`, `fan_columns.rs`). Nothing is ever paired by
 //! vertex ids, so self-loops, multi-edges, one-gons, two-gons and repeated
 //! vertices in a face are handled like any other element: a self-loop's two
 //! sides are two half-edges with their own corners and new points.
