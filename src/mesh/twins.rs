@@ -35,6 +35,50 @@ impl Mesh {
     /// `to_polygons().indices`; `-1` for a boundary side (twin in a hole face),
     /// `-2` for a point-sphere's lone corner. See the module docs.
     pub fn corner_twins(&self) -> Vec<i64> {
+        use rayon::prelude::*;
+        let off = self.export_offsets();
+        // exported corner of every half-edge (NONE in hole faces), face by face in parallel
+        let mut pos_of = vec![NONE; self.n_halfedges()];
+        {
+            let p = crate::schemes::hosts::SyncPtr(pos_of.as_mut_ptr());
+            let next = &self.he_next;
+            (0..self.n_faces()).into_par_iter().with_min_len(4096).for_each(|f| {
+                let s = self.f_start[f];
+                if self.f_hole[f] || s & super::POINT != 0 {
+                    return;
+                }
+                let (mut h, mut k) = (s, off[f]);
+                loop {
+                    // SAFETY: every half-edge belongs to one face, whose task alone writes it.
+                    unsafe { *p.get().add(h as usize) = k };
+                    k += 1;
+                    h = next[h as usize];
+                    if h == s {
+                        break;
+                    }
+                }
+            });
+        }
+        let mut out = vec![0i64; off[self.n_faces()] as usize];
+        super::export::for_face_blocks(&off, &mut out, |f, out| {
+            let s = self.f_start[f];
+            if s & super::POINT != 0 {
+                out[0] = -2;
+                return;
+            }
+            let mut h = s;
+            for o in out.iter_mut() {
+                let t = pos_of[(h ^ 1) as usize];
+                *o = if t == NONE { -1 } else { t as i64 };
+                h = self.he_next[h as usize];
+            }
+        });
+        out
+    }
+
+    /// [`Mesh::corner_twins`] as it was written first, sequentially: the reference of its test.
+    #[cfg(test)]
+    pub(crate) fn corner_twins_sequential(&self) -> Vec<i64> {
         let mut pos_of = vec![NONE; self.n_halfedges()];
         let mut k = 0u32;
         for f in self.faces() {

@@ -58,10 +58,8 @@ impl PyMesh {
     /// `(face_sizes, face_indices)` as int64, computed once.
     fn polygons(&self, py: Python<'_>) -> &(Vec<i64>, Vec<i64>) {
         self.cache.polygons.get_or_init(|| {
-            py.detach(|| {
-                let p = self.inner.to_polygons();
-                (p.sizes.iter().map(|&s| s as i64).collect(), p.indices.iter().map(|&s| s as i64).collect())
-            })
+            // written as int64 in parallel, then viewed (never copied) by the getters
+            py.detach(|| self.inner.polygons_i64())
         })
     }
 
