@@ -26,7 +26,9 @@
 //! `close_boundaries=True` and the operators; edge and half-edge ids are
 //! renumbered by first exported corner, as every constructor does.
 
-use super::{FaceStart, Mesh, BuildOptions, NONE, MAX_ELEMENTS};
+use super::{Mesh, BuildOptions, NONE, MAX_ELEMENTS};
+#[cfg(test)]
+use super::FaceStart;
 use crate::error::{MeshError, Result};
 use glam::DVec3;
 
