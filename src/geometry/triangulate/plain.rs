@@ -5,51 +5,12 @@
 //! faces straight into the caller's buffer skips the per-block vectors, the
 //! source-face column and the conversion copy.
 
+use super::multi_edge_copies;
 use crate::mesh::{Mesh, POINT};
 use rayon::prelude::*;
 
 /// Faces per parallel task.
 const BLOCK: usize = 4096;
-
-/// Whether two edges join the same two distinct vertices: then some vertex
-/// has two outgoing half-edges with one head. Checked around every vertex in
-/// parallel, stopping at the first; what `multi_edge_copies(m).is_empty()`
-/// says, without its sequential counting sort over all edges (which cost more
-/// than writing the triangles).
-pub(super) fn has_multi_edges(m: &Mesh) -> bool {
-    let (vert, prev) = (&m.he_vert, &m.he_prev);
-    m.v_out.par_iter().enumerate().with_min_len(BLOCK).any(|(v, &s)| {
-        if s & POINT != 0 {
-            return false;
-        }
-        let (mut heads, mut n, mut h) = ([0u32; 16], 0usize, s);
-        let mut more: Vec<u32> = Vec::new(); // valence above 16: sorted below
-        loop {
-            let b = vert[(h ^ 1) as usize];
-            if b as usize != v {
-                if n < 16 {
-                    if heads[..n].contains(&b) {
-                        return true;
-                    }
-                    heads[n] = b;
-                    n += 1;
-                } else {
-                    more.push(b);
-                }
-            }
-            h = prev[h as usize] ^ 1;
-            if h == s {
-                break;
-            }
-        }
-        if more.is_empty() {
-            return false;
-        }
-        more.extend_from_slice(&heads);
-        more.sort_unstable();
-        more.windows(2).any(|w| w[0] == w[1])
-    })
-}
 
 impl Mesh {
     /// Whether [`Mesh::triangulate`] of this mesh is exactly its faces (see
@@ -67,7 +28,7 @@ impl Mesh {
                 let (x, y, z) = (vert[s as usize], vert[a as usize], vert[b as usize]);
                 a != s && b != s && next[b as usize] == s && x != y && y != z && x != z
             })
-            && !has_multi_edges(self)
+            && multi_edge_copies(self).is_empty()
     }
 
     /// Writes every face's three vertices, from its first corner, into

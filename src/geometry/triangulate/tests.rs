@@ -345,29 +345,3 @@ fn grouped_retry_equals_the_sequential_pass() {
     // the corpus does exercise the retry (added points only come from it here)
     assert!(redone_faces > 1000, "{redone_faces}");
 }
-
-/// The parallel multi-edge test agrees with the counting sort on the corpus,
-/// the open meshes and multi-edged meshes, a vertex of valence above 16 included.
-#[test]
-fn has_multi_edges_agrees_with_the_copies() {
-    use crate::schemes::hosts::test_meshes as tm;
-    let mut meshes = tm::corpus();
-    meshes.extend(tm::open_meshes());
-    // a pyramid over a 20-gon: its apex has valence 20
-    let n = 20i64;
-    let mut pos: Vec<glam::DVec3> = (0..n).map(|i| glam::DVec3::new((i as f64 * 0.3).cos(), (i as f64 * 0.3).sin(), 0.0)).collect();
-    pos.push(glam::DVec3::Z);
-    let (mut sizes, mut idx) = (vec![n], (0..n).rev().collect::<Vec<i64>>());
-    for i in 0..n {
-        sizes.push(3);
-        idx.extend([i, (i + 1) % n, n]);
-    }
-    meshes.push(("pyramid", Mesh::from_polygons(pos, &sizes, &idx, Default::default()).unwrap()));
-    let mut with = 0;
-    for (name, m) in &meshes {
-        let want = !super::multi_edge_copies(m).is_empty();
-        assert_eq!(super::plain::has_multi_edges(m), want, "{name}");
-        with += want as usize;
-    }
-    assert!(with > 0, "no mesh of the corpus has a multi-edge");
-}
