@@ -6,7 +6,6 @@ the records, ``_ply_split_records``), plyfile for ASCII and big-endian PLY. The 
 
 from __future__ import annotations
 
-import mmap
 import os
 from typing import TYPE_CHECKING, Union
 
@@ -78,17 +77,13 @@ def _raw(a):
     return np.ascontiguousarray(a).view(np.uint8).reshape(-1)
 
 
-def _bytes_of(path: PathLike):
-    """The file's contents as a read-only memory map (reading 38 MB into a
-    fresh ``bytes`` object was two thirds of parsing a 1M-triangle PLY), or as
-    ``bytes`` where a file cannot be mapped (empty, or not a regular file).
-    Nothing a reader returns keeps a view of the map: a file rewritten in
-    place later cannot fault an array."""
+def _bytes_of(path: PathLike) -> bytes:
+    """The file's contents. (A read-only memory map was tried for issue 19:
+    fast on a file read twice, but 5-10x slower than this copy when the file
+    had just been written, the usual save-then-load case: every page faulted
+    in while the kernel was writing the file back.)"""
     with open(path, "rb") as f:
-        try:
-            return mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
-        except (ValueError, OSError):
-            return f.read()
+        return f.read()
 
 
 def _read_ply(path: PathLike):
@@ -183,7 +178,7 @@ def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
     verts = np.empty((nv, 3), np.float64)  # one strided copy per column
     for j, c in enumerate("xyz"):
         verts[:, j] = vrec[c]
-    # copies (or views of the copy): nothing returned points into the file's map
+    # x, y, z as views of the copy; the others copied out of the records
     props = {p: verts[:, "xyz".index(p)] if p in ("x", "y", "z") else np.array(vrec[p]) for p in vdt.names}
     return verts, props, vdt
 
@@ -238,7 +233,7 @@ def _read_split(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: 
         return None
     spec = [(0 if c is None else np.dtype(c).itemsize, c is not None and np.dtype(c).kind == "i", np.dtype(t).itemsize)
             for _, c, t in fprops]
-    values, counts, end = _ply_split_records(data if isinstance(data, bytes) else bytes(data), body + nv * vdt.itemsize, nf, spec, "face")
+    values, counts, end = _ply_split_records(data, body + nv * vdt.itemsize, nf, spec, "face")
     if end != len(data):
         raise MeshError(f"PLY face element: {len(data) - end} bytes after the last face record")
     fp = {p: v.view(np.dtype(t).newbyteorder("<")) for (p, _, t), v in zip(fprops, values)}
