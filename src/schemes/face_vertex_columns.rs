@@ -222,13 +222,15 @@ pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>) 
         // odd front twins and the inserted edges' half-edges) and face `of`
         // are written by this task only.
         unsafe {
-            out.start(of, even(s));
+            let e0 = even(s);
+            out.start(of, e0);
+            let mut e = e0;
             loop {
-                let (e, o) = (even(g), odd(g));
-                let gn = rot(g);
+                let (o, gn) = (odd(g), rot(g));
+                let en = if gn == s { e0 } else { even(gn) };
                 out.link(e, g, of, o);
-                out.link(o, prev[g as usize], of, even(gn));
-                g = gn;
+                out.link(o, prev[g as usize], of, en);
+                (e, g) = (en, gn);
                 if g == s {
                     break;
                 }
@@ -313,12 +315,16 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>,
                     out.link(b + 2 * k as u32, h >> 1, f as u32, nx);
                 }
             } else {
-                out.start(f as u32, id0(hs[0]));
+                // each id computed once: p_h's id carries over to the next corner
+                let a0 = id0(hs[0]);
+                out.start(f as u32, a0);
+                let mut a = a0;
                 for (k, &h) in hs.iter().enumerate() {
-                    let hn = hs[if k + 1 == hs.len() { 0 } else { k + 1 }];
-                    let (a, b) = (id0(h), id1(h));
+                    let an = if k + 1 == hs.len() { a0 } else { id0(hs[k + 1]) };
+                    let b = id1(h);
                     out.link(a, h, f as u32, b);
-                    out.link(b, h ^ 1, f as u32, id0(hn));
+                    out.link(b, h ^ 1, f as u32, an);
+                    a = an;
                 }
             }
         }
@@ -335,11 +341,14 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>,
         // SAFETY: the slot ids of v (twins of distinct front corners) and
         // face `of` are written by this task only.
         unsafe {
-            out.start(of, slot(s));
+            let s0 = slot(s);
+            out.start(of, s0);
+            let mut cur = s0;
             loop {
                 let gn = rot(g);
-                out.link(slot(g), if merge { g >> 1 } else { g }, of, slot(gn));
-                g = gn;
+                let nx = if gn == s { s0 } else { slot(gn) };
+                out.link(cur, if merge { g >> 1 } else { g }, of, nx);
+                (cur, g) = (nx, gn);
                 if g == s {
                     break;
                 }
