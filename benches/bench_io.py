@@ -60,11 +60,45 @@ def peer_time(fn, repeat: int) -> float:
         return float("nan")
 
 
+def ply_only(repeat: int) -> int:
+    """Issue 19's PLY check on 1M triangles: topomesh's save and parse and
+    trimesh's export and load, interleaved in one process (each round runs all
+    four), so the machine's load hits them alike; prints medians and ratios."""
+    import trimesh
+
+    import topomesh
+    from topomesh._ply import _read_ply
+
+    t = topomesh.torus(1000, 500)
+    m = topomesh.Mesh.from_polygons(t.vertices, t.triangles())
+    m.face_indices, m.corner_twins  # exports computed once, as after any first access
+    tm = trimesh.Trimesh(m.vertices, m.face_indices.reshape(-1, 3), process=False)
+    res: dict = {k: [] for k in ("save", "export", "parse", "load")}
+    with tempfile.TemporaryDirectory() as d:
+        f, g = os.path.join(d, "m.ply"), os.path.join(d, "peer.ply")
+        m.save(f), tm.export(g)
+        for _ in range(repeat):
+            for k, fn in (("save", lambda: m.save(f)), ("export", lambda: tm.export(g)),
+                          ("parse", lambda: _read_ply(f)), ("load", lambda: trimesh.load(g, process=False))):
+                t0 = time.perf_counter()
+                fn()
+                res[k].append(time.perf_counter() - t0)
+        sizes = os.path.getsize(f) / 2**20, os.path.getsize(g) / 2**20
+    med = {k: statistics.median(v) for k, v in res.items()}
+    print(f"| 1M triangles | topomesh save {med['save'] * 1e3:.1f} ms | trimesh export {med['export'] * 1e3:.1f} ms | "
+          f"{med['export'] / med['save']:.2f}× | topomesh parse {med['parse'] * 1e3:.1f} ms | trimesh load {med['load'] * 1e3:.1f} ms | "
+          f"{med['load'] / med['parse']:.2f}× | files {sizes[0]:.0f} / {sizes[1]:.0f} MiB | load avg {os.getloadavg()[0]:.1f} |")
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--out", default=str(Path(__file__).with_name("IO.md")))
+    ap.add_argument("--ply-only", action="store_true", help="only issue 19's PLY check (1M triangles, against trimesh), printed")
     a = ap.parse_args()
+    if a.ply_only:
+        return ply_only(a.repeat)
 
     import meshio
     import trimesh

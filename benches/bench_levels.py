@@ -1,70 +1,195 @@
-"""Issue 19: cost per output face at every level (the flat-cost target).
+"""Issue 19's table: cost per output face at every level, warm and first call,
+peak memory per face, against the peers, on one and two threads.
 
-    python benches/bench_levels.py [--levels 1 2 3 4] [--threads 1 2] [--runs 3]
-                                   [--schemes catmull_clark loop] [--label after]
+    python benches/bench_levels.py                    # the full table into benches/README.md
+    python benches/bench_levels.py --schemes loop catmull_clark --levels 1 2 --no-peers --readme -
+    python benches/bench_levels.py --quick --readme - # tiny inputs, printed only
 
-Runs ``bench_subdivision.py``'s worker (a fresh process per case: input,
-one untimed call, then ``--runs`` timed calls of ``iterations=levels``) for
-topomesh only, and prints ns per output face (the minimum and the median of
-the runs), output faces per second, peak RSS per output face, and the ratio
-of each level's ns/face to level 1's. The CPU column is the process CPU
-time (all threads): on a shared machine it leaves out the time the
-process waited for a core. Catmull-Clark runs on the 100k-quad
-torus, Loop and the others on their inputs in ``bench_subdivision.py``.
-Point ``PYTHONPATH`` at another build of the package to measure it instead.
+Every case (scheme × input × levels × threads × tool) runs in a fresh process
+(``bench_subdivision.py``'s worker): the input is built, then the *first call*
+of ``iterations=levels`` in that process is timed on its own (thread pools,
+lazy imports and fresh memory included), then ``--runs`` *warm* calls (median).
+Inputs: the 82k-triangle icosphere (``sphere``) and the 100k-quad torus
+(``torus``), every scheme on both. Columns:
+
+* ``ns/face`` = time / output faces (warm median; first call) and ``× L1``,
+  the warm ns/face as a multiple of level 1's (target ≤ 1.3 at level 4);
+  ``M faces/s`` warm (target ≥ 10 on one thread at every level).
+* ``2 thr. speed-up`` = the one-thread warm time / the two-thread one
+  (target ≥ 1.8 at levels ≥ 2).
+* ``peak B/face`` = growth of the process's peak RSS over the built input,
+  per output face; ``× export`` = that growth over the bytes of the output's
+  exported arrays (topomesh: float64 ``vertices``, int64 ``face_sizes`` and
+  ``face_indices``; peers: their vertex and face arrays), target ≤ 2.
+* ``vs fastest peer`` = the fastest peer's warm time / topomesh's (> 1:
+  topomesh is faster). Triangle-only peers (trimesh, VTK through pyvista,
+  libigl) run on the sphere only; a peer whose estimated time (level-1 time ×
+  growth^levels / 3) exceeds ``--budget`` seconds is skipped and named.
+
+With ``--readme PATH`` (default ``benches/README.md``; ``-`` prints only) the
+table replaces the section between ``<!-- issue19-table -->`` markers (added
+at the end the first time). The machine's load average is written with it.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import os
+import platform
 import statistics
-import subprocess
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from bench_subdivision import CASES, THREAD_VARS  # noqa: E402
+from bench_subdivision import CASES, available, run_case  # noqa: E402
+
+SCHEMES = ["catmull_clark", "loop", "midpoint", "doo_sabin", "sqrt3", "simplest", "dual", "honeycomb", "vertex_truncation"]
+TRIANGLE_ONLY = {"trimesh", "pyvista", "libigl"}
+# faces per level, for the peers' time estimates
+GROWTH = {"sqrt3": 3, "simplest": 2, "dual": 1, "honeycomb": 3, "vertex_truncation": 3}
+MARK = ("<!-- issue19-table -->", "<!-- /issue19-table -->")
 
 
-def run(scheme: str, levels: int, threads: int, runs: int) -> dict:
-    env = dict(os.environ)
-    for k in THREAD_VARS:
-        env[k] = str(threads)
-    inp = CASES[scheme][0]
-    cmd = [sys.executable, str(HERE / "bench_subdivision.py"), "--worker", "--tool", "topomesh", "--scheme", scheme,
-           "--input", inp, "--levels", str(levels), "--runs", str(runs)]
-    p = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=3600)
-    if p.returncode != 0:
-        raise RuntimeError(p.stderr.strip().splitlines()[-1])
-    return json.loads([ln for ln in p.stdout.splitlines() if ln.startswith("{")][-1])
+def peers(scheme: str, inp: str) -> list[str]:
+    return [t for t in CASES[scheme][1][1:] if not (t in TRIANGLE_ONLY and inp != "sphere")]
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser()
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--schemes", nargs="*", default=SCHEMES)
+    ap.add_argument("--inputs", nargs="*", default=["sphere", "torus"])
     ap.add_argument("--levels", type=int, nargs="*", default=[1, 2, 3, 4])
     ap.add_argument("--threads", type=int, nargs="*", default=[1, 2])
-    ap.add_argument("--schemes", nargs="*", default=["catmull_clark", "loop"])
     ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--label", default="")
+    ap.add_argument("--budget", type=float, default=20.0, help="skip peer runs estimated above this (s)")
+    ap.add_argument("--no-peers", action="store_true")
+    ap.add_argument("--quick", action="store_true", help="tiny inputs")
+    ap.add_argument("--readme", default=str(HERE / "README.md"), help="file to write the section into, or - to print only")
     a = ap.parse_args()
-    print(f"| {a.label} scheme | threads | level | faces | ms (min) | ns/face (min) | ns/face (median) | CPU ns/face (min) | M faces/s | × level 1 | peak B/face |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    load0 = os.getloadavg()
+    rows = []
     for scheme in a.schemes:
-        for th in a.threads:
-            first = None
-            for lv in a.levels:
-                r = run(scheme, lv, th, a.runs)
-                nf = r["faces"]
-                tmin, tmed = min(r["times"]), statistics.median(r["times"])
-                ns = tmin / nf * 1e9
-                first = first or ns
-                peak = (r["peak_mb"] - r["base_mb"]) * 2**20 / nf
-                cpu = min(r["cpu"]) / nf * 1e9
-                print(f"| {scheme} | {th} | {lv} | {nf:,} | {tmin * 1e3:.1f} | {ns:.1f} | {tmed / nf * 1e9:.1f} | {cpu:.1f} | "
-                      f"{nf / tmin / 1e6:.1f} | {ns / first:.2f} | {peak:.0f} |", flush=True)
+        for inp in a.inputs:
+            tools = ["topomesh"] + ([] if a.no_peers else [t for t in peers(scheme, inp) if available(t)])
+            l1: dict = {}
+            for th in a.threads:
+                for lv in a.levels:
+                    for tool in tools:
+                        row = dict(scheme=scheme, input=inp, level=lv, threads=th, tool=tool)
+                        if tool != "topomesh":
+                            est = l1.get((tool, th))
+                            est = None if est is None else est * GROWTH.get(scheme, 4) ** (lv - min(a.levels))
+                            if est is not None and est > a.budget:
+                                rows.append({**row, "skip": f"not run: ~{est:.0f} s per call estimated"})
+                                continue
+                        r = run_case(tool, scheme, inp, lv, th, a.runs, a.quick)
+                        if "error" in r:
+                            rows.append({**row, "skip": "error: " + r["error"][:70]})
+                            continue
+                        warm = statistics.median(r["times"])
+                        if lv == min(a.levels):
+                            l1[(tool, th)] = warm
+                        row.update(warm=warm, first=r["first"], faces=r["faces"], grow=(r["peak_mb"] - r["base_mb"]) * 2**20,
+                                   export=r["export_bytes"])
+                        rows.append(row)
+                        print(f"{scheme:17s} {inp:6s} L{lv} t{th} {tool:12s} warm {warm * 1e3:9.1f} ms first {r['first'] * 1e3:9.1f} ms "
+                              f"{r['faces']:>10,} faces {warm / r['faces'] * 1e9:7.1f} ns/face", flush=True)
+    load1 = os.getloadavg()
+    text = "\n".join(table(rows, a, load0, load1))
+    print(text)
+    if a.readme != "-":
+        write_section(Path(a.readme), text)
+
+
+def table(rows: list, a, load0, load1) -> list[str]:
+    def find(**k):
+        return next((r for r in rows if all(r.get(x) == y for x, y in k.items()) and "warm" in r), None)
+
+    out = [
+        MARK[0],
+        "## Issue 19: cost per face per level, warm and first call, memory, peers",
+        "",
+        f"Written by `python benches/bench_levels.py {' '.join(sys.argv[1:])}`".rstrip() + " (method in its docstring). "
+        f"Machine: {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}. "
+        f"**Load average (1 min) before / after: {load0[0]:.1f} / {load1[0]:.1f}** (2 cores: above ~1 the figures are inflated).",
+        f"Inputs: {'tiny (--quick)' if a.quick else 'icosphere 81,920 triangles (sphere), 400×250 torus 100,000 quads (torus)'}; "
+        f"{a.runs} warm runs per case (median), first call timed separately, each case in a fresh process.",
+        "",
+        "| scheme | input | level | threads | tool | output faces | warm ms | first ms | ns/face warm | ns/face first | × L1 | M faces/s | 2 thr. speed-up | peak B/face | × export | vs fastest peer |",
+        "| --- | --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
+    ]
+    for r in rows:
+        head = f"| {r['scheme']} | {r['input']} | {r['level']} | {r['threads']} | {r['tool']} |"
+        if "warm" not in r:
+            out.append(head + f" – | – | – | – | – | – | – | – | – | – | – | {r['skip']} |")
+            continue
+        nf = r["faces"]
+        ns = r["warm"] / nf * 1e9
+        base = find(scheme=r["scheme"], input=r["input"], level=min(a.levels), threads=r["threads"], tool=r["tool"])
+        x1 = f"{ns / (base['warm'] / base['faces'] * 1e9):.2f}" if base else ""
+        one = find(scheme=r["scheme"], input=r["input"], level=r["level"], threads=1, tool=r["tool"])
+        sp = f"{one['warm'] / r['warm']:.2f}×" if one and r["threads"] != 1 else ""
+        xe = f"{r['grow'] / r['export']:.2f}" if r["export"] else ""
+        vs = ""
+        if r["tool"] == "topomesh":
+            ps = [p for p in rows if "warm" in p and p["tool"] != "topomesh" and (p["scheme"], p["input"], p["level"], p["threads"]) ==
+                  (r["scheme"], r["input"], r["level"], r["threads"])]
+            if ps:
+                best = min(ps, key=lambda p: p["warm"])
+                vs = f"{best['warm'] / r['warm']:.1f}× {best['tool']}"
+        out.append(head + f" {nf:,} | {r['warm'] * 1e3:.1f} | {r['first'] * 1e3:.1f} | {ns:.1f} | {r['first'] / nf * 1e9:.1f} | {x1} | "
+                          f"{nf / r['warm'] / 1e6:.1f} | {sp} | {r['grow'] / nf:.0f} | {xe} | {vs} |")
+    out += ["", *targets(rows, a), MARK[1]]
+    return out
+
+
+def targets(rows: list, a) -> list[str]:
+    """The issue's targets, met or not, from the rows above (topomesh only)."""
+    topo = [r for r in rows if r["tool"] == "topomesh" and "warm" in r]
+    if not topo:
+        return []
+    lines = ["Targets (from the rows above):", ""]
+    one = [r for r in topo if r["threads"] == 1]
+    slow = [r for r in one if r["faces"] / r["warm"] < 10e6]
+    lines.append(f"* ≥ 10 M faces/s on one thread at every level: {'met' if not slow else 'not met'} "
+                 f"({len(one) - len(slow)} of {len(one)} rows; slowest "
+                 f"{min(r['faces'] / r['warm'] / 1e6 for r in one):.1f} M/s)." if one else "* one thread: not run.")
+    top = max(a.levels)
+    flat = []
+    for r in one:
+        if r["level"] == top:
+            b = next((x for x in one if (x["scheme"], x["input"], x["level"]) == (r["scheme"], r["input"], min(a.levels))), None)
+            if b:
+                flat.append((r["warm"] / r["faces"]) / (b["warm"] / b["faces"]))
+    if flat and top > min(a.levels):
+        lines.append(f"* level {top} within 1.3× of level {min(a.levels)} per face: {sum(f <= 1.3 for f in flat)} of {len(flat)} "
+                     f"(worst {max(flat):.2f}×).")
+    sp = []
+    for r in topo:
+        if r["threads"] == 2 and r["level"] >= 2:
+            o = next((x for x in one if (x["scheme"], x["input"], x["level"]) == (r["scheme"], r["input"], r["level"])), None)
+            if o:
+                sp.append(o["warm"] / r["warm"])
+    if sp:
+        lines.append(f"* ≥ 1.8× on two threads at levels ≥ 2: {sum(s >= 1.8 for s in sp)} of {len(sp)} (lowest {min(sp):.2f}×).")
+    mem = [r["grow"] / r["export"] for r in topo if r["export"]]
+    if mem:
+        lines.append(f"* peak ≤ 2× the exported arrays: {sum(m <= 2 for m in mem)} of {len(mem)} (highest {max(mem):.2f}×).")
+    lines.append("")
+    return lines
+
+
+def write_section(path: Path, text: str) -> None:
+    old = path.read_text() if path.exists() else ""
+    if MARK[0] in old and MARK[1] in old:
+        pre, rest = old.split(MARK[0], 1)
+        post = rest.split(MARK[1], 1)[1]
+        new = pre + text + post
+    else:
+        new = old.rstrip("\n") + "\n\n" + text + "\n"
+    path.write_text(new)
+    print("wrote", path)
 
 
 if __name__ == "__main__":

@@ -40,6 +40,8 @@ CASES = {
     "doo_sabin": ("torus", ["topomesh", "pymeshlab"]),
     "simplest": ("torus", ["topomesh"]),
     "dual": ("torus", ["topomesh"]),
+    "honeycomb": ("torus", ["topomesh"]),
+    "vertex_truncation": ("torus", ["topomesh"]),
 }
 NOTES = {
     ("loop", "libigl"): "Warren's β (topomesh, trimesh, VTK, pymeshlab: Loop's original β)",
@@ -146,6 +148,25 @@ def prepare(tool: str, scheme: str, V, F, levels: int):
     raise ValueError(tool)
 
 
+def export_bytes(tool: str, out) -> int:
+    """Bytes of the output's exported arrays: float64 vertices and int64
+    faces (topomesh: ``vertices``, ``face_sizes``, ``face_indices``; peers:
+    their vertex and face arrays as they hand them out), read from counts
+    so that no export is made before the peak is read."""
+    if tool == "topomesh":
+        return 24 * out.n_vertices + 8 * out.n_faces + 16 * out.n_edges  # closed inputs: Σ face sizes = 2E
+    if tool in ("trimesh", "libigl"):
+        return sum(a.nbytes for a in out[:2])
+    if tool == "pyvista":
+        return 24 * out.n_points + 8 * out.n_cells * 4  # padded triangle cells [3, a, b, c]
+    if tool == "pymeshlab":
+        m = out.current_mesh()
+        return 24 * m.vertex_number() + 24 * m.face_number()
+    if tool == "pyOpenSubdiv":
+        return 24 * len(out["vertices"]) + 8 * sum(len(f) for f in out["faces"])
+    return 0
+
+
 def rss_now_kb() -> int:
     with open("/proc/self/statm") as f:
         return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") // 1024
@@ -158,10 +179,15 @@ def worker(args) -> None:
     setup, run, count = prepare(args.tool, args.scheme, V, F, args.levels)
     times = []
     cpu = []  # process CPU time of each run: on a loaded machine, closer to the work than wall time
-    n_out = None
+    n_out, n_bytes = None, 0
     base_kb = rss_now_kb()
-    del_out = run(setup())  # warm-up (thread pools, lazy imports), not timed
-    del del_out
+    # the first call in this fresh process (thread pools, lazy imports, fresh
+    # memory): timed on its own, then the warm runs
+    state = setup()
+    t0, c0 = time.perf_counter(), time.process_time()
+    del_out = run(state)
+    first, first_cpu = time.perf_counter() - t0, time.process_time() - c0
+    del del_out, state
     for _ in range(args.runs):
         state = setup()
         t0, c0 = time.perf_counter(), time.process_time()
@@ -170,9 +196,14 @@ def worker(args) -> None:
         cpu.append(time.process_time() - c0)
         if n_out is None:
             n_out = count(out)
+            try:
+                n_bytes = export_bytes(args.tool, out)
+            except Exception:  # a peer whose output layout is not known here
+                n_bytes = 0
         del out, state
     peak_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    print(json.dumps({"times": times, "cpu": cpu, "faces": n_out, "peak_mb": peak_kb / 1024, "base_mb": base_kb / 1024}))
+    print(json.dumps({"times": times, "cpu": cpu, "faces": n_out, "peak_mb": peak_kb / 1024, "base_mb": base_kb / 1024,
+                      "first": first, "first_cpu": first_cpu, "export_bytes": n_bytes}))
 
 
 # ------------------------------------------------------------- the driver

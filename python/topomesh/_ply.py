@@ -47,16 +47,43 @@ def _write_ply(tmp: str, mesh: Mesh, fields: tuple | None = None) -> None:
     header += [f"property {t} {p}" for p, t, _ in fextra]
     header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[2:]]
     header.append("end_header\n")
-    raw = lambda a: np.ascontiguousarray(a).view(np.uint8).reshape(-1)  # noqa: E731
-    cols = [(4 if ct == "uint" else 1, a.shape[1], a.dtype.itemsize, raw(a)) for _, ct, _, a in lists[:2]]
-    cols += [(0, 1, np.asarray(a).dtype.itemsize, raw(np.asarray(a))) for _, _, a in fextra]
-    cols += [(4 if ct == "uint" else 1, a.shape[1], a.dtype.itemsize, raw(a)) for _, ct, _, a in lists[2:]]
-    body = _ply_join_records(np.ascontiguousarray(sizes, dtype=np.int64), cols)
+    sizes = np.ascontiguousarray(sizes, dtype=np.int64)
+    # corner offset of every chunk start (uniform faces: no prefix sum needed)
+    nf, step = len(sizes), _CHUNK_FACES
+    starts = np.arange(0, nf + step, step).clip(max=nf)
+    if len(sizes) and int(sizes.min()) == top:
+        coff = starts * top
+    else:
+        coff = np.concatenate([[0], np.cumsum(sizes)])[starts]
     vcols = [verts] + [np.asarray(c, dtype=np.float64)[:, None] for _, c in vextra]
     with open(tmp, "wb") as f:
         f.write("\n".join(header).encode("ascii"))
-        f.write(np.ascontiguousarray(np.hstack(vcols), dtype="<f8").tobytes())
-        f.write(body)
+        # the vertex buffer as it is (a view of the mesh's float64 positions) when it has no extra columns
+        f.write(verts if len(vcols) == 1 and verts.dtype == np.dtype("<f8") else np.ascontiguousarray(np.hstack(vcols), dtype="<f8"))
+        # the face records chunk by chunk: a fresh buffer of the whole body (26 MB for 1M triangles)
+        # cost more in page faults than laying the records out did
+        for a, b, ca, cb in zip(starts[:-1], starts[1:], coff[:-1], coff[1:]):
+            cols = [(4 if ct == "uint" else 1, a_.shape[1], a_.dtype.itemsize, _raw(a_[ca:cb])) for _, ct, _, a_ in lists[:2]]
+            cols += [(0, 1, np.asarray(x).dtype.itemsize, _raw(np.asarray(x)[a:b])) for _, _, x in fextra]
+            cols += [(4 if ct == "uint" else 1, a_.shape[1], a_.dtype.itemsize, _raw(a_[ca:cb])) for _, ct, _, a_ in lists[2:]]
+            f.write(_ply_join_records(sizes[a:b], cols))
+
+
+#: Faces per call of ``_ply_join_records`` when writing.
+_CHUNK_FACES = 1 << 16
+
+
+def _raw(a):
+    return np.ascontiguousarray(a).view(np.uint8).reshape(-1)
+
+
+def _bytes_of(path: PathLike) -> bytes:
+    """The file's contents. (A read-only memory map was tried for issue 19:
+    fast on a file read twice, but 5-10x slower than this copy when the file
+    had just been written, the usual save-then-load case: every page faulted
+    in while the kernel was writing the file back.)"""
+    with open(path, "rb") as f:
+        return f.read()
 
 
 def _read_ply(path: PathLike):
@@ -64,8 +91,7 @@ def _read_ply(path: PathLike):
     properties, list property names, comments))``: binary little-endian files
     with NumPy (one ``frombuffer`` per element when every face has one size,
     else the core's record walk), ASCII and big-endian ones with plyfile."""
-    with open(path, "rb") as f:
-        data = f.read()
+    data = _bytes_of(path)
     head = _binary_header(data)
     if head is not None:
         fast = _read_uniform(data, *head)
@@ -98,8 +124,7 @@ def _read_ply(path: PathLike):
 def _read_ply_uniform(path: PathLike):
     """The one-``frombuffer`` read of a binary little-endian PLY whose faces
     all have one size, ``None`` for any other file (see :func:`_read_uniform`)."""
-    with open(path, "rb") as f:
-        data = f.read()
+    data = _bytes_of(path)
     head = _binary_header(data)
     return None if head is None else _read_uniform(data, *head)
 
@@ -110,8 +135,10 @@ def _binary_header(data: bytes):
     element of scalar properties (``x y z`` among them) followed by a face
     element with ``vertex_indices``; properties as ``(name, count dtype or
     None, value dtype)``. ``None`` for anything else (plyfile reads it)."""
+    if data[:4] != b"ply\n":
+        return None
     end = data.find(b"end_header\n")
-    if not data.startswith(b"ply\n") or end < 0:
+    if end < 0:
         return None
     lines = data[:end].decode("ascii", "replace").splitlines()[1:]
     comments = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else "" for ln in lines if ln.split()[:1] == ["comment"]]
@@ -151,7 +178,9 @@ def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
     verts = np.empty((nv, 3), np.float64)  # one strided copy per column
     for j, c in enumerate("xyz"):
         verts[:, j] = vrec[c]
-    return verts, {p: vrec[p] for p in vdt.names}, vdt
+    # x, y, z as views of the copy; the others copied out of the records
+    props = {p: verts[:, "xyz".index(p)] if p in ("x", "y", "z") else np.array(vrec[p]) for p in vdt.names}
+    return verts, props, vdt
 
 
 def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
@@ -188,7 +217,7 @@ def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops
     # the index columns are copied once, straight from the strided records to int64
     idx = faces["vertex_indices"].astype(np.int64).reshape(-1)
     twins = faces["corner_twins"].astype(np.int64).reshape(-1) if "corner_twins" in faces.dtype.names else None
-    fp = {p: idx if p == "vertex_indices" else twins if p == "corner_twins" else faces[p].reshape(-1) if c is not None else faces[p]
+    fp = {p: idx if p == "vertex_indices" else twins if p == "corner_twins" else np.array(faces[p].reshape(-1) if c is not None else faces[p])
           for p, c, _ in fprops}
     lists = {p for p, c, _ in fprops if c is not None}
     return verts, np.full(nf, k, np.int64), idx, twins, (vp, fp, lists, comments)

@@ -493,7 +493,7 @@ impl Mesh {
 /// Half-edge id of every corner with a twin: edges numbered by their first
 /// corner in corner order; that corner gets `2e`, its twin `2e + 1`.
 /// Also returns the number of edges.
-fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
+pub(crate) fn number_halfedges(twin: &[u32]) -> (Vec<u32>, usize) {
     let n = twin.len();
     let is_first = |c: usize| twin[c] != NONE && twin[c] as usize > c;
     // parallel exclusive scan of edge starts over fixed chunks

@@ -98,6 +98,70 @@ impl Mesh {
         Ok(m)
     }
 
+    /// A mesh from faces listed as corners (`sizes`, the tail vertex `cv` of
+    /// every corner) and the half-edge `ids` the caller numbered them with in
+    /// closed form (a bijection onto `0..cv.len()`, twins `2e` and `2e + 1`):
+    /// the columns are filled face by face in parallel, each vertex's `v_out`
+    /// is its first corner, `holes` marks faces. What
+    /// [`Mesh::from_corner_twins`] gives for the same corners when `ids` are
+    /// its numbering (edges by first corner), without pairing, numbering or
+    /// checking twins; no point-spheres. Checked as [`Mesh::from_columns`].
+    pub fn from_corner_ids(pos: Vec<DVec3>, sizes: &[u32], cv: &[u32], ids: &[u32], holes: Vec<bool>) -> Result<Mesh> {
+        let (nc, nf, nv) = (cv.len(), sizes.len(), pos.len());
+        let bad = |what: &str| Err(MeshError::Invariant(format!("direct build: {what}")));
+        if ids.len() != nc || holes.len() != nf || nc % 2 != 0 || nc > super::MAX_ELEMENTS || nf > super::MAX_ELEMENTS {
+            return bad("corner, id and face counts disagree");
+        }
+        let mut off = Vec::with_capacity(nf + 1);
+        let mut acc = 0usize;
+        off.push(0u32);
+        for &k in sizes {
+            acc += k as usize;
+            if k == 0 || acc > nc {
+                return bad("face sizes do not cover the corners");
+            }
+            off.push(acc as u32);
+        }
+        if acc != nc || !in_range(ids, nc, None) || !in_range(cv, nv, None) {
+            return bad("a corner's id or vertex is out of range");
+        }
+        let mut c = Columns::new(pos, nc, nf);
+        c.f_hole = holes;
+        {
+            let sp = |v: &mut Vec<u32>| crate::schemes::hosts::SyncPtr(v.as_mut_ptr());
+            let (pn, pp, pv, pf, ps) = (sp(&mut c.he_next), sp(&mut c.he_prev), sp(&mut c.he_vert), sp(&mut c.he_face), sp(&mut c.f_start));
+            (0..nf).into_par_iter().with_min_len(1024).for_each(|f| {
+                let (a, b) = (off[f] as usize, off[f + 1] as usize);
+                // SAFETY: `ids` is a bijection (the caller's contract; a
+                // duplicate would leave another id unwritten, which the
+                // debug validation reports), so every half-edge and face is
+                // written by one task.
+                unsafe {
+                    *ps.get().add(f) = ids[a];
+                    for k in a..b {
+                        let (i, n) = (ids[k], ids[if k + 1 == b { a } else { k + 1 }]);
+                        *pn.get().add(i as usize) = n;
+                        *pp.get().add(n as usize) = i;
+                        *pv.get().add(i as usize) = cv[k];
+                        *pf.get().add(i as usize) = f as u32;
+                    }
+                }
+            });
+        }
+        // every vertex's first corner, as `from_corner_twins` picks it
+        let mut seen = vec![false; nv];
+        for (k, &v) in cv.iter().enumerate() {
+            if !seen[v as usize] {
+                seen[v as usize] = true;
+                c.v_out[v as usize] = ids[k];
+            }
+        }
+        if let Some(v) = seen.iter().position(|&s| !s) {
+            return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
+        }
+        Mesh::from_columns(c)
+    }
+
     /// Gives the columns back for reuse (e.g. as the next level's scratch).
     pub fn into_columns(self) -> Columns {
         Columns {
@@ -130,5 +194,24 @@ mod tests {
         c.he_face.pop();
         assert!(Mesh::from_columns(c).unwrap_err().to_string().contains("lengths"));
         assert_eq!(Mesh::from_columns(Mesh::new().into_columns()).unwrap(), Mesh::new());
+    }
+
+    /// The cube from its exported corners and the half-edge ids of its own
+    /// corners: the same mesh; bad ids, sizes and unused vertices are refused.
+    #[test]
+    fn corner_ids_rebuild_and_refuse() {
+        let m = primitives::cube();
+        let p = m.to_polygons();
+        let ids: Vec<u32> = m.faces().flat_map(|f| m.face_halfedges(f).map(|h| h.0).collect::<Vec<_>>()).collect();
+        let holes = vec![false; p.sizes.len()];
+        let back = Mesh::from_corner_ids(m.pos.clone(), &p.sizes, &p.indices, &ids, holes.clone()).unwrap();
+        assert_eq!(back, m);
+        let mut bad = ids.clone();
+        bad[0] = 99;
+        assert!(Mesh::from_corner_ids(m.pos.clone(), &p.sizes, &p.indices, &bad, holes.clone()).is_err());
+        assert!(Mesh::from_corner_ids(m.pos.clone(), &p.sizes[1..], &p.indices, &ids, holes[1..].to_vec()).is_err());
+        let mut pos = m.pos.clone();
+        pos.push(DVec3::ZERO);
+        assert!(Mesh::from_corner_ids(pos, &p.sizes, &p.indices, &ids, holes).unwrap_err().to_string().contains("not used"));
     }
 }

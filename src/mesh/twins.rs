@@ -26,7 +26,9 @@
 //! `close_boundaries=True` and the operators; edge and half-edge ids are
 //! renumbered by first exported corner, as every constructor does.
 
-use super::{FaceStart, Mesh, BuildOptions, NONE, MAX_ELEMENTS};
+use super::{Mesh, BuildOptions, NONE, MAX_ELEMENTS};
+#[cfg(test)]
+use super::FaceStart;
 use crate::error::{MeshError, Result};
 use glam::DVec3;
 
@@ -35,6 +37,91 @@ impl Mesh {
     /// `to_polygons().indices`; `-1` for a boundary side (twin in a hole face),
     /// `-2` for a point-sphere's lone corner. See the module docs.
     pub fn corner_twins(&self) -> Vec<i64> {
+        use rayon::prelude::*;
+        const BLOCK: usize = 4096;
+        let nf = self.n_faces();
+        let next = &self.he_next;
+        // walk 1, per block of faces in parallel: every half-edge's exported
+        // corner counted from its block's first, and the block's corner count
+        let mut pos_of = vec![NONE; self.n_halfedges()];
+        let counts: Vec<u32> = {
+            let p = crate::schemes::hosts::SyncPtr(pos_of.as_mut_ptr());
+            (0..nf.div_ceil(BLOCK))
+                .into_par_iter()
+                .map(|b| {
+                    let mut k = 0u32;
+                    for f in b * BLOCK..((b + 1) * BLOCK).min(nf) {
+                        let s = self.f_start[f];
+                        if self.f_hole[f] {
+                            continue;
+                        }
+                        if s & super::POINT != 0 {
+                            k += 1;
+                            continue;
+                        }
+                        let mut h = s;
+                        loop {
+                            // SAFETY: every half-edge belongs to one face, whose block alone writes it.
+                            unsafe { *p.get().add(h as usize) = k };
+                            k += 1;
+                            h = next[h as usize];
+                            if h == s {
+                                break;
+                            }
+                        }
+                    }
+                    k
+                })
+                .collect()
+        };
+        let mut base = Vec::with_capacity(counts.len() + 1);
+        let mut acc = 0u32;
+        base.push(0);
+        for c in &counts {
+            acc += c;
+            base.push(acc);
+        }
+        // walk 2: each corner's twin, its block's base added
+        let mut out = vec![0i64; acc as usize];
+        let mut parts = Vec::with_capacity(counts.len());
+        let mut rest = &mut out[..];
+        for (b, &c) in counts.iter().enumerate() {
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(c as usize);
+            parts.push((b, head));
+            rest = tail;
+        }
+        let face = &self.he_face;
+        parts.into_par_iter().for_each(|(b, part)| {
+            let mut k = 0;
+            for f in b * BLOCK..((b + 1) * BLOCK).min(nf) {
+                let s = self.f_start[f];
+                if self.f_hole[f] {
+                    continue;
+                }
+                if s & super::POINT != 0 {
+                    part[k] = -2;
+                    k += 1;
+                    continue;
+                }
+                let mut h = s;
+                loop {
+                    let t = (h ^ 1) as usize;
+                    let local = pos_of[t];
+                    part[k] = if local == NONE { -1 } else { (base[face[t] as usize / BLOCK] + local) as i64 };
+                    k += 1;
+                    h = next[h as usize];
+                    if h == s {
+                        break;
+                    }
+                }
+            }
+        });
+        out
+    }
+
+    /// [`Mesh::corner_twins`] as it was written first, sequentially: the reference of its test.
+    #[cfg(test)]
+    pub(crate) fn corner_twins_sequential(&self) -> Vec<i64> {
         let mut pos_of = vec![NONE; self.n_halfedges()];
         let mut k = 0u32;
         for f in self.faces() {

@@ -58,11 +58,23 @@ impl PyMesh {
     /// `(face_sizes, face_indices)` as int64, computed once.
     fn polygons(&self, py: Python<'_>) -> &(Vec<i64>, Vec<i64>) {
         self.cache.polygons.get_or_init(|| {
-            py.detach(|| {
-                let p = self.inner.to_polygons();
-                (p.sizes.iter().map(|&s| s as i64).collect(), p.indices.iter().map(|&s| s as i64).collect())
-            })
+            // written as int64 in parallel, then viewed (never copied) by the getters
+            py.detach(|| self.inner.polygons_i64())
         })
+    }
+
+    /// `triangles()` through the full triangulation (faces other than plain triangles).
+    fn triangles_general<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
+        let (t, f) = super::run_interruptible(py, || {
+            let t = self.inner.triangles();
+            crate::cancel::check().map(|()| t)
+        })?;
+        let tris = u32_rows(py, &t).into_any();
+        if return_faces {
+            Ok((tris, i64_array(py, f.iter().map(|&x| x as i64))).into_pyobject(py)?.into_any())
+        } else {
+            Ok(tris)
+        }
     }
 
     fn twins(&self, py: Python<'_>) -> &Vec<i64> {
@@ -391,15 +403,20 @@ impl PyMesh {
     #[pyo3(signature = (return_faces = false))]
     fn triangles<'py>(&self, py: Python<'py>, return_faces: bool) -> PyResult<Bound<'py, PyAny>> {
         // all-triangle meshes: the faces themselves, straight into one buffer (issue 19)
-        if py.detach(|| self.inner.triangles_are_faces()) {
-            let nf = self.inner.n_faces();
-            // SAFETY: every entry is written below before the array is returned.
+        // (checked while written: one walk, the multi-edge search beside it)
+        let nf = self.inner.n_faces();
+        if self.inner.may_be_plain_triangles() {
+            // SAFETY: every entry is written before the array is returned; when
+            // the faces turn out not to be the triangles, the array is dropped.
             let arr = unsafe { PyArray2::<i64>::new(py, [nf, 3], false) };
-            {
+            let plain = {
                 use numpy::PyArrayMethods;
                 let mut rw = arr.readwrite();
                 let out = rw.as_slice_mut().map_err(|e| arg_err(e.to_string()))?;
-                py.detach(|| self.inner.write_triangle_faces(out));
+                py.detach(|| self.inner.write_triangle_faces_if_plain(out))
+            };
+            if !plain {
+                return self.triangles_general(py, return_faces);
             }
             let tris = arr.into_any();
             return if return_faces {
@@ -408,16 +425,7 @@ impl PyMesh {
                 Ok(tris)
             };
         }
-        let (t, f) = super::run_interruptible(py, || {
-            let t = self.inner.triangles();
-            crate::cancel::check().map(|()| t)
-        })?;
-        let tris = u32_rows(py, &t).into_any();
-        if return_faces {
-            Ok((tris, i64_array(py, f.iter().map(|&x| x as i64))).into_pyobject(py)?.into_any())
-        } else {
-            Ok(tris)
-        }
+        self.triangles_general(py, return_faces)
     }
 
     /// A closed triangle mesh of this mesh: ``(vertices, triangles, faces)``.

@@ -507,8 +507,27 @@ fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         }
     })?;
     let pos = stencils.apply_points(&m.pos)?;
-    let mut mesh = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
-    mesh.f_hole[..nf].copy_from_slice(&m.f_hole);
+    // half-edge ids in closed form, the numbering `from_corner_twins` gave
+    // these corners (edges by first corner, whose twin comes later): every
+    // F-block corner is first (its twin lies in the E or V block), so corner
+    // c < eb gets 2c; an E-face's sides 1 and 3 (towards the V block) are
+    // first, ranked 2e and 2e + 1 after the F block; every other corner's
+    // twin comes earlier, and it gets that twin's id + 1
+    let first_id = |c: usize| {
+        if c < eb as usize {
+            2 * c as u32
+        } else {
+            let (e, j) = ((c - eb as usize) / 4, (c - eb as usize) % 4);
+            2 * (eb + 2 * e as u32 + (j == 3) as u32)
+        }
+    };
+    let ids: Vec<u32> = (0..nc).into_par_iter().with_min_len(super::hosts::MIN_LEN).map(|c| {
+        let t = tw[c] as usize;
+        if t > c { first_id(c) } else { first_id(t) + 1 }
+    }).collect();
+    let mut holes = vec![false; sizes.len()];
+    holes[..nf].copy_from_slice(&m.f_hole);
+    let mesh = Mesh::from_corner_ids(pos, &sizes, &cv, &ids, holes)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(nh + b, mesh.n_edges(), nf + ne + nv);
         o.vertex_kind.extend(fl.fh.iter().map(|&h| if hole(h as usize) { EDGE } else { FACE }));

@@ -34,8 +34,8 @@
 //! The dodecahedron gives 12 pentagons and 20 hexagons (the truncated
 //! icosahedron of Fig. 1); the icosahedron 20 triangles and 12 decagons.
 //!
-//! Built in one pass with [`Mesh::from_corner_twins`]: new vertex `h` is the
-//! one of old half-edge `h`; faces are `[front faces in old face order |
+//! Built in one pass, straight into the mesh columns
+//! (`face_vertex_columns.rs`): new vertex `h` is the one of old half-edge `h`; faces are `[front faces in old face order |
 //! vertex faces in old vertex order]`. Self-loops, one-gons, two-gons,
 //! multi-edges and repeated vertices need no special case. Point-spheres
 //! (no edge to act on) are copied unchanged. O(output) time and memory.
@@ -60,12 +60,12 @@
 //! old edge → (EDGE, e). Holes are kept on every path, so open meshes get
 //! stencils and origins too; there is no sharpness to carry.
 
-use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout, MIN_LEN};
+use super::hosts::{FaceLayout, VertexLayout, MIN_LEN};
 use super::corner_origins::edge_origins_by_corner;
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
-use crate::mesh::{FaceId, Mesh, NONE};
+use crate::mesh::{FaceId, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -84,97 +84,55 @@ pub fn default_tension(n: usize) -> f64 {
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m)?;
     let nh = m.n_halfedges();
     let nf = m.n_faces();
-    let (next, vert, face) = m.halfedge_columns();
+    let (_, vert, _) = m.halfedge_columns();
     let pos = m.positions();
 
-    // ---- per-face sums of the edge points p_m (relative to the face's first vertex)
-    #[derive(Clone, Copy, Default)]
-    struct Sums {
-        origin: DVec3,
-        s: DVec3,
-        c: DVec3,
-        sn: DVec3,
-    }
-    let sums: Vec<Sums> = (0..nf)
-        .into_par_iter()
-        .map(|f| {
-            let hs = fl.corners(f);
-            // cancelled: the check below reports it
-            if crate::cancel::requested() {
-                return Sums::default();
-            }
-            let Some(&h0) = hs.first() else {
-                return Sums::default(); // a point-sphere face
-            };
-            let n = hs.len() as f64;
-            let origin = pos[vert[h0 as usize] as usize];
-            let mut out = Sums { origin, ..Sums::default() };
-            for (k, &h) in hs.iter().enumerate() {
-                let h = h as usize;
-                let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
-                let th = std::f64::consts::TAU * k as f64 / n;
-                out.s += p;
-                out.c += p * th.cos();
-                out.sn += p * th.sin();
-            }
-            out
-        })
-        .collect();
-    crate::cancel::check()?;
-
-    // ---- new positions: [one per old half-edge | point-spheres]
-    let mut new_pos: Vec<DVec3> = (0..nh)
-        .into_par_iter()
-        .map(|h| {
-            if crate::cancel::requested() {
-                return DVec3::ZERO;
-            }
-            let f = face[h] as usize;
-            let nn = fl.degree(f);
+    // ---- new positions, one per old half-edge, face by face: the sums of the
+    // face's edge points p_m (relative to its first vertex), then eq. 2 per corner
+    let mut new_pos = vec![DVec3::ZERO; nh];
+    let np = super::hosts::SyncPtr(new_pos.as_mut_ptr());
+    (0..nf).into_par_iter().with_min_len(super::hosts::MIN_LEN / 4).for_each(|f| {
+        let hs = fl.corners(f);
+        // cancelled: the check below reports it; a point-sphere face has no corner
+        if crate::cancel::requested() || hs.is_empty() {
+            return;
+        }
+        let nn = hs.len();
+        let origin = pos[vert[hs[0] as usize] as usize];
+        let (mut s, mut c, mut sn) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        for (k, &h) in hs.iter().enumerate() {
+            let h = h as usize;
+            let p = edge_point(pos, vert[h], vert[h ^ 1], t) - origin;
+            let (cos, sin) = super::hosts::turn_cos_sin(k, nn);
+            s += p;
+            c += p * cos;
+            sn += p * sin;
+        }
+        // one-gons (section 3's second condition) and holes (module docs) keep p
+        let a = if nn == 1 || m.is_hole(FaceId(f as u32)) { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
+        let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
+        for (k, &h) in hs.iter().enumerate() {
+            let h = h as usize;
             let p = edge_point(pos, vert[h], vert[h ^ 1], t);
-            // one-gons (section 3's second condition) and holes (module docs) keep p
-            let a = if nn == 1 || m.is_hole(FaceId(f as u32)) { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
-            if a == 1.0 {
-                return p;
-            }
-            let sm = &sums[f];
-            let p = p - sm.origin;
-            let th = std::f64::consts::TAU * fl.local(h as u32, f as u32) as f64 / nn as f64;
-            let c1 = (1.0 - a) / (3.0 * nn as f64 - 5.0);
-            let rest = 3.0 * sm.s - 5.0 * p + 2.0 * (th.cos() * sm.c + th.sin() * sm.sn);
-            sm.origin + a * p + c1 * rest
-        })
-        .collect();
+            let q = if a == 1.0 {
+                p
+            } else {
+                let p = p - origin;
+                let (cos, sin) = super::hosts::turn_cos_sin(k, nn);
+                let rest = 3.0 * s - 5.0 * p + 2.0 * (cos * c + sin * sn);
+                origin + a * p + c1 * rest
+            };
+            // SAFETY: every half-edge belongs to one face, whose task alone writes it.
+            unsafe { *np.get().add(h) = q };
+        }
+    });
     crate::cancel::check()?;
 
-    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex]
-    let faces = FaceThenVertexFaces::new(m, &fl, &vl, 1, 2, &mut new_pos)?;
-    let out_off = &faces.off;
-    let vb = faces.vertex_base();
-    let n_corners = vb as usize + 2 * nh;
-    let mut cv = vec![0u32; n_corners];
-    let mut tw = vec![NONE; n_corners];
-    let front = |h: usize| out_off[face[h] as usize] + fl.local(h as u32, face[h]) as u32;
-    // corners 2j and 2j+1 of the face of vertex w for its j-th outgoing half-edge g:
-    // v'_g, then v'_{prev g} (the back face's edge g -> prev g, then the inserted edge)
-    let vc_even = |g: usize| vb + 2 * vl.vidx[g];
-    for h in 0..nh {
-        crate::cancel::poll(h)?;
-        let hp = m.he_prev[h] as usize;
-        let hn = next[h] as usize;
-        let cf = front(h) as usize;
-        cv[cf] = h as u32;
-        tw[cf] = vc_even(hn);
-        let ce = vc_even(h) as usize;
-        cv[ce] = h as u32;
-        tw[ce] = front(hp);
-        cv[ce + 1] = hp as u32;
-        tw[ce + 1] = vc_even(next[hp ^ 1] as usize) + 1;
-    }
-    faces.build(m, new_pos, cv, &tw)
+    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
+    // written straight into the columns
+    super::face_vertex_columns::honeycomb_columns(m, &fl, new_pos)
 }
 
 /// One step with what `req` asks for (see the module docs); without
@@ -379,6 +337,9 @@ mod tests {
         for n in 1..=20usize {
             for k in 0..n {
                 assert_eq!(super::super::hosts::turn_cos(k, n).to_bits(), (std::f64::consts::TAU * k as f64 / n as f64).cos().to_bits(), "n = {n}, k = {k}");
+                let (c, s) = super::super::hosts::turn_cos_sin(k, n);
+                let th = std::f64::consts::TAU * k as f64 / n as f64;
+                assert_eq!((c.to_bits(), s.to_bits()), (th.cos().to_bits(), th.sin().to_bits()), "n = {n}, k = {k}");
             }
         }
     }

@@ -5,6 +5,10 @@ pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
 mod primal_columns;
+mod face_vertex_columns;
+mod fan_columns;
+#[cfg(test)]
+mod twin_reference;
 pub(crate) mod corner_origins;
 pub mod corner_transfer;
 pub mod creases;

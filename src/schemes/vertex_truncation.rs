@@ -38,7 +38,8 @@
 //! at every iteration; the regular octahedron and icosahedron do too by
 //! symmetry (Fig. 5). Other input may give non-planar vertex faces.
 //!
-//! Built in one pass with [`Mesh::from_corner_twins`]: for `ratio < 1/2` new
+//! Built in one pass, straight into the mesh columns
+//! (`face_vertex_columns.rs`): for `ratio < 1/2` new
 //! vertex `h` is the cut point of old half-edge `h` near its tail; for
 //! `ratio = 1/2` new vertex `e` is the midpoint of old edge `e`. Faces are
 //! `[old faces in order | vertex faces in old vertex order]`. Self-loops,
@@ -62,12 +63,12 @@
 //! (EDGE, e), a cut (it cuts a corner of a face) → (FACE, that face). Holes
 //! are kept on every path, so open meshes get stencils and origins too.
 
-use super::hosts::{FaceLayout, FaceThenVertexFaces, VertexLayout};
+use super::hosts::{FaceLayout, VertexLayout};
 use super::corner_origins::edge_origins_by_corner;
 use super::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -110,59 +111,24 @@ pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     mode.check()?;
     let r = mode.ratio();
     let fl = FaceLayout::new(m)?;
-    let vl = VertexLayout::new(m)?;
     let nh = m.n_halfedges();
-    let (next, vert, face) = m.halfedge_columns();
+    let (_, vert, _) = m.halfedge_columns();
     let pos = m.positions();
     let merge = r == 0.5;
 
     // ---- positions: [cut points (per half-edge, or per edge when merged) | point-spheres]
     // (cancelled: zeros, the check below reports it)
     let stop = crate::cancel::requested;
-    let mut new_pos: Vec<DVec3> = if merge {
+    let new_pos: Vec<DVec3> = if merge {
         (0..nh / 2).into_par_iter().map(|e| if stop() { DVec3::ZERO } else { 0.5 * (pos[vert[2 * e] as usize] + pos[vert[2 * e + 1] as usize]) }).collect()
     } else {
         (0..nh).into_par_iter().map(|h| if stop() { DVec3::ZERO } else { (1.0 - r) * pos[vert[h] as usize] + r * pos[vert[h ^ 1] as usize] }).collect()
     };
     crate::cancel::check()?;
 
-    // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex]
-    let per_corner = if merge { 1 } else { 2 };
-    let faces = FaceThenVertexFaces::new(m, &fl, &vl, per_corner, 1, &mut new_pos)?;
-    let out_off = &faces.off;
-    let vb = faces.vertex_base();
-    let n_corners = vb as usize + nh;
-    let mut cv = vec![0u32; n_corners];
-    let mut tw = vec![NONE; n_corners];
-    // first corner of half-edge h in its old face's image
-    let fc = |h: usize| out_off[face[h] as usize] + per_corner * fl.local(h as u32, face[h]) as u32;
-    // corner of outgoing half-edge g in its tail's vertex face
-    let vc = |g: usize| vb + vl.vidx[g];
-    for h in 0..nh {
-        crate::cancel::poll(h)?;
-        let hp = m.he_prev[h] as usize;
-        let hn = next[h] as usize;
-        let c = fc(h) as usize;
-        if merge {
-            // face: m_e(h) -> m_e(next h); vertex face: m_e(g) -> m_e(prev g)
-            cv[c] = (h >> 1) as u32;
-            tw[c] = vc(hn);
-            let cg = vc(h) as usize;
-            cv[cg] = (h >> 1) as u32;
-            tw[cg] = fc(hp);
-        } else {
-            // face: p_h -> p_twin(h) (along the old edge) -> p_next(h) (the cut)
-            cv[c] = h as u32;
-            tw[c] = fc(h ^ 1);
-            cv[c + 1] = (h ^ 1) as u32;
-            tw[c + 1] = vc(hn);
-            // vertex face: p_g -> p_rotate(g) = p_twin(prev g)
-            let cg = vc(h) as usize;
-            cv[cg] = h as u32;
-            tw[cg] = fc(hp) + 1;
-        }
-    }
-    faces.build(m, new_pos, cv, &tw)
+    // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex],
+    // written straight into the columns
+    super::face_vertex_columns::truncation_columns(m, &fl, new_pos, merge)
 }
 
 /// One step with what `req` asks for (see the module docs); without

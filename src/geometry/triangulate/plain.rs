@@ -31,6 +31,45 @@ impl Mesh {
             && multi_edge_copies(self).is_empty()
     }
 
+    /// Necessary for [`Mesh::triangles_are_faces`], in constant time: three
+    /// half-edges per face (so a mesh with other faces is not walked, nor its
+    /// edges sorted for multi-edges) and no hole face.
+    pub fn may_be_plain_triangles(&self) -> bool {
+        self.n_halfedges() == 3 * self.n_faces() && self.n_holes() == 0
+    }
+
+    /// [`Mesh::triangles_are_faces`] and [`Mesh::write_triangle_faces`] in
+    /// one walk over the faces, with the multi-edge search running beside
+    /// it (`rayon::join`): on an all-triangle mesh the check and the write
+    /// had been two walks and a sequential sort one after the other. Returns
+    /// whether the faces are the triangles; when not, `out` holds garbage.
+    pub fn write_triangle_faces_if_plain(&self, out: &mut [i64]) -> bool {
+        assert_eq!(out.len(), 3 * self.n_faces(), "write_triangle_faces_if_plain: buffer size");
+        if !self.may_be_plain_triangles() {
+            return false;
+        }
+        let (next, vert) = (&self.he_next, &self.he_vert);
+        let (plain, no_multi) = rayon::join(
+            || {
+                out.par_chunks_mut(3 * BLOCK).enumerate().all(|(k, chunk)| {
+                    chunk.chunks_exact_mut(3).enumerate().all(|(i, row)| {
+                        let s = self.f_start[k * BLOCK + i];
+                        if s & POINT != 0 {
+                            return false;
+                        }
+                        let a = next[s as usize];
+                        let b = next[a as usize];
+                        let (x, y, z) = (vert[s as usize], vert[a as usize], vert[b as usize]);
+                        (row[0], row[1], row[2]) = (x as i64, y as i64, z as i64);
+                        a != s && b != s && next[b as usize] == s && x != y && y != z && x != z
+                    })
+                })
+            },
+            || multi_edge_copies(self).is_empty(),
+        );
+        plain && no_multi
+    }
+
     /// Writes every face's three vertices, from its first corner, into
     /// `out` (`3·n_faces()` entries). Only meaningful where
     /// [`Mesh::triangles_are_faces`] holds.

@@ -345,3 +345,28 @@ fn grouped_retry_equals_the_sequential_pass() {
     // the corpus does exercise the retry (added points only come from it here)
     assert!(redone_faces > 1000, "{redone_faces}");
 }
+
+/// The one-walk fast path agrees with the check and the write it replaced:
+/// the same answer on the corpus, open meshes and multi-edged triangle
+/// meshes, and the same triangles where it says yes.
+#[test]
+fn write_if_plain_agrees_with_check_then_write() {
+    use crate::schemes::hosts::test_meshes as tm;
+    let mut meshes = tm::corpus();
+    meshes.extend(tm::open_meshes());
+    meshes.push(("ico_loop", schemes::loop_subdivision::loop_subdivision(&primitives::icosahedron()).unwrap()));
+    meshes.push(("torus_loop", schemes::loop_subdivision::loop_subdivision(&primitives::torus(6, 5, 1.0, 0.3).unwrap()).unwrap()));
+    let mut yes = 0;
+    for (name, m) in &meshes {
+        let mut got = vec![-1i64; 3 * m.n_faces()];
+        let plain = m.write_triangle_faces_if_plain(&mut got);
+        assert_eq!(plain, m.triangles_are_faces(), "{name}");
+        if plain {
+            let mut want = vec![0i64; 3 * m.n_faces()];
+            m.write_triangle_faces(&mut want);
+            assert_eq!(got, want, "{name}");
+            yes += 1;
+        }
+    }
+    assert!(yes >= 2);
+}

@@ -176,7 +176,13 @@ fn finish(
     corner_origin: Vec<(u8, u32)>,
 ) -> Result<Level> {
     let pos = st.apply_points(&m.pos)?;
-    let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
+    // the corners' half-edge ids as `from_corner_twins` numbers them (edges
+    // by first corner, a parallel scan), then the columns straight from them:
+    // the twins are this module's own, so the general builder's pairing
+    // checks and umbrella walk are skipped (the tests validate every output)
+    let (ids, _) = crate::mesh::build::number_halfedges(&tw);
+    crate::cancel::check()?; // a cancelled numbering is garbage
+    let mesh = Mesh::from_corner_ids(pos, &sizes, &cv, &ids, holes)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         (o.vertex_kind, o.vertex) = vertex_origin.into_iter().unzip();
