@@ -13,6 +13,15 @@ use crate::mesh::{Mesh, NONE};
 use crate::schemes::hosts::{check_output_size, FaceLayout};
 use glam::DVec3;
 
+/// How a keyed build ends: its mesh, or the dual of its mesh built
+/// without it ([`Out::finish_dual`], for the compositions that end with a
+/// dual: `t = dkd`, `j = da`, TopMod's "dual + X + dual").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Then {
+    Mesh,
+    Dual,
+}
+
 /// Output under construction (see the module docs).
 #[cfg_attr(test, derive(Clone))]
 pub(crate) struct Out {
@@ -141,6 +150,14 @@ impl Out {
         out
     }
 
+    /// [`Out::finish`] or [`Out::finish_dual`].
+    pub fn finish_then(self, scheme: &str, then: Then) -> Result<Mesh> {
+        match then {
+            Then::Mesh => self.finish(scheme),
+            Then::Dual => self.finish_dual(scheme),
+        }
+    }
+
     fn finish_direct(self, scheme: &str) -> Result<Mesh> {
         let n = self.cv.len();
         let nv = self.pos.len();
@@ -148,10 +165,12 @@ impl Out {
         check_output_size(scheme, n, nv)?;
         crate::cancel::check()?;
         let bad = |k: u32| MeshError::Invariant(format!("{scheme}: output edge {k} does not have exactly two sides (a bug in the scheme)"));
-        // slot[k]: 0 unused, e + 1 after the first side (edge e), DONE after the second;
-        // zeroed memory is mapped lazily, so gaps in the key range cost nothing
-        const DONE: u32 = u32::MAX;
-        let mut slot = vec![0u32; self.n_keys];
+        // slot[k]: 0 unused; after the first side (edge e, running to vertex
+        // w) `e + 1 | w << 32`, so its twin's direction is checked when it
+        // comes, without a pass of its own; DONE after the second. Zeroed
+        // memory is mapped lazily, so gaps in the key range cost nothing.
+        const DONE: u64 = u64::MAX;
+        let mut slot = vec![0u64; self.n_keys];
         // every corner's side pairs with another one: n half-edges exactly
         let mut m = Mesh {
             pos: self.pos,
@@ -175,24 +194,32 @@ impl Out {
             let mut last = NONE;
             for c in s..e {
                 let k = self.key[c];
+                let v = self.cv[c];
+                let w = self.cv[if c + 1 < e { c + 1 } else { s }];
                 let sl = slot.get_mut(k as usize).ok_or_else(|| bad(k))?;
                 let h = match *sl {
                     0 => {
                         // 2 * ne < n while corners remain: no overflow (check_output_size)
-                        *sl = ne + 1;
                         ne += 1;
+                        *sl = ne as u64 | (w as u64) << 32;
                         2 * (ne - 1)
                     }
                     DONE => return Err(bad(k)),
                     o => {
                         *sl = DONE;
-                        2 * (o - 1) + 1
+                        let h = 2 * (o as u32 - 1) + 1;
+                        // twins run between the same vertices in opposite
+                        // directions: this side leaves the first one's head
+                        // and runs to its tail
+                        if (o >> 32) as u32 != v || m.he_vert.get((h ^ 1) as usize) != Some(&w) {
+                            return Err(opposite(scheme, h / 2));
+                        }
+                        h
                     }
                 };
                 if h as usize >= n {
                     return Err(bad(k)); // more edges than half the corners: some key has one side
                 }
-                let v = self.cv[c];
                 let vo = m.v_out.get_mut(v as usize).ok_or_else(|| MeshError::InvalidArgument(format!("face {f}: corner {c} refers to vertex {v} out of range")))?;
                 if *vo == NONE {
                     *vo = h; // the first corner of each vertex, as from_corner_twins
@@ -217,14 +244,6 @@ impl Out {
             return Err(bad(k as u32));
         }
         crate::cancel::check()?;
-        // twins run between the same vertices in opposite directions: the
-        // tail of h ^ 1 is the head of h (from both sides, so the heads too)
-        if let Some(h) = (0..n).find(|&h| m.he_vert[h ^ 1] != m.he_vert[m.he_next[h] as usize]) {
-            return Err(MeshError::Invariant(format!(
-                "{scheme}: output edge {} has its two sides in the same direction (a bug in the scheme)",
-                h / 2
-            )));
-        }
         if let Some(v) = m.v_out.iter().position(|&o| o == NONE) {
             return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
         }
@@ -267,27 +286,38 @@ impl Out {
 /// corner (see [`crate::schemes::face_parents`]); `None` when the build did
 /// not name its input or left a face without a source.
 fn step_of(m: &Mesh, face: Vec<u32>, input: Option<(usize, usize)>, keep: usize, vsrc: Option<Vec<u32>>) -> Option<crate::schemes::face_parents::Step> {
+    let hf = m.halfedge_columns().2;
+    step_by(m.n_vertices(), |w| hf[m.v_out[w] as usize], face, input, keep, vsrc)
+}
+
+/// [`step_of`] for an output of `nv` vertices whose first corners lie in
+/// the faces `first_face(w)`.
+fn step_by(nv: usize, first_face: impl Fn(usize) -> u32, face: Vec<u32>, input: Option<(usize, usize)>, keep: usize, vsrc: Option<Vec<u32>>) -> Option<crate::schemes::face_parents::Step> {
     use crate::schemes::face_parents::{Step, VERT};
     let (in_v, in_f) = input?;
     // a source out of range is a bug in a scheme's annotation: record
     // nothing (the data is dropped with a warning) rather than panic later
     let ok = |s: u32| if s & VERT != 0 { ((s & !VERT) as usize) < in_v } else { (s as usize) < in_f };
-    if !face.iter().all(|&s| ok(s)) || keep > in_v || vsrc.as_ref().is_some_and(|v| v.len() != m.n_vertices()) {
+    if !face.iter().all(|&s| ok(s)) || keep > in_v || vsrc.as_ref().is_some_and(|v| v.len() != nv) {
         return None;
     }
-    let hf = m.halfedge_columns().2;
-    let vertex: Vec<u32> = (0..m.n_vertices())
+    let vertex: Vec<u32> = (0..nv)
         .map(|w| {
             if w < keep {
                 VERT | w as u32
             } else if let Some(v) = &vsrc {
                 v[w]
             } else {
-                face[hf[m.v_out[w] as usize] as usize]
+                face[first_face(w) as usize]
             }
         })
         .collect();
     vertex.iter().all(|&s| ok(s)).then_some(Step { in_v, in_f, face, vertex })
+}
+
+/// The error of a key whose two sides run the same way.
+fn opposite(scheme: &str, e: u32) -> MeshError {
+    MeshError::Invariant(format!("{scheme}: output edge {e} has its two sides in the same direction (a bug in the scheme)"))
 }
 
 /// The input's columns and face layout, shared by every scheme built here.
@@ -385,5 +415,6 @@ mod tests {
     }
 }
 
+mod dual;
 #[cfg(test)]
 mod hashes;
