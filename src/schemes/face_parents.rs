@@ -66,16 +66,6 @@ pub(crate) fn recording() -> bool {
     TRACE.with(|t| t.borrow().is_some())
 }
 
-/// Runs `f` with the trace (if any) set aside, so its builds record
-/// nothing (test builds' reference computations).
-#[cfg(test)]
-pub(crate) fn paused<T>(f: impl FnOnce() -> T) -> T {
-    let saved = TRACE.with(|t| t.replace(None));
-    let out = f();
-    TRACE.with(|t| t.replace(saved));
-    out
-}
-
 /// Appends a build's step (`None`: it could not say).
 pub(crate) fn record(s: Option<Step>) {
     TRACE.with(|t| {

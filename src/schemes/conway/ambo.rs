@@ -7,17 +7,11 @@ use super::build::{reserve, Ctx, Out};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
-use crate::schemes::keyed::Then;
 
 /// Ambo (rectify, polyhedronisme `ambo`): a vertex at every edge midpoint,
 /// a face inside every face (same size) and a face around every vertex
 /// (size = valence). V' = E, E' = 2E, F' = F + V.
 pub fn ambo(m: &Mesh) -> Result<Mesh> {
-    ambo_then(m, Then::Mesh)
-}
-
-/// [`ambo`], or its dual built in one go (`j = da`).
-pub(crate) fn ambo_then(m: &Mesh, then: Then) -> Result<Mesh> {
     with_point_spheres("ambo", m, |m| {
         let c = Ctx::new(m)?;
         reserve("ambo", m, c.ne, 2 * c.ne, c.nf + c.nv)?;
@@ -32,7 +26,7 @@ pub(crate) fn ambo_then(m: &Mesh, then: Then) -> Result<Mesh> {
             // side mid(g) -> mid(rotate g) = mid(prev g): C(g) against the face's way
             out.face(c.rotation(v).map(|g| ((g >> 1) as u32, g as u32)));
         }
-        out.finish_then("ambo", then)
+        out.finish("ambo")
     })
 }
 

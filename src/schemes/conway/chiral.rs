@@ -17,7 +17,6 @@ use super::build::{reserve, Ctx, Out};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
-use crate::schemes::keyed::Then;
 use glam::DVec3;
 
 fn third_points(c: &Ctx, pos: &mut Vec<DVec3>) {
@@ -38,11 +37,6 @@ fn edge_run(c: &Ctx, h: usize, pt: impl Fn(usize) -> u32) -> [(u32, u32); 3] {
 /// pentagon `[centre(f), p(h), p(twin h), head(h), p(next h)]`.
 /// V' = V + F + 2E, E' = 5E, F' = 2E; face sizes: 2E pentagons.
 pub fn gyro(m: &Mesh) -> Result<Mesh> {
-    gyro_then(m, Then::Mesh)
-}
-
-/// [`gyro`], or its dual built in one go (`s = dg`).
-pub(crate) fn gyro_then(m: &Mesh, then: Then) -> Result<Mesh> {
     with_point_spheres("gyro", m, |m| {
         let c = Ctx::new(m)?;
         reserve("gyro", m, c.nv + c.nf + c.nh, 5 * c.ne, c.nh)?;
@@ -63,7 +57,7 @@ pub(crate) fn gyro_then(m: &Mesh, then: Then) -> Result<Mesh> {
             let nx = c.next(h);
             out.face([((c.nv + c.face[h] as usize) as u32, h as u32), a, b, d, (pt(nx), nx as u32)]);
         }
-        out.finish_then("gyro", then)
+        out.finish("gyro")
     })
 }
 
@@ -104,11 +98,6 @@ pub fn propellor(m: &Mesh) -> Result<Mesh> {
 /// V' = V + 4E, E' = 7E, F' = F + 2E; face sizes: the input's faces, 2E
 /// hexagons.
 pub fn whirl(m: &Mesh) -> Result<Mesh> {
-    whirl_then(m, Then::Mesh)
-}
-
-/// [`whirl`], or its dual built in one go (`v = dwd`).
-pub(crate) fn whirl_then(m: &Mesh, then: Then) -> Result<Mesh> {
     with_point_spheres("whirl", m, |m| {
         let c = Ctx::new(m)?;
         reserve("whirl", m, c.nv + 2 * c.nh, 7 * c.ne, c.nf + c.nh)?;
@@ -133,6 +122,6 @@ pub(crate) fn whirl_then(m: &Mesh, then: Then) -> Result<Mesh> {
             out.from_face(f);
             out.face(c.corners(f).map(|h| (q(h), h as u32)));
         }
-        out.finish_then("whirl", then)
+        out.finish("whirl")
     })
 }

@@ -21,7 +21,6 @@
 //! gets its apex at the centroid.
 
 use super::build::{reserve, Ctx, In, Out};
-use crate::schemes::keyed::Then;
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE};
 use glam::DVec3;
@@ -29,15 +28,10 @@ use crate::schemes::hosts::with_point_spheres;
 
 /// Kis of every face (`n = None`) or of the faces with `n` corners.
 pub fn kis(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
-    kis_then(m, n, Then::Mesh)
+    with_point_spheres("kis", m, |m| step(m, n))
 }
 
-/// [`kis`], or its dual built in one go (`z = dk`).
-pub(crate) fn kis_then(m: &Mesh, n: Option<usize>, then: Then) -> Result<Mesh> {
-    with_point_spheres("kis", m, |m| step(m, n, then))
-}
-
-fn step(m: &Mesh, n: Option<usize>, then: Then) -> Result<Mesh> {
+fn step(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
     let c = Ctx::new(m)?;
     let chosen = |f: usize| n.map_or(true, |n| c.fl.degree(f) == n);
     let (mut s, mut sigma) = (0usize, 0usize);
@@ -46,7 +40,7 @@ fn step(m: &Mesh, n: Option<usize>, then: Then) -> Result<Mesh> {
         sigma += c.fl.degree(f);
     }
     reserve("kis", m, c.nv + s, c.ne + sigma, c.nf - s + sigma)?;
-    fan("kis", &c, chosen, then, |f| {
+    fan("kis", &c, chosen, |f| {
         let r = c.corners(f).map(|h| c.p(c.tail(h)).distance(c.cen[f])).sum::<f64>() / c.fl.degree(f) as f64;
         c.cen[f] + c.normal(f) * (0.1 * r)
     })
@@ -57,7 +51,7 @@ fn step(m: &Mesh, n: Option<usize>, then: Then) -> Result<Mesh> {
 /// `[tail(h), head(h), apex(f)]`, the other faces stay. Apices follow the
 /// input's vertices in face order; input edge e keeps id e, the spoke of
 /// corner g is E + g.
-pub(crate) fn fan(name: &str, c: &In<'_>, chosen: impl Fn(usize) -> bool, then: Then, apex: impl Fn(usize) -> DVec3) -> Result<Mesh> {
+pub(crate) fn fan(name: &str, c: &In<'_>, chosen: impl Fn(usize) -> bool, apex: impl Fn(usize) -> DVec3) -> Result<Mesh> {
     let mut pos = c.positions(c.nf);
     let mut at = vec![NONE; c.nf];
     let mut sigma = 0;
@@ -84,5 +78,5 @@ pub(crate) fn fan(name: &str, c: &In<'_>, chosen: impl Fn(usize) -> bool, then: 
             out.face([(c.vert[h as usize], h >> 1), (c.vert[h as usize ^ 1], spoke(c.next[h as usize])), (a, spoke(h))]);
         }
     }
-    out.finish_then(name, then)
+    out.finish(name)
 }

@@ -27,9 +27,7 @@
 //! the mirror image of the result on every genus. `d` is
 //! [`crate::schemes::dual`] (face centroids; Hart's `d` in topology:
 //! V' = F, E' = E, F' = V, the face of vertex v has its valence).
-//! Compositions are written once, in [`Op::apply`]; a final dual after a
-//! primitive is built with it in one go ([`Then::Dual`], bit for bit the
-//! dual of the primitive's output, without building that output).
+//! Compositions are written once, in [`Op::apply`].
 //!
 //! Counts (χ = V − E + F, genus and components are kept by every operator;
 //! S the faces of size N, Σ their corners; for `tN`, `nN` the vertices of
@@ -81,7 +79,6 @@ pub use seeds::Seed;
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::dual::dual;
-use crate::schemes::keyed::Then;
 use crate::schemes::hosts::with_point_spheres;
 
 /// One operator of the notation, with its number where it takes one.
@@ -196,21 +193,21 @@ impl Op {
         match self {
             Dual => dual(m),
             Ambo => ambo(m),
-            Truncate(n) => kis::kis_then(&dual(m)?, n, Then::Dual),
+            Truncate(n) => dual(&kis(&dual(m)?, n)?),
             Kis(n) => kis(m, n),
-            Join => ambo::ambo_then(m, Then::Dual),
+            Join => dual(&ambo(m)?),
             Expand => ambo(&ambo(m)?),
-            Ortho => ambo::ambo_then(&ambo(m)?, Then::Dual),
+            Ortho => dual(&ambo(&ambo(m)?)?),
             Gyro => gyro(m),
-            Snub => chiral::gyro_then(m, Then::Dual),
-            Bevel => kis::kis_then(&ambo::ambo_then(m, Then::Dual)?, None, Then::Dual),
-            Meta => kis(&ambo::ambo_then(m, Then::Dual)?, None),
+            Snub => dual(&gyro(m)?),
+            Bevel => dual(&kis(&dual(&ambo(m)?)?, None)?),
+            Meta => kis(&dual(&ambo(m)?)?, None),
             Needle(n) => kis(&dual(m)?, n),
-            Zip(n) => kis::kis_then(m, n, Then::Dual),
+            Zip(n) => dual(&kis(m, n)?),
             Chamfer => chamfer(m),
             Subdivide => subdivide(m),
             Whirl => whirl(m),
-            Volute => chiral::whirl_then(&dual(m)?, Then::Dual),
+            Volute => dual(&whirl(&dual(m)?)?),
             Propellor => propellor(m),
             Quinto => quinto(m),
             Loft(n) => loft(m, n),

@@ -15,7 +15,7 @@
 //! corner h at V + 2E + h. Dual checkerboard is `dual ∘ checkerboard ∘ dual`
 //! (`MainWindow::subdivideDualCheckerBoard`), in `compose`.
 
-use crate::schemes::keyed::{In, Out, Then};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
@@ -23,11 +23,6 @@ use crate::schemes::hosts::with_point_spheres;
 /// TopMod's checkerboard with `thickness` in (0, 0.5] (TopMod clamps to
 /// it; default 0.33). See the module docs.
 pub fn checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
-    checkerboard_then(m, thickness, Then::Mesh)
-}
-
-/// [`checkerboard`], or its dual built in one go (dual checkerboard).
-pub(crate) fn checkerboard_then(m: &Mesh, thickness: f64, then: Then) -> Result<Mesh> {
     if !(thickness.is_finite() && thickness > 0.0 && thickness <= 0.5) {
         return Err(MeshError::InvalidArgument(format!("checkerboard: thickness = {thickness} must be in (0, 0.5]")));
     }
@@ -87,7 +82,7 @@ pub(crate) fn checkerboard_then(m: &Mesh, thickness: f64, then: Then) -> Result<
                 o.end();
             }
         }
-        o.finish_then("checkerboard", then)
+        o.finish("checkerboard")
     })
 }
 

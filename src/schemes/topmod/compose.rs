@@ -1,15 +1,11 @@
 //! TopMod's remeshing schemes that TopMod itself defines as compositions
 //! (`src/MainWindowCallbacks.cc`, the comment "Implemented as …" in each
 //! callback), written once here over the schemes they compose. Counts
-//! follow from the parts': each function's docs give them. A final dual
-//! after a keyed scheme is built with it in one go
-//! ([`crate::schemes::keyed::Then::Dual`]: the same mesh, bit for bit,
-//! without building the scheme's own output first).
+//! follow from the parts': each function's docs give them.
 
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::schemes::dual::dual;
-use crate::schemes::keyed::Then;
 
 /// Root-3 (`subdivideRoot3`: dual + honeycomb + dual): V' = V + F,
 /// E' = 3E, F' = 2E triangles (the √3 connectivity, honeycomb's points).
@@ -30,41 +26,41 @@ pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
 /// dual, dual): pentagonalization's counts, positions the centroids of
 /// centroids.
 pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
-    dual(&super::pentagonal::pentagonalize_then(m, offset, Then::Dual)?)
+    dual(&dual(&super::pentagonal::pentagonalize(m, offset)?)?)
 }
 
 /// Dual pentagonalization (`subdivideDualPentagonal`: dual +
 /// pentagonalization + dual): V' = 2E, E' = 5E, F' = V + F + 2E; histogram:
 /// the input's face sizes, one k-gon per valence-k vertex and 2E triangles.
 pub fn dual_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
-    super::pentagonal::pentagonalize_then(&dual(m)?, offset, Then::Dual)
+    dual(&super::pentagonal::pentagonalize(&dual(m)?, offset)?)
 }
 
 /// Dual pentagon preserving (`subdivideDualPentagonPreserving`: dual +
 /// pentagon preserving + dual). With S the valence sum over the input's
 /// vertices of valence ≥ 3: V' = V + S, E' = 2E + 2S, F' = F + E + S.
 pub fn dual_pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
-    super::pentagonal::pentagon_preserving_then(&dual(m)?, scale, Then::Dual)
+    dual(&super::pentagonal::pentagon_preserving(&dual(m)?, scale)?)
 }
 
 /// 12.6.4 (`subdivide1264`: dual + dual 12.6.4 + dual): V' = V + E + F,
 /// E' = 6E, F' = 4E triangles.
 pub fn remesh_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
-    super::twelve_six_four::dual_12_6_4_then(&dual(m)?, scale, Then::Dual)
+    dual(&super::twelve_six_four::dual_12_6_4(&dual(m)?, scale)?)
 }
 
 /// Dual checkerboard (`subdivideDualCheckerBoard`: dual + checkerboard +
 /// dual): V' = V + 4E, E' = 9E, F' = F + 4E; histogram: the input's face
 /// sizes plus 4E quads (checkerboard's new vertices are 4-valent).
 pub fn dual_checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
-    super::checkerboard::checkerboard_then(&dual(m)?, thickness, Then::Dual)
+    dual(&super::checkerboard::checkerboard(&dual(m)?, thickness)?)
 }
 
 /// Dual hexagon preserving (`subdivideDualHexagonPreserving`: dual, root-4,
 /// dual): V' = V + E, E' = 4E, F' = F + 2E; histogram: the input's face
 /// sizes plus 2E triangles (root-4's inner points are 3-valent).
 pub fn dual_hexagon_preserving(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
-    super::loop_style::root4_then(&dual(m)?, weight, twist, Then::Dual)
+    dual(&super::loop_style::root4(&dual(m)?, weight, twist)?)
 }
 
 /// Doo-Sabin BC (`dooSabinSubdivideBC`: every edge split at its midpoint,

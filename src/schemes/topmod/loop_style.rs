@@ -22,7 +22,7 @@
 //!   F' = F + E; histogram: the input's plus E hexagons. Vertex layout: old
 //!   vertices, then one inner point per half-edge (V + h).
 
-use crate::schemes::keyed::{In, Out, Then};
+use crate::schemes::keyed::{In, Out};
 use super::corner_cutting::cut_face;
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
@@ -91,11 +91,6 @@ pub fn loop_style(m: &Mesh, length: f64) -> Result<Mesh> {
 /// TopMod's root-4 with `weight` and `twist` in [0, 1] (defaults 0). See the
 /// module docs.
 pub fn root4(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
-    root4_then(m, weight, twist, Then::Mesh)
-}
-
-/// [`root4`], or its dual built in one go (dual hexagon preserving).
-pub(crate) fn root4_then(m: &Mesh, weight: f64, twist: f64, then: Then) -> Result<Mesh> {
     unit("root4", "weight", weight)?;
     unit("root4", "twist", twist)?;
     with_point_spheres("root4", m, |m| {
@@ -154,7 +149,7 @@ pub(crate) fn root4_then(m: &Mesh, weight: f64, twist: f64, then: Then) -> Resul
             o.c(inner(t), (nh + t) as u32);
             o.end();
         }
-        o.finish_then("root4", then)
+        o.finish("root4")
     })
 }
 

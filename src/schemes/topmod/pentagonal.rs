@@ -20,7 +20,7 @@
 //!   n-gons (n ≥ 3) kept, H₃ pentagons, a k-gon with k ≤ 2 becomes a 2k-gon.
 //!   Vertex layout: old vertices, midpoints (edge order), inner points.
 
-use crate::schemes::keyed::{In, Out, Then};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
@@ -29,11 +29,6 @@ use glam::DVec3;
 /// TopMod's pentagonalization with `offset` in [0, 1] (default 0). See the
 /// module docs.
 pub fn pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
-    pentagonalize_then(m, offset, Then::Mesh)
-}
-
-/// [`pentagonalize`], or its dual built in one go (dual pentagonalization, cubic pentagonalization).
-pub(crate) fn pentagonalize_then(m: &Mesh, offset: f64, then: Then) -> Result<Mesh> {
     if !(offset.is_finite() && (0.0..=1.0).contains(&offset)) {
         return Err(MeshError::InvalidArgument(format!("pentagonalize: offset = {offset} must be in [0, 1]")));
     }
@@ -66,18 +61,13 @@ pub(crate) fn pentagonalize_then(m: &Mesh, offset: f64, then: Then) -> Result<Me
                 o.end();
             }
         }
-        o.finish_then("pentagonalize", then)
+        o.finish("pentagonalize")
     })
 }
 
 /// TopMod's pentagon preserving remeshing with `scale` in [0, 1] (default
 /// 0.75). See the module docs.
 pub fn pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
-    pentagon_preserving_then(m, scale, Then::Mesh)
-}
-
-/// [`pentagon_preserving`], or its dual built in one go (dual pentagon preserving).
-pub(crate) fn pentagon_preserving_then(m: &Mesh, scale: f64, then: Then) -> Result<Mesh> {
     if !(scale.is_finite() && (0.0..=1.0).contains(&scale)) {
         return Err(MeshError::InvalidArgument(format!("pentagon_preserving: scale = {scale} must be in [0, 1]")));
     }
@@ -132,7 +122,7 @@ pub(crate) fn pentagon_preserving_then(m: &Mesh, scale: f64, then: Then) -> Resu
                 o.end();
             }
         }
-        o.finish_then("pentagon_preserving", then)
+        o.finish("pentagon_preserving")
     })
 }
 

@@ -46,7 +46,7 @@ fn stellate_step(m: &Mesh, offset: f64) -> Result<Mesh> {
     let i = In::new(m)?;
     let c = i.centroids();
     let n = if offset != 0.0 { i.normals() } else { Vec::new() };
-    crate::schemes::conway::kis::fan("stellate", &i, |_| true, crate::schemes::keyed::Then::Mesh, |f| if offset != 0.0 { c[f] + offset * n[f] } else { c[f] })
+    crate::schemes::conway::kis::fan("stellate", &i, |_| true, |f| if offset != 0.0 { c[f] + offset * n[f] } else { c[f] })
 }
 
 /// TopMod's double stellation (`starSubdivide`). See the module docs.

@@ -13,7 +13,7 @@
 //! and 2h + 1 are the points of half-edge h. At `scale` = 1 the quads have
 //! zero width (coincident points), as in TopMod.
 
-use crate::schemes::keyed::{In, Out, Then};
+use crate::schemes::keyed::{In, Out};
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::schemes::hosts::with_point_spheres;
@@ -22,11 +22,6 @@ use glam::DVec3;
 /// TopMod's dual 12.6.4 with `scale` in (0, 1] (default 0.7). See the
 /// module docs.
 pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
-    dual_12_6_4_then(m, scale, Then::Mesh)
-}
-
-/// [`dual_12_6_4`], or its dual built in one go (12.6.4).
-pub(crate) fn dual_12_6_4_then(m: &Mesh, scale: f64, then: Then) -> Result<Mesh> {
     if !(scale.is_finite() && scale > 0.0 && scale <= 1.0) {
         return Err(MeshError::InvalidArgument(format!("dual_12_6_4: scale = {scale} must be in (0, 1]")));
     }
@@ -90,7 +85,7 @@ pub(crate) fn dual_12_6_4_then(m: &Mesh, scale: f64, then: Then) -> Result<Mesh>
             }
             o.end();
         }
-        o.finish_then("dual_12_6_4", then)
+        o.finish("dual_12_6_4")
     })
 }
 
