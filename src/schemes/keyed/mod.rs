@@ -239,8 +239,8 @@ impl Out {
     /// wrong), in opposite directions (checked below), and the vertices must
     /// form disks (checked by [`Mesh::check_vertex_umbrellas`]).
     ///
-    /// One pass over the corners, face by face, writes the half-edge columns
-    /// directly: the key of a side names its edge, so the twin array, its
+    /// The half-edge columns are written as faces close ([`Out::end`]), face
+    /// by face in one pass: the key of a side names its edge, so the twin array, its
     /// symmetry check and the edge numbering that
     /// [`Mesh::from_corner_twins`] derives from it are not needed (they were
     /// 60-80 % of an operator's time). The numbering is the same as there:
