@@ -11,10 +11,11 @@ rows that need another kind of input say so (dome makes 56 faces per input
 edge: it runs on a 100×50 torus, 5,000 quads, for an output of the same size as
 the others'). Rows that take a face selection run on
 ``topomesh.catalog.default_selection`` (three faces, or two for the handles),
-so their time is a copy of the input plus a few faces: they are listed, but
-their faces/s measure the copy. The wireframe tools run with ``thickness`` a
+made once before the timed calls, so their time is a copy of the input plus a
+few faces (and the handles' crossing report): they are listed, but their
+faces/s measure the copy. The wireframe tools run with ``thickness`` a
 tenth of the shortest edge (their defaults are lengths for a unit solid). The process sets RAYON_NUM_THREADS=1 before
-topomesh is imported. Each row: one untimed warm-up call, then the median of
+topomesh is imported (and OPENBLAS_NUM_THREADS=1). Each row: one untimed warm-up call, then the median of
 ``--runs`` timed calls (one for rows whose warm-up takes over 2 s) of ``topomesh.catalog.run_entry``. ``vs CC`` is the
 row's faces/s over Catmull-Clark's (the fastest builder of the package,
 bench_subdivision.py) on the big input, timed between the row's own calls: a
@@ -35,6 +36,9 @@ import warnings
 from pathlib import Path
 
 os.environ["RAYON_NUM_THREADS"] = "1"  # before topomesh (and its rayon pool) is loaded
+# OpenBLAS threads spin after a NumPy call: on a 2-core machine they took the
+# second core from the timed calls
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 HERE = Path(__file__).resolve().parent
 TARGET = 10.0  # M output faces/s (issue 16)
@@ -49,18 +53,29 @@ def inputs(quick: bool):
     return big, small
 
 
-def overrides(entry, mesh) -> dict[str, float]:
-    """The tools' defaults are absolute lengths for a unit solid: on the
-    fine torus they would overlap their neighbours (a self-intersecting
-    output, whose crossing report then dominates the time); scale them to
-    the shortest edge instead."""
+def overrides(entry, mesh) -> dict:
+    """The wireframe tools' defaults are absolute lengths for a unit solid:
+    on the fine torus they would overlap their neighbours (a
+    self-intersecting output, whose crossing report then dominates the
+    time); scale them to the shortest edge instead. Rows that take a face
+    selection get ``default_selection`` made here, untimed."""
     import numpy as np
+    from topomesh.catalog import default_selection
 
-    if entry["method"] not in ("wireframe", "wireframe_columns"):
-        return {}
-    v, e = mesh.vertices, mesh.edges
-    shortest = float(np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).min())
-    return {"thickness": 0.1 * shortest}
+    kw: dict = {}
+    p = entry.get("params", {})
+    if "faces" in p and not p["faces"]:
+        # the selection is made once, outside the timed calls (as a user
+        # holding a selection would): run_entry would otherwise time the
+        # centroids and the argsort that pick it
+        kw["faces"] = default_selection(entry, mesh)
+        if entry["method"] == "multi_face_handle" and p.get("algorithm") == "convex_hull":
+            kw.update(scale=0.5, extrude=-0.25)  # as run_entry sets them with its own selection
+    if entry["method"] in ("wireframe", "wireframe_columns"):
+        v, e = mesh.vertices, mesh.edges
+        shortest = float(np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).min())
+        kw["thickness"] = 0.1 * shortest
+    return kw
 
 
 def time_row(entry, mesh, runs: int, ref) -> tuple[float, int, float]:

@@ -34,7 +34,7 @@ impl Fnv {
 }
 
 /// Every stored column and every export of `m`.
-fn mesh_hash(m: &Mesh) -> u64 {
+pub(crate) fn mesh_hash(m: &Mesh) -> u64 {
     let mut h = Fnv::new();
     for p in &m.pos {
         for c in [p.x, p.y, p.z] {

@@ -13,15 +13,36 @@ use crate::mesh::{Mesh, NONE};
 use crate::schemes::hosts::{check_output_size, FaceLayout};
 use glam::DVec3;
 
-/// Output under construction (see the module docs).
-#[cfg_attr(test, derive(Clone))]
+/// Output under construction (see the module docs). Each face is laid
+/// into the half-edge columns as soon as it is closed ([`Out::end`]), so
+/// no corner list is kept (issue 16: the list and its second pass were a
+/// fifth of the bytes a build touched, and fresh pages cost their zeroing).
 pub(crate) struct Out {
     pub pos: Vec<DVec3>,
-    sizes: Vec<u32>,
-    cv: Vec<u32>,
-    key: Vec<u32>,
-    n_keys: usize,
-    start: usize,
+    /// The output's columns so far: edge e's half-edges `2e, 2e + 1` exist
+    /// from its first side on.
+    he_next: Vec<u32>,
+    he_prev: Vec<u32>,
+    he_vert: Vec<u32>,
+    he_face: Vec<u32>,
+    v_out: Vec<u32>,
+    f_start: Vec<u32>,
+    /// slot[k]: 0 before key k's first side; after it (edge e, running to
+    /// vertex w) `e + 1 | w << 32`, so the second side's direction is
+    /// checked when it comes; DONE after the second. Zeroed memory is
+    /// mapped lazily, so gaps in the key range cost little.
+    slot: Vec<u64>,
+    ne: u32,
+    /// Corners laid so far.
+    nc: usize,
+    /// The open face's corners (vertex, key).
+    buf: Vec<(u32, u32)>,
+    /// The first error met (reported by `finish`).
+    err: Option<MeshError>,
+    /// The largest vertex a corner named, with its face and corner (checked
+    /// against the final positions by `finish`: schemes may add positions
+    /// while they add faces).
+    max_v: Option<(u32, usize, usize)>,
     /// Per output face, the input element it descends from, while a face
     /// parents trace records ([`crate::schemes::face_parents`]); `None`
     /// otherwise, so a plain build does no extra work.
@@ -35,14 +56,42 @@ pub(crate) struct Out {
     keep: usize,
     /// Explicit vertex sources after the kept ones (index = output vertex).
     vsrc: Option<Vec<u32>>,
+    /// Test builds keep the faces for the reference builder.
+    #[cfg(test)]
+    rec: (Vec<u32>, Vec<u32>, Vec<u32>),
 }
+
+/// `slot` after a key's second side.
+const DONE: u64 = u64::MAX;
 
 impl Out {
     /// An output with these vertex positions and `n_keys` edges, expecting
     /// about `faces` faces and `corners` corners.
     pub fn new(pos: Vec<DVec3>, n_keys: usize, faces: usize, corners: usize) -> Out {
         let src = crate::schemes::face_parents::recording().then(|| Vec::with_capacity(faces));
-        Out { pos, sizes: Vec::with_capacity(faces), cv: Vec::with_capacity(corners), key: Vec::with_capacity(corners), n_keys, start: 0, src, cur: NONE, input: None, keep: 0, vsrc: None }
+        let col = || Vec::with_capacity(corners);
+        Out {
+            v_out: vec![NONE; pos.len()],
+            pos,
+            he_next: col(),
+            he_prev: col(),
+            he_vert: col(),
+            he_face: col(),
+            f_start: Vec::with_capacity(faces),
+            slot: vec![0; n_keys],
+            ne: 0,
+            nc: 0,
+            buf: Vec::new(),
+            err: None,
+            max_v: None,
+            src,
+            cur: NONE,
+            input: None,
+            keep: 0,
+            vsrc: None,
+            #[cfg(test)]
+            rec: (Vec::new(), Vec::new(), Vec::new()),
+        }
     }
 
     /// Names the input this output is built from, for the face parents
@@ -84,8 +133,7 @@ impl Out {
     /// it lies on output edge `key`.
     #[inline]
     pub fn c(&mut self, v: u32, key: u32) {
-        self.cv.push(v);
-        self.key.push(key);
+        self.buf.push((v, key));
     }
 
     /// Appends a whole face: its corners in boundary order (counter-clockwise
@@ -98,16 +146,91 @@ impl Out {
         self.end();
     }
 
-    /// Closes the current face.
+    /// Closes the current face and lays it into the columns.
     #[inline]
     pub fn end(&mut self) {
-        let n = self.cv.len() - self.start;
-        debug_assert!(n > 0);
-        self.sizes.push(n as u32);
-        self.start = self.cv.len();
+        let f = self.f_start.len();
+        #[cfg(test)]
+        {
+            self.rec.0.push(self.buf.len() as u32);
+            self.rec.1.extend(self.buf.iter().map(|c| c.0));
+            self.rec.2.extend(self.buf.iter().map(|c| c.1));
+        }
         if let Some(s) = &mut self.src {
             s.push(self.cur);
         }
+        if self.err.is_none() {
+            if let Err(e) = self.lay(f) {
+                self.err = Some(e);
+            }
+        }
+        if self.f_start.len() == f {
+            self.f_start.push(NONE); // a face that failed: the build is refused anyway
+        }
+        self.nc += self.buf.len();
+        self.buf.clear();
+    }
+
+    /// Face `f` (the open one) into the columns: per corner, the half-edge
+    /// its key names (the key's first side opens edge `ne`: `2 ne`, its
+    /// second side is the twin), linked in the face's order.
+    fn lay(&mut self, f: usize) -> Result<()> {
+        let n = self.buf.len();
+        if n == 0 {
+            return Err(MeshError::EmptyFace { face: f });
+        }
+        let (mut first, mut last) = (NONE, NONE);
+        for c in 0..n {
+            let (v, k) = self.buf[c];
+            let w = self.buf[if c + 1 < n { c + 1 } else { 0 }].0;
+            let sl = self.slot.get_mut(k as usize).ok_or(Bad::Key(k))?;
+            let h = match *sl {
+                0 => {
+                    self.ne += 1;
+                    *sl = self.ne as u64 | (w as u64) << 32;
+                    for col in [&mut self.he_next, &mut self.he_prev, &mut self.he_vert, &mut self.he_face] {
+                        col.extend([0, 0]);
+                    }
+                    2 * (self.ne - 1)
+                }
+                DONE => return Err(Bad::Key(k).into()),
+                o => {
+                    *sl = DONE;
+                    let h = 2 * (o as u32 - 1) + 1;
+                    // twins run between the same vertices in opposite
+                    // directions: this side leaves the first one's head
+                    // and runs to its tail
+                    if (o >> 32) as u32 != v || self.he_vert[(h ^ 1) as usize] != w {
+                        return Err(Bad::Direction(h / 2).into());
+                    }
+                    h
+                }
+            };
+            let vi = v as usize;
+            if vi >= self.v_out.len() {
+                // a vertex beyond the positions given so far (checked by `finish`)
+                if self.max_v.map_or(true, |m| v > m.0) {
+                    self.max_v = Some((v, f, self.nc + c));
+                }
+                self.v_out.resize(vi + 1, NONE);
+            }
+            if self.v_out[vi] == NONE {
+                self.v_out[vi] = h; // the first corner of each vertex, as from_corner_twins
+            }
+            self.he_vert[h as usize] = v;
+            self.he_face[h as usize] = f as u32;
+            if last == NONE {
+                first = h;
+            } else {
+                self.he_next[last as usize] = h;
+                self.he_prev[h as usize] = last;
+            }
+            last = h;
+        }
+        self.he_next[last as usize] = first;
+        self.he_prev[first as usize] = last;
+        self.f_start.push(first);
+        Ok(())
     }
 
     /// Pairs the two sides of every key and builds the mesh. Each key must
@@ -116,8 +239,8 @@ impl Out {
     /// wrong), in opposite directions (checked below), and the vertices must
     /// form disks (checked by [`Mesh::check_vertex_umbrellas`]).
     ///
-    /// One pass over the corners, face by face, writes the half-edge columns
-    /// directly: the key of a side names its edge, so the twin array, its
+    /// The half-edge columns are written as faces close ([`Out::end`]), face
+    /// by face in one pass: the key of a side names its edge, so the twin array, its
     /// symmetry check and the edge numbering that
     /// [`Mesh::from_corner_twins`] derives from it are not needed (they were
     /// 60-80 % of an operator's time). The numbering is the same as there:
@@ -126,7 +249,7 @@ impl Out {
     /// and every scheme test, which in test builds run both builders).
     pub fn finish(mut self, scheme: &str) -> Result<Mesh> {
         #[cfg(test)]
-        let reference = self.clone().finish_by_twins(scheme);
+        let reference = finish_by_twins(scheme, self.pos.clone(), &self.rec.0, &self.rec.1, &self.rec.2, self.slot.len());
         let trace = self.src.take().map(|s| (s, self.input, self.keep, self.vsrc.take()));
         let out = self.finish_direct(scheme);
         if let (Some((src, input, keep, vsrc)), Ok(m)) = (trace, &out) {
@@ -142,123 +265,88 @@ impl Out {
     }
 
     fn finish_direct(self, scheme: &str) -> Result<Mesh> {
-        let n = self.cv.len();
-        let nv = self.pos.len();
-        let nf = self.sizes.len();
+        let (n, nv, nf) = (self.nc, self.pos.len(), self.f_start.len());
         check_output_size(scheme, n, nv)?;
         crate::cancel::check()?;
-        let bad = |k: u32| MeshError::Invariant(format!("{scheme}: output edge {k} does not have exactly two sides (a bug in the scheme)"));
-        // slot[k]: 0 unused, e + 1 after the first side (edge e), DONE after the second;
-        // zeroed memory is mapped lazily, so gaps in the key range cost nothing
-        const DONE: u32 = u32::MAX;
-        let mut slot = vec![0u32; self.n_keys];
+        if let Some(e) = self.err {
+            return Err(match e {
+                MeshError::Invariant(s) if s.starts_with(BAD) => MeshError::Invariant(format!("{scheme}{s}")),
+                e => e,
+            });
+        }
+        if let Some((v, f, c)) = self.max_v.filter(|m| m.0 as usize >= nv) {
+            return Err(MeshError::InvalidArgument(format!("face {f}: corner {c} refers to vertex {v} out of range")));
+        }
         // every corner's side pairs with another one: n half-edges exactly
-        let mut m = Mesh {
-            pos: self.pos,
-            v_out: vec![NONE; nv],
-            he_next: vec![0; n],
-            he_prev: vec![0; n],
-            he_vert: vec![0; n],
-            he_face: vec![0; n],
-            f_start: vec![NONE; nf],
-            f_hole: vec![false; nf],
-        };
-        let mut ne = 0u32;
-        let mut c = 0usize;
-        for (f, &size) in self.sizes.iter().enumerate() {
-            crate::cancel::poll(f)?;
-            if size == 0 {
-                return Err(MeshError::EmptyFace { face: f });
-            }
-            let (s, e) = (c, c + size as usize);
-            let mut first = NONE;
-            let mut last = NONE;
-            for c in s..e {
-                let k = self.key[c];
-                let sl = slot.get_mut(k as usize).ok_or_else(|| bad(k))?;
-                let h = match *sl {
-                    0 => {
-                        // 2 * ne < n while corners remain: no overflow (check_output_size)
-                        *sl = ne + 1;
-                        ne += 1;
-                        2 * (ne - 1)
-                    }
-                    DONE => return Err(bad(k)),
-                    o => {
-                        *sl = DONE;
-                        2 * (o - 1) + 1
-                    }
-                };
-                if h as usize >= n {
-                    return Err(bad(k)); // more edges than half the corners: some key has one side
-                }
-                let v = self.cv[c];
-                let vo = m.v_out.get_mut(v as usize).ok_or_else(|| MeshError::InvalidArgument(format!("face {f}: corner {c} refers to vertex {v} out of range")))?;
-                if *vo == NONE {
-                    *vo = h; // the first corner of each vertex, as from_corner_twins
-                }
-                m.he_vert[h as usize] = v;
-                m.he_face[h as usize] = f as u32;
-                if last == NONE {
-                    first = h;
-                } else {
-                    m.he_next[last as usize] = h;
-                    m.he_prev[h as usize] = last;
-                }
-                last = h;
-            }
-            m.he_next[last as usize] = first;
-            m.he_prev[first as usize] = last;
-            m.f_start[f] = first;
-            c = e;
+        if 2 * self.ne as usize != n {
+            let k = self.slot.iter().position(|&s| s != 0 && s != DONE).unwrap_or(0);
+            return Err(MeshError::Invariant(format!("{scheme}{BAD}{}", Bad::Key(k as u32).what())));
         }
-        if 2 * ne as usize != n {
-            let k = slot.iter().position(|&s| s != 0 && s != DONE).unwrap_or(0);
-            return Err(bad(k as u32));
-        }
-        crate::cancel::check()?;
-        // twins run between the same vertices in opposite directions: the
-        // tail of h ^ 1 is the head of h (from both sides, so the heads too)
-        if let Some(h) = (0..n).find(|&h| m.he_vert[h ^ 1] != m.he_vert[m.he_next[h] as usize]) {
-            return Err(MeshError::Invariant(format!(
-                "{scheme}: output edge {} has its two sides in the same direction (a bug in the scheme)",
-                h / 2
-            )));
-        }
-        if let Some(v) = m.v_out.iter().position(|&o| o == NONE) {
+        let mut v_out = self.v_out;
+        v_out.resize(nv, NONE);
+        if let Some(v) = v_out.iter().position(|&o| o == NONE) {
             return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
         }
+        let m = Mesh { pos: self.pos, v_out, he_next: self.he_next, he_prev: self.he_prev, he_vert: self.he_vert, he_face: self.he_face, f_start: self.f_start, f_hole: vec![false; nf] };
         crate::cancel::check()?;
         m.check_vertex_umbrellas()?;
         Ok(m)
     }
 
-    /// The builder before `finish_direct`: a twin per corner by key, then
-    /// [`Mesh::from_corner_twins`]. Test builds run it beside the direct one.
-    #[cfg(test)]
-    fn finish_by_twins(self, scheme: &str) -> Result<Mesh> {
-        check_output_size(scheme, self.cv.len(), self.pos.len())?;
-        const DONE: u32 = NONE - 1;
-        let n = self.cv.len();
-        let mut first = vec![NONE; self.n_keys];
-        let mut tw = vec![NONE; n];
-        let bad = |k: u32| MeshError::Invariant(format!("{scheme}: output edge {k} does not have exactly two sides (a bug in the scheme)"));
-        for (c, &k) in self.key.iter().enumerate() {
-            let slot = first.get_mut(k as usize).ok_or_else(|| bad(k))?;
-            match *slot {
-                NONE => *slot = c as u32,
-                DONE => return Err(bad(k)),
-                o => {
-                    tw[c] = o;
-                    tw[o as usize] = c as u32;
-                    *slot = DONE;
-                }
+}
+
+/// The builder before the direct one: a twin per corner by key, then
+/// [`Mesh::from_corner_twins`]. Test builds run it beside the direct one.
+#[cfg(test)]
+fn finish_by_twins(scheme: &str, pos: Vec<DVec3>, sizes: &[u32], cv: &[u32], key: &[u32], n_keys: usize) -> Result<Mesh> {
+    check_output_size(scheme, cv.len(), pos.len())?;
+    const DONE: u32 = NONE - 1;
+    let n = cv.len();
+    let mut first = vec![NONE; n_keys];
+    let mut tw = vec![NONE; n];
+    let bad = |k: u32| MeshError::Invariant(format!("{scheme}: output edge {k} does not have exactly two sides (a bug in the scheme)"));
+    for (c, &k) in key.iter().enumerate() {
+        let slot = first.get_mut(k as usize).ok_or_else(|| bad(k))?;
+        match *slot {
+            NONE => *slot = c as u32,
+            DONE => return Err(bad(k)),
+            o => {
+                tw[c] = o;
+                tw[o as usize] = c as u32;
+                *slot = DONE;
             }
         }
-        if let Some(k) = first.iter().position(|&s| s != DONE && s != NONE) {
-            return Err(bad(k as u32));
+    }
+    if let Some(k) = first.iter().position(|&s| s != DONE && s != NONE) {
+        return Err(bad(k as u32));
+    }
+    Mesh::from_corner_twins(pos, sizes, cv, &tw)
+}
+
+/// A scheme's wrong arithmetic, found while a face is laid (its message
+/// gets the scheme's name in `finish`).
+enum Bad {
+    /// A key with other than two sides.
+    Key(u32),
+    /// An edge whose two sides run the same way.
+    Direction(u32),
+}
+
+/// Marks the messages of [`Bad`] until `finish` names the scheme.
+const BAD: &str = ": output edge ";
+
+impl Bad {
+    fn what(&self) -> String {
+        match self {
+            Bad::Key(k) => format!("{k} does not have exactly two sides (a bug in the scheme)"),
+            Bad::Direction(e) => format!("{e} has its two sides in the same direction (a bug in the scheme)"),
         }
-        Mesh::from_corner_twins(self.pos, &self.sizes, &self.cv, &tw)
+    }
+}
+
+impl From<Bad> for MeshError {
+    fn from(b: Bad) -> MeshError {
+        MeshError::Invariant(format!("{BAD}{}", b.what()))
     }
 }
 
@@ -384,3 +472,6 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod hashes;

@@ -11,6 +11,8 @@
 
 use glam::DVec3;
 
+mod bvh;
+
 /// Input vertices whose local structure crosses itself: the output
 /// triangles with a corner placed by an input vertex's rule ([`Built`]'s
 /// `owner`) are tested pairwise per vertex; both triangles' owners of every
@@ -118,7 +120,24 @@ pub(crate) fn triangles_cross(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [D
 /// Menger construction's own check leaves to [`triangles_cross`] (its
 /// figures are counted that way).
 pub(crate) fn triangles_meet(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3], coplanar: bool) -> bool {
-    triangles_meet_edges(ti, pi, tj, pj, coplanar) || (coplanar && overlap_on_plane_line(ti, pi, tj, pj))
+    match triangles_meet_edges(ti, pi, tj, pj, coplanar) {
+        Edges::Meet => true,
+        Edges::Apart => false,
+        Edges::Miss => coplanar && overlap_on_plane_line(ti, pi, tj, pj),
+    }
+}
+
+/// What the edge tests found.
+enum Edges {
+    /// An edge of one meets the other's interior.
+    Meet,
+    /// No edge does, and [`overlap_on_plane_line`] would say no as well
+    /// (two sides shared, or one triangle off the other's plane beyond its
+    /// tolerance but for a shared corner): most candidate pairs of a scan,
+    /// which then skip it.
+    Apart,
+    /// No edge does.
+    Miss,
 }
 
 /// Whether two triangles in different planes share a piece of positive
@@ -142,27 +161,32 @@ fn overlap_on_plane_line(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3;
     // projected on `dir`, or None when it misses the plane
     let piece = |p: [DVec3; 3], n: DVec3, o: DVec3| -> Option<(f64, f64)> {
         let d = p.map(|x| n.dot(x - o) / (n.length() * scale));
-        let mut ts: Vec<f64> = Vec::with_capacity(3);
+        // the ends as a running (min, max), in the order they are met (no
+        // allocation: this runs for most candidate pairs of a scan)
+        let (mut lo, mut hi, mut any) = (f64::INFINITY, f64::NEG_INFINITY, false);
+        let mut eat = |t: f64| {
+            lo = lo.min(t);
+            hi = hi.max(t);
+            any = true;
+        };
         for k in 0..3 {
             let (a, b) = (k, (k + 1) % 3);
             if d[a].abs() <= EPS {
-                ts.push(dir.dot(p[a]));
+                eat(dir.dot(p[a]));
             }
             if (d[a] > EPS && d[b] < -EPS) || (d[a] < -EPS && d[b] > EPS) {
                 let x = p[a] + (p[b] - p[a]) * (d[a] / (d[a] - d[b]));
-                ts.push(dir.dot(x));
+                eat(dir.dot(x));
             }
         }
-        if ts.is_empty() {
-            return None;
-        }
-        Some(ts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &t| (l.min(t), h.max(t))))
+        any.then_some((lo, hi))
     };
-    let (Some(a), Some(b)) = (piece(pi, nj, pj[0]), piece(pj, ni, pi[0])) else { return false };
+    let Some(a) = piece(pi, nj, pj[0]) else { return false };
+    let Some(b) = piece(pj, ni, pi[0]) else { return false };
     a.1.min(b.1) - a.0.max(b.0) > 1e-9 * dir.length() * scale
 }
 
-fn triangles_meet_edges(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3], coplanar: bool) -> bool {
+fn triangles_meet_edges(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3], coplanar: bool) -> Edges {
     const EPS: f64 = 1e-10;
     // a segment in t's plane through t's interior: it crosses an edge of t
     // properly or ends strictly inside t (orientations in the plane of t,
@@ -199,7 +223,7 @@ fn triangles_meet_edges(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 
     };
     let shared = ti.iter().filter(|v| tj.contains(v)).count();
     if shared >= 2 {
-        return false;
+        return Edges::Apart;
     }
     // quick rejection: one triangle strictly on one side of the other's
     // plane (margin far above the relative tolerance of the exact test)
@@ -220,7 +244,11 @@ fn triangles_meet_edges(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 
         }
         // squared: min |d| > 1e-6 |n| max |r|
         if (pos == 0 || neg == 0) && pos + neg == 3 - shared && dmin * dmin > 1e-12 * n.length_squared() * rmax {
-            return false;
+            // off the plane beyond `overlap_on_plane_line`'s own tolerance
+            // too (its heights, computed as it does): its piece of that
+            // plane is at most the shared corner, a point
+            let scale = pi.iter().chain(&pj).fold(0.0f64, |m, x| m.max((*x - pi[0]).length()));
+            return if scale == 0.0 || dmin / (n.length() * scale) > EPS { Edges::Apart } else { Edges::Miss };
         }
     }
     for (ta, tb, pa, pb) in [(ti, tj, pi, pj), (tj, ti, pj, pi)] {
@@ -237,28 +265,70 @@ fn triangles_meet_edges(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 
             let (a, b) = (ta[e], ta[(e + 1) % 3]);
             // an edge in the other's plane, even one from the shared vertex
             if coplanar && h[e].abs() <= EPS && h[(e + 1) % 3].abs() <= EPS && in_plane_hits(pa[e], pa[(e + 1) % 3], pb) {
-                return true;
+                return Edges::Meet;
             }
             if shared == 1 && (tb.contains(&a) || tb.contains(&b)) {
                 continue;
             }
             if seg_hits(pa[e], pa[(e + 1) % 3], h[e], h[(e + 1) % 3], pb) {
-                return true;
+                return Edges::Meet;
             }
         }
     }
-    false
+    Edges::Miss
 }
 
-/// Crossing triangle pairs `(i, j)`, `i < j`, of a triangulation ([`triangles_meet`]
-/// with `coplanar`), found on
-/// a uniform grid over the triangles' bounding boxes. With `focus`, only
-/// pairs with at least one focused triangle are tested, and the grid covers
-/// only the focused triangles' bounding box (a local check after a local
-/// change costs what the change touched). Pairs are sorted.
+/// Crossing triangle pairs `(i, j)`, `i < j`, of a triangulation
+/// ([`triangles_meet`] with `coplanar`), among the pairs whose bounding
+/// boxes overlap, found by a bounding volume hierarchy ([`bvh`]). With
+/// `focus`, only pairs with at least one focused triangle are tested, and
+/// only triangles overlapping the focused triangles' bounding box enter the
+/// hierarchy (a local check after a local change costs what the change
+/// touched). Pairs are sorted.
 ///
 /// Cancellable like [`local_crossings`].
 pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool) -> Vec<(u32, u32)> {
+    use rayon::prelude::*;
+    let boxes: Vec<(DVec3, DVec3)> = tris
+        .par_iter()
+        .map(|t| {
+            let q = t.map(|v| p[v as usize]);
+            (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]))
+        })
+        .collect();
+    if crate::cancel::requested() {
+        return Vec::new();
+    }
+    let focused = |i: usize| focus.map_or(true, |f| f[i]);
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    let mut n_focus = 0usize;
+    for (i, b) in boxes.iter().enumerate() {
+        if focused(i) {
+            lo = lo.min(b.0);
+            hi = hi.max(b.1);
+            n_focus += 1;
+        }
+    }
+    if n_focus == 0 {
+        return Vec::new();
+    }
+    let overlaps = |b: &(DVec3, DVec3)| !(b.0.cmpgt(hi).any() || b.1.cmplt(lo).any());
+    let cand: Vec<u32> = (0..tris.len() as u32).filter(|&i| overlaps(&boxes[i as usize])).collect();
+    let tree = bvh::Bvh::new(&boxes, focus, cand);
+    let test = |i: u32, j: u32| {
+        let (ti, tj) = (tris[i as usize], tris[j as usize]);
+        triangles_meet(ti, ti.map(|v| p[v as usize]), tj, tj.map(|v| p[v as usize]), coplanar)
+    };
+    let mut found = tree.pairs(&test);
+    found.par_sort_unstable();
+    found.dedup();
+    found
+}
+
+/// The uniform-grid scan [`crossing_pairs`] used before its hierarchy: the
+/// reference its results are compared with.
+#[cfg(test)]
+fn crossing_pairs_grid(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
     let boxes: Vec<(DVec3, DVec3)> = tris
         .par_iter()
@@ -372,21 +442,71 @@ pub fn mesh_crossing_pairs(m: &crate::mesh::Mesh, coplanar: bool) -> Vec<(u32, u
 /// those faces, blind to crossings the input already had. Coplanar
 /// contacts count ([`triangles_meet`]).
 pub fn crossings_of_new_faces(before: &crate::mesh::Mesh, after: &crate::mesh::Mesh) -> usize {
-    use std::collections::HashSet;
-    let cycle = |m: &crate::mesh::Mesh, f: crate::mesh::FaceId| {
-        let mut c: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
-        // the rotation starting at the smallest vertex (its first occurrence)
-        let k = (0..c.len()).min_by_key(|&i| c[i]).unwrap_or(0);
-        c.rotate_left(k);
-        c
-    };
-    let old: HashSet<Vec<u32>> = before.faces().filter(|&f| !before.is_hole(f)).map(|f| cycle(before, f)).collect();
-    let new_face: Vec<bool> = after.faces().map(|f| !after.is_hole(f) && !old.contains(&cycle(after, f))).collect();
+    let new_face = new_faces(before, after);
     let t = after.triangulate();
     let focus: Vec<bool> = t.tri_face.iter().map(|&f| new_face[f as usize]).collect();
     let mut p = after.positions().to_vec();
     p.extend_from_slice(&t.points);
     crossing_pairs(&p, &t.tris, Some(&focus), true).len()
+}
+
+/// Per face of `after`: a real face whose vertex cycle (up to rotation)
+/// is not one of `before`'s real faces.
+fn new_faces(before: &crate::mesh::Mesh, after: &crate::mesh::Mesh) -> Vec<bool> {
+    let old = Cycles::of(before);
+    // (no old faces, as for the wireframe tools: every face is new)
+    if old.off.len() == 1 {
+        after.faces().map(|f| !after.is_hole(f)).collect()
+    } else {
+        let new = Cycles::of(after);
+        let mut keys: Vec<(u64, u32)> = (0..old.len()).filter(|&f| !before.is_hole(crate::mesh::FaceId(f as u32))).map(|f| (old.hash(f), f as u32)).collect();
+        keys.sort_unstable();
+        (0..new.len())
+            .map(|f| {
+                if after.is_hole(crate::mesh::FaceId(f as u32)) {
+                    return false;
+                }
+                let h = new.hash(f);
+                let first = keys.partition_point(|&(k, _)| k < h);
+                !keys[first..].iter().take_while(|&&(k, _)| k == h).any(|&(_, g)| new.same(f, &old, g as usize))
+            })
+            .collect()
+    }
+}
+
+/// Every face's vertex cycle, read from the rotation that starts at its
+/// smallest vertex (its first occurrence), in one flat array: faces of two
+/// meshes are compared as cycles up to rotation, vertex ids kept, with one
+/// allocation per mesh instead of one per face.
+struct Cycles {
+    v: Vec<u32>,
+    off: Vec<usize>,
+}
+
+impl Cycles {
+    fn of(m: &crate::mesh::Mesh) -> Cycles {
+        let mut c = Cycles { v: Vec::with_capacity(m.n_halfedges() + m.n_faces()), off: vec![0] };
+        for f in m.faces() {
+            let s = c.v.len();
+            c.v.extend(m.face_vertices(f).map(|v| v.0));
+            let k = (0..c.v.len() - s).min_by_key(|&i| c.v[s + i]).unwrap_or(0);
+            c.v[s..].rotate_left(k);
+            c.off.push(c.v.len());
+        }
+        c
+    }
+    fn len(&self) -> usize {
+        self.off.len() - 1
+    }
+    fn cycle(&self, f: usize) -> &[u32] {
+        &self.v[self.off[f]..self.off[f + 1]]
+    }
+    fn hash(&self, f: usize) -> u64 {
+        self.cycle(f).iter().fold(self.cycle(f).len() as u64, |h, &x| (h ^ x as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15).rotate_left(29))
+    }
+    fn same(&self, f: usize, other: &Cycles, g: usize) -> bool {
+        self.cycle(f) == other.cycle(g)
+    }
 }
 
 #[cfg(test)]
@@ -440,6 +560,84 @@ mod tests {
         // sharing a vertex, one folded through the other beyond it
         let f3 = [DVec3::ZERO, DVec3::new(0.5, 0.5, -1.0), DVec3::new(0.5, 0.5, 1.0)];
         assert!(triangles_meet([0, 1, 2], f1, [0, 4, 5], f3, true));
+    }
+
+    /// The hierarchy finds exactly the grid's pairs: a random soup of
+    /// small triangles (many crossings, touching and coplanar ones), a
+    /// wireframe (thin tubes, dense), with and without a focus, both modes.
+    #[test]
+    fn hierarchy_equals_grid() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut p = Vec::new();
+        let mut tris = Vec::new();
+        for t in 0..3000u32 {
+            let c = DVec3::new(rnd(), rnd(), rnd()) * 4.0;
+            for _ in 0..3 {
+                // coordinates on a coarse lattice now and then: coplanar and touching cases
+                let q = c + DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 0.6;
+                p.push(if t % 5 == 0 { (q * 4.0).round() / 4.0 } else { q });
+            }
+            tris.push([3 * t, 3 * t + 1, 3 * t + 2]);
+        }
+        // shared corners: every 7th triangle reuses a corner of the one before
+        for t in (7..tris.len()).step_by(7) {
+            tris[t][0] = tris[t - 1][1];
+        }
+        let wire = crate::primitives::torus(24, 12, 3.0, 1.0).unwrap().wireframe(0.05, None).unwrap();
+        let (wt, wp) = crate::geometry::triangles_with_points(&wire);
+        let focus: Vec<bool> = (0..tris.len()).map(|i| i % 3 == 0).collect();
+        let wfocus: Vec<bool> = (0..wt.len()).map(|i| i < 50).collect();
+        for coplanar in [false, true] {
+            let all = crossing_pairs(&p, &tris, None, coplanar);
+            assert!(all.len() > 100, "{}", all.len());
+            assert_eq!(all, crossing_pairs_grid(&p, &tris, None, coplanar));
+            assert_eq!(crossing_pairs(&p, &tris, Some(&focus), coplanar), crossing_pairs_grid(&p, &tris, Some(&focus), coplanar));
+            assert_eq!(crossing_pairs(&wp, &wt, None, coplanar), crossing_pairs_grid(&wp, &wt, None, coplanar));
+            assert_eq!(crossing_pairs(&wp, &wt, Some(&wfocus), coplanar), crossing_pairs_grid(&wp, &wt, Some(&wfocus), coplanar));
+        }
+    }
+
+    /// New faces by the flat cycle table equal those by a set of cycles
+    /// (the table's predecessor) on handles, a wireframe and a mesh
+    /// against itself.
+    #[test]
+    fn new_faces_as_by_a_set() {
+        use std::collections::HashSet;
+        let by_set = |before: &crate::mesh::Mesh, after: &crate::mesh::Mesh| -> Vec<bool> {
+            let cycle = |m: &crate::mesh::Mesh, f: crate::mesh::FaceId| {
+                let mut c: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
+                let k = (0..c.len()).min_by_key(|&i| c[i]).unwrap_or(0);
+                c.rotate_left(k);
+                c
+            };
+            let old: HashSet<Vec<u32>> = before.faces().filter(|&f| !before.is_hole(f)).map(|f| cycle(before, f)).collect();
+            after.faces().map(|f| !after.is_hole(f) && !old.contains(&cycle(after, f))).collect()
+        };
+        let g = crate::primitives::genus_surface(2).unwrap();
+        let t = crate::primitives::torus(12, 8, 3.0, 1.0).unwrap();
+        // the highest and the lowest face (the catalog's selection for handles)
+        let ends = |m: &crate::mesh::Mesh| {
+            let z: Vec<f64> = m.face_centroids().iter().map(|p| p.z).collect();
+            [(0..z.len()).max_by(|&a, &b| z[a].total_cmp(&z[b])).unwrap(), (0..z.len()).min_by(|&a, &b| z[a].total_cmp(&z[b])).unwrap()]
+        };
+        let cases = [
+            (t.clone(), t.multi_face_handle(&ends(&t), 0.5, -0.25).unwrap()),
+            (g.clone(), g.multi_face_handle_edges(&ends(&g)).unwrap().0),
+            (crate::mesh::Mesh::new(), g.wireframe(0.05, None).unwrap()),
+            (g.clone(), g.clone()),
+            (crate::schemes::hosts::test_meshes::cube_with_self_loop(), crate::schemes::hosts::test_meshes::cube_with_self_loop()),
+        ];
+        for (before, after) in &cases {
+            let got = new_faces(before, after);
+            assert_eq!(got, by_set(before, after));
+            assert!(got.iter().any(|&x| x) == (before != after));
+        }
     }
 
     #[test]
