@@ -118,7 +118,80 @@ pub(crate) fn triangles_cross(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [D
 /// Menger construction's own check leaves to [`triangles_cross`] (its
 /// figures are counted that way).
 pub(crate) fn triangles_meet(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3], coplanar: bool) -> bool {
+    if side_plane_rejects(pi, pj) && (separated_by_side_plane(ti, pi, tj, pj) || separated_by_side_plane(tj, pj, ti, pi)) {
+        return false;
+    }
     triangles_meet_edges(ti, pi, tj, pj, coplanar) || (coplanar && overlap_on_plane_line(ti, pi, tj, pj))
+}
+
+#[cfg(test)]
+pub(crate) fn separated_for_test(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3]) -> bool {
+    side_plane_rejects(pi, pj) && (separated_by_side_plane(ti, pi, tj, pj) || separated_by_side_plane(tj, pj, ti, pi))
+}
+
+/// Whether [`separated_by_side_plane`] may settle a pair without changing
+/// an answer of the exact tests, including the few where they report a
+/// contact a side plane rules out (both found on Menger outputs): planes coplanar
+/// by `overlap_on_plane_line`'s own test (it then leaves the pair to the
+/// edge tests, which a separating plane settles), or meeting at more than
+/// 1e-4 rad (its line is then well conditioned). Between the two, that test
+/// can report a common piece of two triangles that a side plane separates
+/// (planes 1e-10 apart: the line where they meet is rounding noise), and the
+/// rejection keeps its answer rather than change the counts.
+fn side_plane_rejects(pi: [DVec3; 3], pj: [DVec3; 3]) -> bool {
+    // and neither triangle a needle (smallest angle below about 1e-4 rad):
+    // its plane is rounding noise, which the exact tests read as crossing it
+    let normal = |p: [DVec3; 3]| {
+        let n = (p[1] - p[0]).cross(p[2] - p[0]);
+        let l2 = (p[1] - p[0]).length_squared().max((p[2] - p[1]).length_squared()).max((p[0] - p[2]).length_squared());
+        (n, n.length() > 1e-4 * l2)
+    };
+    let ((ni, oki), (nj, okj)) = (normal(pi), normal(pj));
+    let (s, l) = (ni.cross(nj).length(), ni.length() * nj.length());
+    oki && okj && (s <= 1e-10 * l || s >= 1e-4 * l)
+}
+
+#[cfg(test)]
+pub(crate) fn meet_without_rejection(ti: [u32; 3], pi: [DVec3; 3], tj: [u32; 3], pj: [DVec3; 3], coplanar: bool) -> bool {
+    triangles_meet_edges(ti, pi, tj, pj, coplanar) || (coplanar && overlap_on_plane_line(ti, pi, tj, pj))
+}
+
+/// Quick rejection before the exact tests of [`triangles_meet`]: a plane
+/// through a side of triangle `a`, perpendicular to `a`, with every corner
+/// of `b` that `a` does not share strictly beyond it (margin `1e-6`,
+/// relative, far above the tests' `1e-10`). Then `a` lies on one side and
+/// `b` on the other, meeting at most in a shared corner on the side: no
+/// crossing or contact of either mode. It settles coplanar neighbours (rows
+/// of coplanar faces, as in Menger sponges), which the side-of-plane
+/// rejection in `triangles_meet_edges` cannot.
+fn separated_by_side_plane(ta: [u32; 3], pa: [DVec3; 3], tb: [u32; 3], pb: [DVec3; 3]) -> bool {
+    let n = (pa[1] - pa[0]).cross(pa[2] - pa[0]);
+    let shared = ta.iter().position(|v| tb.contains(v));
+    'side: for k in 0..3 {
+        let k1 = (k + 1) % 3;
+        // a shared corner must lie on the plane: on a side through it
+        if shared.is_some_and(|s| s != k && s != k1) {
+            continue;
+        }
+        // outward normal of the side (n points to the side of a's
+        // counterclockwise order)
+        let m = (pa[k1] - pa[k]).cross(n);
+        let ml = m.length();
+        if ml == 0.0 {
+            return false;
+        }
+        for i in 0..3 {
+            if ta.contains(&tb[i]) {
+                continue;
+            }
+            let r = pb[i] - pa[k];
+            if !(m.dot(r) > 1e-6 * ml * r.length()) {
+                continue 'side;
+            }
+        }
+        return true;
+    }
+    false
 }
 
 /// Whether two triangles in different planes share a piece of positive
@@ -457,3 +530,4 @@ mod tests {
         assert_eq!(crossing_pairs(&p, &tris, Some(&[false; 4]), false), vec![]);
     }
 }
+
