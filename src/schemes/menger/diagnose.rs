@@ -6,7 +6,9 @@
 //!   brackets), faces, genus, sign of the volume, faces whose depth was
 //!   reduced and the time, per iteration, for both [`Offset`] constructions
 //!   (each iterating on its own outputs; `LAST=1`: only the last iteration,
-//!   on the default construction's previous output; `ONLY=merged|per_face`).
+//!   on the default construction's previous output; `ONLY=merged|per_face`;
+//!   the peak is the process's so far, so run one case and one construction
+//!   per process to compare memory).
 //! * [`classify_crossings`]: the last iteration's crossing pairs by the roles
 //!   of their two faces (outer remeshing, pipe wall, strip, miter quad,
 //!   vertex face) and by how their input faces meet (the same face, across
@@ -35,6 +37,14 @@ fn input(name: &str) -> Mesh {
         "genus2" => primitives::genus_surface(2).unwrap(),
         _ => panic!("unknown input {name}"),
     }
+}
+
+/// Peak resident set size of this process so far (kB), from /proc.
+fn peak_kb() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| l.split_whitespace().nth(1)?.parse().ok()))
+        .unwrap_or(0)
 }
 
 fn cases(default: &str) -> Vec<(String, usize)> {
@@ -76,7 +86,7 @@ fn compare_offsets() {
                 let proper = crossing_pairs(&p, &tris, None, false).len();
                 let (nred, fmin) = r.reduced();
                 let vol = if x.signed_volume() > 0.0 { "+" } else { "NOT POSITIVE" };
-                line += &format!(" | {k}: F {} g {} vol {vol} {meet} ({proper}) reduced {nred} min {fmin:.3} {secs:.2} s", x.n_faces(), x.genus());
+                line += &format!(" | {k}: F {} g {} vol {vol} {meet} ({proper}) reduced {nred} min {fmin:.3} {secs:.2} s peak {} kB", x.n_faces(), x.genus(), peak_kb());
                 m = x;
             }
             eprintln!("{line}");

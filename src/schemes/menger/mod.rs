@@ -208,7 +208,8 @@
 //!    and it vanishes, as does the vertex face of a cube corner;
 //! 3. at a convex edge of interior angle `φ < 90°` the depth of both faces
 //!    is at most `0.8·min(D₁, D₂)·tan(φ/2)` (`sharp_edge_depth`), which puts
-//!    each offset corner at least the other face's depth below that face:
+//!    each offset corner at least the other face's depth below that face
+//!    (for `φ ≥ 90°` equal depths up to `min(D₁, D₂)` do):
 //!    the strip is then a bevel inside the mitred offset and each pipe stays
 //!    in its wedge (item 2: the bound is reported in `face_factor`);
 //! 4. non-convex edges keep their miter vertices on the line where the two

@@ -154,9 +154,11 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Redu
 /// its in-plane inward normal, `n₁` its outward normal), and
 /// `n₂·(D₁ w₁ − d₁ n₁) = −D₁ sin φ + d₁ cos φ`: it lies at least `d₂`
 /// below face 2 when `d₁ cos φ + d₂ ≤ D₁ sin φ`, which both depths at most
-/// `min(D₁, D₂) tan(φ/2)` satisfy, both ways. For `φ ≥ 90°` (with `d ≤ D`)
-/// it always holds; below, the depths of both faces are bounded by
-/// [`SHARP_MARGIN`] times that. Then the strip between the two offset edges
+/// `min(D₁, D₂) tan(φ/2)` satisfy, both ways. For `φ ≥ 90°` that bound is at
+/// least `min(D₁, D₂)` and is not applied (two faces of unequal `D` there
+/// keep their depth `D`, off the condition by at most their difference);
+/// below, the depths of both faces are bounded by [`SHARP_MARGIN`] times
+/// it. Then the strip between the two offset edges
 /// cuts the corner of the mitred offset (a bevel inside it), and each pipe,
 /// a right prism of depth `d` over its window `D` from the edge, stays in
 /// the wedge (whose thickness there is `D tan φ`).
