@@ -230,3 +230,25 @@ fn rejection_exact() {
         }
     }
 }
+
+/// The contacts the exact tests report on a case's last iteration, each
+/// with which test finds it and its shape (issue 17: contacts CGAL does not
+/// find).
+#[test]
+#[ignore]
+fn contact_details() {
+    use crate::geometry::crossing::contact_parts;
+    for (name, n) in cases("torus:2") {
+        let m = menger_iterated(&input(&name), n, &MengerOptions::default()).unwrap();
+        let (tris, p) = triangles_with_points(&m);
+        let pairs = crossing_pairs(&p, &tris, None, true);
+        let proper = crossing_pairs(&p, &tris, None, false);
+        eprintln!("{name} {n}: {} pairs, {} proper", pairs.len(), proper.len());
+        for &(i, j) in pairs.iter().filter(|x| proper.binary_search(x).is_err()).take(6) {
+            let (ti, tj) = (tris[i as usize], tris[j as usize]);
+            let (pi, pj) = (ti.map(|v| p[v as usize]), tj.map(|v| p[v as usize]));
+            eprintln!("  {ti:?} {tj:?}: {}", contact_parts(ti, pi, tj, pj));
+            eprintln!("    {pi:?}\n    {pj:?}");
+        }
+    }
+}

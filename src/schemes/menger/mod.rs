@@ -174,14 +174,15 @@
 //! Python binding raises a `GeometryWarning` with both whenever a face was
 //! reduced or a pair is left. `reduce_thickness: false` skips the scan and
 //! the rounds (the per-vertex check alone, which can miss pairs between
-//! two vertices' structures: the torus's second iteration had 706 pairs
-//! and no vertex flagged).
+//! two vertices' structures).
 //!
 //! Measured (crossing pairs with contacts, before → after; faces reduced,
-//! smallest factor): see the table in `docs/schemes/menger.md`. The
-//! reduction removes the contacts of the tetrahedron's third iteration and
-//! the proper crossings of the torus's second, and lowers the others by
-//! 0–40 %; it does not make the third iterations of the octahedron,
+//! smallest factor): see the table in `docs/schemes/menger.md`, every
+//! figure confirmed by CGAL's exact test (the 4 "contacts" that used to
+//! trigger it on the tetrahedron's third iteration, and the 223 it left on
+//! the torus's second, were nearly coplanar neighbours the exact tests no
+//! longer count). The reduction removes the proper crossings of the
+//! torus's second iteration, and lowers the others by 0–40 %; it does not make the third iterations of the octahedron,
 //! icosahedron and dodecahedron crossing-free. Reducing the depth around
 //! such a vertex changes which corners merge and where, and past one round
 //! the count grows again (octahedron 3: 816 → 624 → 816 → 1056 with
@@ -222,9 +223,9 @@
 //! fails. Measured (crossing pairs with contacts, every iteration on its own
 //! previous output; merged → per-face): cube 1–4 0 → 0; genus_surface(2)
 //! 1–2 0 → 0; dodecahedron 1–2 0 → 0; tetrahedron 2 0 → 120, 3 0 → 6612,
-//! 4 6390 → 173661; octahedron 2 0 → 360, 3 624 → 14784; icosahedron 2
+//! 4 4646 → 173661; octahedron 2 0 → 360, 3 624 → 14784; icosahedron 2
 //! 0 → 900, 3 1980 → 29400; dodecahedron 3 900 → 19380; torus(24, 12) 1
-//! 0 → 144, 2 223 → 17712. On the second iterations every pair is a miter
+//! 0 → 144, 2 0 → 17712. On the second iterations every pair is a miter
 //! quad or a vertex face crossing another at a vertex with non-convex
 //! edges; on the third, inner surface through the outer one as well, with
 //! depths down to 0.05·D at the sharp edges of thin pipe walls. The

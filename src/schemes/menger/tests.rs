@@ -313,11 +313,40 @@ mod per_face {
 #[test]
 fn side_plane_rejection_keeps_every_answer() {
     let o = MengerOptions { reduce_thickness: false, ..Default::default() };
+    let pf = MengerOptions { offset: Offset::PerFace, ..o };
     let t2 = menger_iterated(&crate::primitives::tetrahedron(), 2, &o).unwrap();
-    let o2 = menger_iterated(&crate::primitives::octahedron(), 2, &o).unwrap();
-    for m in [menger(&t2, &o).unwrap(), menger(&o2, &MengerOptions { offset: Offset::PerFace, ..o }).unwrap()] {
+    let o1 = menger(&crate::primitives::octahedron(), &o).unwrap();
+    // the tetrahedron's third iteration (nearly coplanar neighbours, no
+    // crossing), and per-face builds that cross (120 and 360 pairs)
+    let mut met_all = 0;
+    for m in [menger(&t2, &o).unwrap(), menger_iterated(&crate::primitives::tetrahedron(), 2, &pf).unwrap(), menger(&o1, &pf).unwrap()] {
         let (pairs, rejected, met) = super::diagnose::rejection_check(&m);
-        // most pairs are settled by the rejection; some do meet
-        assert!(rejected * 2 > pairs && met > 0, "{rejected} of {pairs} rejected, {met} meeting");
+        // most pairs are settled by the rejection
+        assert!(rejected * 2 > pairs, "{rejected} of {pairs} rejected, {met} meeting");
+        met_all += met;
     }
+    assert!(met_all > 0);
+}
+
+/// Contacts the exact tests reported between nearly coplanar triangles
+/// that share a corner (planes 1e-10 rad apart: the line where they meet
+/// is rounding noise), found on the Menger tetrahedron's third and the
+/// torus's second iterations, where CGAL finds none: no longer counted.
+#[test]
+fn nearly_coplanar_neighbours_do_not_meet() {
+    use crate::geometry::crossing::triangles_meet;
+    let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    // tetrahedron 3 (without the reduction): one of its four "contacts"
+    let a = [v(-0.5593283202152921, 0.5593283202152921, -0.4278890887796517), v(-0.49948403201231634, 0.559328320215292, -0.36804480057667593), v(-0.46371408471088704, 0.5235583729138628, -0.40381474787810534)];
+    let b = [v(-0.46371408471088704, 0.5235583729138628, -0.40381474787810534), v(-0.4936087044935298, 0.4936087045014139, -0.4936087045014139), v(-0.5235583729138626, 0.5235583729138626, -0.46365903608108083)];
+    assert!(!triangles_meet([5230, 4911, 4917], a, [4917, 5211, 5232], b, true));
+    // torus 2 (after the reduction): one of the two left by the first fix
+    let c = [v(0.75278610889034, 0.06459113341623866, 0.3076998544403641), v(0.753103532637465, 0.13969653236139457, 0.30617134942359503), v(0.7635982751535245, 0.05998104873361229, 0.3061713494240863)];
+    let d = [v(0.8204066640300955, 0.005990571831638939, 0.29872739472745785), v(0.7623649554768013, 0.048285721562740164, 0.3065866855425323), v(0.7635982751535245, 0.05998104873361229, 0.3061713494240863)];
+    assert!(!triangles_meet([3785, 21266, 21265], c, [3788, 3789, 21265], d, true));
+    // a real contact at a small angle is still one: the same triangle
+    // tilted about a line through the middle of the other by 1e-3 rad
+    let t = [v(0.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0)];
+    let s = [v(0.2, -0.5, 0.0), v(0.2, 1.5, 0.0), v(0.7, 0.5, 5e-4)];
+    assert!(triangles_meet([0, 1, 2], t, [3, 4, 5], s, true));
 }
