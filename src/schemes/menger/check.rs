@@ -42,7 +42,8 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
         for &v in &lc {
             crossing[v as usize] = true;
         }
-        if round == CROSSING_ROUNDS {
+        // per-face corners (module docs) have no full collapse to fall back on
+        if round == CROSSING_ROUNDS || o.offset == super::Offset::PerFace {
             return Ok((cur, crossing.iter().filter(|&&c| c).count()));
         }
         // a vertex face with no planar split would be coned from a new
@@ -99,7 +100,7 @@ pub const REDUCTION_FLOOR: f64 = 1.0 / 32.0;
 /// Two triangles of the outer remeshing (every corner below `first_inner`)
 /// lie in the input's faces and cannot cross (as in the per-vertex check),
 /// so only pairs with another triangle are tested.
-fn output_crossings(mesh: &Mesh, first_inner: u32) -> Vec<(u32, u32)> {
+pub(super) fn output_crossings(mesh: &Mesh, first_inner: u32) -> Vec<(u32, u32)> {
     let t = mesh.triangulate();
     let mut p = mesh.positions().to_vec();
     p.extend_from_slice(&t.points);
@@ -146,6 +147,9 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
 /// and no whole-output scan.
 pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
     let nf = m.n_faces();
+    // per-face corners bound the depth at sharp edges too: their report
+    // gives the depth the build used
+    let per_face = o.offset == super::Offset::PerFace;
     let mut red = Reduction { depth: vec![1.0; nf] };
     let factor = |r: &Reduction, f: usize| r.depth[f];
     let mut rounds = 0;
@@ -155,7 +159,8 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
     loop {
         let ((b, mesh), vertices) = build_valid(m, o, (rounds > 0).then_some(&red))?;
         if !reduce {
-            let report = MengerReport { face_factor: vec![1.0; nf], rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
+            let face_factor = if per_face { b.depth_factor.clone() } else { vec![1.0; nf] };
+            let report = MengerReport { face_factor, rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
             return Ok(((b, mesh), report));
         }
         let pairs = output_crossings(&mesh, b.first_inner);
@@ -171,7 +176,8 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         }
         hit.sort_unstable();
         hit.dedup();
-        let report = MengerReport { face_factor: (0..nf).map(|f| factor(&red, f)).collect(), rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices };
+        let face_factor = if per_face { b.depth_factor.clone() } else { (0..nf).map(|f| factor(&red, f)).collect() };
+        let report = MengerReport { face_factor, rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices };
         let last = pairs.is_empty() || rounds == REDUCTION_ROUNDS;
         drop(pairs);
         best = Some(((b, mesh), report));

@@ -26,7 +26,8 @@ fn clip_to_miter_vertices(m: &Mesh, pl: &Plan, ip: &mut [DVec3]) {
     for v in m.vertices() {
         ends.clear();
         ends.extend(m.vertex_halfedges(v).filter(|h| pl.kind[h.edge().idx()] == EdgeKind::Miter).map(|h| ng + 2 * h.edge().idx() + (h.0 & 1) as usize));
-        if ends.is_empty() {
+        // per-face corners stay on their right prisms (module docs)
+        if ends.is_empty() || pl.per_face {
             continue;
         }
         let pv = pos[v.idx()];
@@ -166,7 +167,7 @@ pub(super) fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) ->
         let mut pairs: Vec<(u32, u32)> = pieces.iter().filter(|p| p.len() == 2).map(|p| (p[0].min(p[1]), p[0].max(p[1]))).collect();
         pairs.sort_unstable();
         pairs.dedup();
-        let ok = refined && (pieces.len() == 1 || (pieces.iter().all(|p| p.len() == 2) && pairs.len() == pieces.len()));
+        let ok = refined && !pl.per_face && (pieces.len() == 1 || (pieces.iter().all(|p| p.len() == 2) && pairs.len() == pieces.len()));
         let tol = if ok { WELD_TOL * dmin } else { 1e-7 * dmin };
         for i in 0..k {
             for j in i + 1..k {

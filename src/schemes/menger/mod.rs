@@ -174,14 +174,15 @@
 //! Python binding raises a `GeometryWarning` with both whenever a face was
 //! reduced or a pair is left. `reduce_thickness: false` skips the scan and
 //! the rounds (the per-vertex check alone, which can miss pairs between
-//! two vertices' structures: the torus's second iteration had 706 pairs
-//! and no vertex flagged).
+//! two vertices' structures).
 //!
 //! Measured (crossing pairs with contacts, before → after; faces reduced,
-//! smallest factor): see the table in `docs/schemes/menger.md`. The
-//! reduction removes the contacts of the tetrahedron's third iteration and
-//! the proper crossings of the torus's second, and lowers the others by
-//! 0–40 %; it does not make the third iterations of the octahedron,
+//! smallest factor): see the table in `docs/schemes/menger.md`, every
+//! figure confirmed by CGAL's exact test (the 4 "contacts" that used to
+//! trigger it on the tetrahedron's third iteration, and the 223 it left on
+//! the torus's second, were nearly coplanar neighbours the exact tests no
+//! longer count). The reduction removes the proper crossings of the
+//! torus's second iteration, and lowers the others by 0–40 %; it does not make the third iterations of the octahedron,
 //! icosahedron and dodecahedron crossing-free. Reducing the depth around
 //! such a vertex changes which corners merge and where, and past one round
 //! the count grows again (octahedron 3: 816 → 624 → 816 → 1056 with
@@ -190,6 +191,46 @@
 //! themselves). That is the structural cause of item 1 of issue 17 (one
 //! merged point per group cannot express two pipe corners on one line),
 //! which no thickness fixes.
+//!
+//! # Per-face corners ([`Offset::PerFace`], measured, not the default)
+//!
+//! Issue 17's item 1 asks for an exact offset: every face's offset corner
+//! on its own offset plane, never one merged point per group. Derived once,
+//! with these invariants:
+//!
+//! 1. every corner of a face gets its own offset corner `r = q − d n_f`,
+//!    straight below its inset corner `q` (step 1), on the face's offset
+//!    plane; the window is the inset polygon, so every pipe is a right
+//!    prism of depth `d` over it (planar walls perpendicular to the face,
+//!    `D` from every side);
+//! 2. the two offset edges along an input edge are both parallel to it, so
+//!    the piece joining them (a strip, for collapsed edges too) is planar;
+//!    where they coincide (the cube's right angles) the corners are welded
+//!    and it vanishes, as does the vertex face of a cube corner;
+//! 3. at a convex edge of interior angle `φ < 90°` the depth of both faces
+//!    is at most `0.8·min(D₁, D₂)·tan(φ/2)` (`sharp_edge_depth`), which puts
+//!    each offset corner at least the other face's depth below that face
+//!    (for `φ ≥ 90°` equal depths up to `min(D₁, D₂)` do):
+//!    the strip is then a bevel inside the mitred offset and each pipe stays
+//!    in its wedge (item 2: the bound is reported in `face_factor`);
+//! 4. non-convex edges keep their miter vertices on the line where the two
+//!    offset planes meet (planar miter quads); vertex faces are the cycle
+//!    of per-face corners and miter vertices, split into planar parts where
+//!    possible (there is no full collapse to fall back on).
+//!
+//! Invariants 1–3 make every pipe and every edge's cross-section
+//! crossing-free; nothing makes the vertex faces so, and that is where it
+//! fails. Measured (crossing pairs with contacts, every iteration on its own
+//! previous output; merged → per-face): cube 1–4 0 → 0; genus_surface(2)
+//! 1–2 0 → 0; dodecahedron 1–2 0 → 0; tetrahedron 2 0 → 120, 3 0 → 6612,
+//! 4 4646 → 173661; octahedron 2 0 → 360, 3 624 → 14784; icosahedron 2
+//! 0 → 900, 3 1980 → 29400; dodecahedron 3 900 → 19380; torus(24, 12) 1
+//! 0 → 144, 2 0 → 17712. On the second iterations every pair is a miter
+//! quad or a vertex face crossing another at a vertex with non-convex
+//! edges; on the third, inner surface through the outer one as well, with
+//! depths down to 0.05·D at the sharp edges of thin pipe walls. The
+//! default construction's remaining crossings are all pipe walls instead
+//! (`docs/schemes/menger.md`, "Where the default crosses").
 //!
 //! # Status (measured)
 //!
@@ -376,6 +417,8 @@ mod pipe;
 mod remesh;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod diagnose;
 
 pub use counts::{menger_counts, MengerCounts};
 pub(crate) use remesh::Built;
@@ -398,11 +441,27 @@ pub struct MengerOptions {
     /// Whether the thickness of faces whose result crosses is reduced until
     /// it does not (module docs, "Thickness reduction"); default true.
     pub reduce_thickness: bool,
+    /// The inner surface's construction (module docs, "Per-face corners");
+    /// default [`Offset::Merged`].
+    pub offset: Offset,
+}
+
+/// How the offset corners of the faces around a vertex are placed (module
+/// docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Offset {
+    /// One merged point per group of faces joined by collapsed edges, with
+    /// the crossing check's full collapses (steps 2–3).
+    #[default]
+    Merged,
+    /// One offset corner per face corner, never merged (module docs,
+    /// "Per-face corners").
+    PerFace,
 }
 
 impl Default for MengerOptions {
     fn default() -> Self {
-        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, reduce_thickness: true }
+        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, reduce_thickness: true, offset: Offset::Merged }
     }
 }
 

@@ -5,7 +5,7 @@
 //! [`super`], step 3 and "Crossing check").
 
 use super::inset::{corner_sides, faces_and_insets, Faces};
-use super::{EdgeKind, MengerOptions, Reduction, ANGLE_TOL};
+use super::{EdgeKind, MengerOptions, Offset, Reduction, ANGLE_TOL};
 use crate::error::Result;
 use crate::mesh::{HalfedgeId, Mesh};
 use glam::{DMat3, DVec3};
@@ -23,6 +23,10 @@ pub(super) struct Plan {
     /// Merged offset-corner group per half-edge, and the group positions.
     pub(super) group: Vec<u32>,
     pub(super) group_pos: Vec<DVec3>,
+    /// [`Offset::PerFace`]: every group is one corner, the depth is bounded
+    /// at sharp edges and collapsed edges get strips (module docs,
+    /// "Per-face corners").
+    pub(super) per_face: bool,
 }
 
 /// The least-squares solution of `a x = b` (`a` a sum of `n nᵀ` over plane
@@ -42,7 +46,11 @@ fn least_squares_from(a: DMat3, b: DVec3, x0: DVec3) -> DVec3 {
 }
 
 pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Reduction>) -> Result<Plan> {
-    let Faces { face_n, face_d, face_depth, q } = faces_and_insets(m, o, red)?;
+    let Faces { face_n, face_d, mut face_depth, q } = faces_and_insets(m, o, red)?;
+    let per_face = o.offset == Offset::PerFace;
+    if per_face {
+        sharp_edge_depth(m, &face_n, &face_d, &mut face_depth);
+    }
     let pos = m.positions();
     let p = |h: HalfedgeId| pos[m.vertex(h).idx()];
     let nh = m.n_halfedges();
@@ -68,14 +76,14 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Redu
     let mut parent: Vec<u32> = (0..nh as u32).collect();
     for h in m.halfedges() {
         crate::cancel::poll(h.0 as usize)?;
-        if kind[h.edge().idx()] == EdgeKind::Collapse {
+        if !per_face && kind[h.edge().idx()] == EdgeKind::Collapse {
             // corners h and next(twin(h)) lie on either side of edge(h) at its tail
             crate::union_find::union(&mut parent, h.0, m.next(h.twin()).0);
         }
     }
     for v in m.vertices() {
         crate::cancel::poll(v.0 as usize)?;
-        if !full[v.idx()] {
+        if per_face || !full[v.idx()] {
             continue;
         }
         let hs: Vec<HalfedgeId> = m.vertex_halfedges(v).collect();
@@ -136,8 +144,43 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Redu
             if off.length() > dmax * (1.0 + 1e-9) { pv + off * (dmax / off.length()) } else { x }
         })
         .collect();
-    Ok(Plan { face_n, face_d, face_depth, q, kind, group, group_pos })
+    Ok(Plan { face_n, face_d, face_depth, q, kind, group, group_pos, per_face })
 }
+
+/// Sharp edges bound the offset depth of their faces ([`Offset::PerFace`],
+/// module docs "Per-face corners"). In the cross-section of a convex edge
+/// of interior angle `φ` between faces with insets `D₁, D₂` and depths
+/// `d₁, d₂`, face 1's offset corner is `D₁ w₁ − d₁ n₁` from the edge (`w₁`
+/// its in-plane inward normal, `n₁` its outward normal), and
+/// `n₂·(D₁ w₁ − d₁ n₁) = −D₁ sin φ + d₁ cos φ`: it lies at least `d₂`
+/// below face 2 when `d₁ cos φ + d₂ ≤ D₁ sin φ`, which both depths at most
+/// `min(D₁, D₂) tan(φ/2)` satisfy, both ways. For `φ ≥ 90°` that bound is at
+/// least `min(D₁, D₂)` and is not applied (two faces of unequal `D` there
+/// keep their depth `D`, off the condition by at most their difference);
+/// below, the depths of both faces are bounded by [`SHARP_MARGIN`] times
+/// it. Then the strip between the two offset edges
+/// cuts the corner of the mitred offset (a bevel inside it), and each pipe,
+/// a right prism of depth `d` over its window `D` from the edge, stays in
+/// the wedge (whose thickness there is `D tan φ`).
+fn sharp_edge_depth(m: &Mesh, face_n: &[DVec3], face_d: &[f64], face_depth: &mut [f64]) {
+    let pos = m.positions();
+    for e in m.edges() {
+        let h = e.halfedge();
+        let (f1, f2) = (m.face(h).idx(), m.face(h.twin()).idx());
+        let (n1, n2) = (face_n[f1], face_n[f2]);
+        let t = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize_or_zero();
+        let phi = std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2));
+        if phi > 0.0 && phi < std::f64::consts::FRAC_PI_2 - ANGLE_TOL {
+            let bound = SHARP_MARGIN * face_d[f1].min(face_d[f2]) * (0.5 * phi).tan();
+            face_depth[f1] = face_depth[f1].min(bound);
+            face_depth[f2] = face_depth[f2].min(bound);
+        }
+    }
+}
+
+/// The share of the largest depth [`sharp_edge_depth`] allows, below 1 so
+/// that the strip across a sharp edge keeps a width.
+pub(super) const SHARP_MARGIN: f64 = 0.8;
 
 /// The meeting point of all pipes at a fully collapsed vertex (module docs,
 /// "Crossing check"): the point nearest the vertex that lies at least `D`

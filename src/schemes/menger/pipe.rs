@@ -21,6 +21,12 @@ pub(super) fn window_corners(m: &Mesh, pl: &Plan, inner: &Inner) -> Vec<DVec3> {
     // where the projection would leave less than D/2 of frame (depth
     // below the face, distance from the corner's two sides) or the
     // corner is not convex
+    if pl.per_face {
+        // per-face corners lie straight below their inset corners: every
+        // pipe is a right prism over its window (module docs, "Per-face
+        // corners")
+        return pl.q.clone();
+    }
     for h in m.halfedges() {
         let f = m.face(h).idx();
         let (n, d, dd) = (pl.face_n[f], pl.face_d[f], pl.face_depth[f]);

@@ -58,7 +58,15 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
         let h = e.halfedge();
         let t = h.twin();
         match pl.kind[e.idx()] {
-            EdgeKind::Collapse => {}
+            // merged corners: the offset faces meet along the edge; per-face
+            // corners (module docs): a strip between the two offset edges,
+            // both parallel to the edge, so planar (none where both ends
+            // were welded, as at the cube's right angles)
+            EdgeKind::Collapse => {
+                if r(h) != r(m.next(t)) || r(m.next(h)) != r(t) {
+                    push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3, (EDGE, e.0));
+                }
+            }
             EdgeKind::Strip => push(&[r(h), r(m.next(h)), r(t), r(m.next(t))], 3, (EDGE, e.0)),
             EdgeKind::Miter => {
                 if r(h) == r(m.next(t)) && r(m.next(h)) == r(t) {
@@ -110,6 +118,9 @@ pub(crate) struct Built {
     pub(crate) owner: Vec<u32>,
     /// The input element every output face belongs to (`Origins` kinds).
     pub(crate) face_origin: Vec<(u8, u32)>,
+    /// Per input face, its offset depth over its inset `D` (below 1 where
+    /// reduced or bounded at a sharp edge).
+    pub(super) depth_factor: Vec<f64>,
 }
 
 pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &[bool], red: Option<&Reduction>) -> Result<Built> {
@@ -201,7 +212,8 @@ pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &
         }
     }
     let split_extra = sz2.len() - sizes.len();
-    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + coned.len(), split_extra, owner, first_inner: i0 as u32, coned, face_origin })
+    let depth_factor = pl.face_depth.iter().zip(&pl.face_d).map(|(a, b)| a / b).collect();
+    Ok(Built { pos: out_pos, sizes: sz2, idx: idx2, inner_vertices: inner_vertices + coned.len(), split_extra, owner, first_inner: i0 as u32, coned, face_origin, depth_factor })
 }
 
 /// Largest distance of the polygon's points from its best-fit plane through
