@@ -12,8 +12,10 @@ the cube keep their own square's data, and one call gives what several give.
 
 Operators that keep a copy of every input face (an ``F`` term in F') or split every face
 (kis, gyro) keep every input face's value; the others (dual, join, needle, ...) keep a
-subset. Schemes not built through the keyed builder (root3, dual_loop, doo_sabin_bc)
-still drop face data with a ``GeometryWarning``.
+subset. The compositions with a scheme not built through the keyed builder (root3 =
+dual + honeycomb + dual, dual_loop = dual + Loop + dual, doo_sabin_bc = split edges +
+Doo-Sabin) take that scheme's parents from its correspondence (``origins``), under the
+same rule.
 """
 
 from __future__ import annotations
@@ -67,12 +69,11 @@ TOPMOD: dict[str, tuple[Op, bool]] = {
     "subdivide_faces fans": (lambda m: m.subdivide_faces([0, 2], quads=False), True),
     "extrude": (lambda m: m.extrude([0, 3]), True),
     "extrude octahedral": (lambda m: m.extrude([1], kind="octahedral", segments=2), True),
-}
-
-NOT_KEYED = {
-    "root3": lambda m: m.root3(),
-    "dual_loop": lambda m: m.dual_loop(),
-    "doo_sabin_bc": lambda m: m.doo_sabin_bc(),
+    # through the origins of honeycomb, Loop and Doo-Sabin
+    "root3": (lambda m: m.root3(), False),
+    "root3 x2": (lambda m: m.root3(iterations=2), False),
+    "dual_loop": (lambda m: m.dual_loop(), False),
+    "doo_sabin_bc": (lambda m: m.doo_sabin_bc(), True),
 }
 
 
@@ -122,12 +123,20 @@ def test_topmod_faces_inherit(name: str, seed: str) -> None:
     check_inherited(m, out, keeps_all)
 
 
-@pytest.mark.parametrize("name", sorted(NOT_KEYED))
-def test_schemes_outside_the_keyed_builder_still_drop(name: str) -> None:
+def test_origin_built_parents_follow_the_rule() -> None:
+    """root3 (dual + honeycomb + dual) on the cube: every output triangle is born around
+    an input vertex (a honeycomb corner inside the dual face of that vertex), so it takes
+    the data of the lowest face around that vertex; and
+    doo_sabin_bc's first F faces (Doo-Sabin's face faces) keep their own face's."""
     m = with_face_data(tm.cube())
-    with pytest.warns(tm.GeometryWarning, match=r"face attributes \[\"id\", \"rgb\"\]"):
-        out = NOT_KEYED[name](m)
-    assert not out.face_attributes
+    sizes = m.face_sizes
+    face_of_corner = np.repeat(np.arange(len(sizes)), sizes)
+    lowest = {int(face_of_corner[m.face_indices == v].min()) for v in range(m.n_vertices)}
+    assert len(lowest) < len(sizes)  # the check can fail: not every face is a lowest one
+    ids = run_quiet(lambda x: x.root3(), m).face_attributes["id"]
+    assert set(ids.tolist()) <= lowest
+    ids = run_quiet(lambda x: x.doo_sabin_bc(), m).face_attributes["id"]
+    np.testing.assert_array_equal(ids[: len(sizes)], np.arange(len(sizes)))
 
 
 def nearest_face(m: tm.Mesh, points: np.ndarray) -> np.ndarray:

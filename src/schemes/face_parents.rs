@@ -32,8 +32,10 @@
 //! the output face of its first corner (a new point lies inside, or on the
 //! border of, the faces built from one input element).
 //!
-//! Any build in the chain that records nothing (a scheme not built through
-//! `Out`, such as Loop or honeycomb inside TopMod's root-3) breaks the chain:
+//! The schemes not built through `Out` (honeycomb, Loop, Doo-Sabin inside
+//! TopMod's root-3, dual Loop and Doo-Sabin BC) record through
+//! [`via_origins`]: their level's correspondence read under the same rule.
+//! Any other build in the chain that records nothing breaks the chain:
 //! [`traced`] then returns no parents and the bindings drop face data with
 //! the usual warning, never guess.
 
@@ -127,6 +129,48 @@ fn vertex_faces(m: &Mesh) -> Vec<u32> {
     out
 }
 
+/// The step of a level built with origins ([`crate::schemes::level::Origins`],
+/// the smoothing schemes' correspondence), under this module's rule: an
+/// element born from face f has parent f, from vertex v the parent of v,
+/// from edge e the face of its first side, `face(2e)`.
+pub(crate) fn step_of_origins(m: &Mesh, o: &crate::schemes::level::Origins) -> Step {
+    use crate::schemes::level::{EDGE, VERTEX};
+    let (_, _, he_face) = m.halfedge_columns();
+    let src = |(&k, &i): (&u8, &u32)| match k {
+        VERTEX => VERT | i,
+        EDGE => he_face[2 * i as usize],
+        _ => i,
+    };
+    Step {
+        in_v: m.n_vertices(),
+        in_f: m.n_faces(),
+        face: o.face_kind.iter().zip(&o.face).map(src).collect(),
+        vertex: o.vertex_kind.iter().zip(&o.vertex).map(src).collect(),
+    }
+}
+
+/// A scheme that does not build through the recording builders (Loop,
+/// honeycomb, Doo-Sabin) inside a traced chain (TopMod's root-3, dual Loop,
+/// Doo-Sabin BC): while a trace runs, the level is built with origins and
+/// their step recorded (whatever the build itself recorded is replaced);
+/// otherwise `plain` runs as it is.
+pub(crate) fn via_origins(
+    m: &Mesh,
+    level: impl FnOnce(&crate::schemes::level::Request) -> Result<crate::schemes::level::Level>,
+    plain: impl FnOnce() -> Result<Mesh>,
+) -> Result<Mesh> {
+    if !recording() {
+        return plain();
+    }
+    let at = mark();
+    let req = crate::schemes::level::Request { origins: true, ..Default::default() };
+    let l = level(&req)?;
+    take_since(at);
+    let step = l.origins.as_ref().map(|o| step_of_origins(m, o)).filter(|s| s.face.len() == l.mesh.n_faces() && s.vertex.len() == l.mesh.n_vertices());
+    record(step);
+    Ok(l.mesh)
+}
+
 /// Runs `build` (which must build its output from `m` through the recording
 /// builders) with a trace, and returns its output with the face parents:
 /// per output face, the face of `m` it inherits from (internal ids), or
@@ -211,7 +255,10 @@ mod tests {
     fn topmod_schemes_have_parents() {
         use crate::schemes::topmod::{self as tm, extrude::{Extrusion, Kind}};
         type Scheme = fn(&Mesh) -> Result<Mesh>;
-        let all: [(&str, Scheme, bool); 19] = [
+        let all: [(&str, Scheme, bool); 22] = [
+            ("root3", tm::compose::root3, false),
+            ("dual_loop", tm::compose::dual_loop, false),
+            ("doo_sabin_bc", tm::compose::doo_sabin_bc, true),
             ("stellate", |m| tm::stellate::stellate(m, 0.1), true),
             ("double_stellate", |m| tm::stellate::double_stellate(m, 0.1), true),
             ("stellate_edge_removal", |m| tm::stellate::stellate_edge_removal(m, 0.0), false),
@@ -245,6 +292,31 @@ mod tests {
                     let got: std::collections::BTreeSet<u32> = p.iter().copied().collect();
                     assert_eq!(got.len(), m.n_faces(), "{name} on {mesh}: every input face has a child");
                 }
+            }
+        }
+    }
+
+    /// The compositions whose middle scheme records through its origins
+    /// ([`via_origins`]) build the same mesh traced as untraced (the level
+    /// with origins is the same construction).
+    #[test]
+    fn origin_parents_leave_the_mesh_alone() {
+        use crate::schemes::output_hashes::mesh_hash;
+        use crate::schemes::topmod::compose;
+        type Scheme = fn(&Mesh) -> Result<Mesh>;
+        let all: [(&str, Scheme); 3] = [("root3", compose::root3), ("dual_loop", compose::dual_loop), ("doo_sabin_bc", compose::doo_sabin_bc)];
+        for (mesh, m) in crate::schemes::topmod::tests::meshes() {
+            for (name, f) in all {
+                let plain = f(&m);
+                let (out, p) = match traced(&m, || f(&m)) {
+                    Ok(x) => x,
+                    Err(e) => {
+                        assert_eq!(plain.unwrap_err().to_string(), e.to_string(), "{name} on {mesh}");
+                        continue;
+                    }
+                };
+                assert_eq!(mesh_hash(&out), mesh_hash(&plain.unwrap()), "{name} on {mesh}");
+                assert!(p.is_some(), "{name} on {mesh}: no parents");
             }
         }
     }

@@ -6,11 +6,15 @@
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::schemes::dual::dual;
+use crate::schemes::face_parents::via_origins;
 
 /// Root-3 (`subdivideRoot3`: dual + honeycomb + dual): V' = V + F,
 /// E' = 3E, F' = 2E triangles (the √3 connectivity, honeycomb's points).
 pub fn root3(m: &Mesh) -> Result<Mesh> {
-    dual(&crate::schemes::honeycomb::honeycomb(&dual(m)?, 0.5, None)?)
+    use crate::schemes::honeycomb as h;
+    let d = dual(m)?;
+    // face parents through the level's origins (honeycomb does not record)
+    dual(&via_origins(&d, |r| h::honeycomb_level(&d, 0.5, None, r), || h::honeycomb(&d, 0.5, None))?)
 }
 
 /// Dual Loop (`subdivideDualLoop`: dual + Loop + dual). Loop fans the dual's
@@ -19,7 +23,9 @@ pub fn root3(m: &Mesh) -> Result<Mesh> {
 /// F_t = V₃ + S, E_t = E + S, V_t = F + V − V₃ (the fanned dual), then
 /// V' = 4F_t, E' = 2E_t + 3F_t, F' = V_t + E_t; every vertex 3-valent.
 pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
-    dual(&crate::schemes::loop_subdivision::loop_subdivision(&dual(m)?)?)
+    use crate::schemes::loop_subdivision as l;
+    let d = dual(m)?;
+    dual(&via_origins(&d, |r| l::loop_level(&d, r), || l::loop_subdivision(&d))?)
 }
 
 /// Cubic pentagonalization (`subdivideCubicPentagonal`: pentagonalization,
@@ -68,7 +74,9 @@ pub fn dual_hexagon_preserving(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh
 /// F' = F + 2E + (V + E); histogram: an n-gon gives a 2n-gon, 2E quads, a
 /// valence-k vertex a k-gon and each midpoint a two-gon.
 pub fn doo_sabin_bc(m: &Mesh) -> Result<Mesh> {
-    crate::schemes::doo_sabin::doo_sabin(&super::linear::split_edges(m, 2)?)
+    use crate::schemes::doo_sabin as ds;
+    let s = super::linear::split_edges(m, 2)?;
+    via_origins(&s, |r| ds::doo_sabin_level(&s, r), || ds::doo_sabin(&s))
 }
 
 #[cfg(test)]
