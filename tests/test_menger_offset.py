@@ -1,5 +1,5 @@
 """Generalized Menger sponge (issue 17): crossing counts by the exact
-predicate (``Mesh.self_intersections``, src/geometry/crossing.rs), the
+predicate (``Mesh.self_intersections``, src/geometry/crossing/), the
 thickness reduction and its report (src/schemes/menger/mod.rs, "Thickness
 reduction"), positive volume and the validation harness.
 
@@ -126,7 +126,7 @@ def test_tetrahedron_third_iteration_needs_no_reduction():
     """The tetrahedron's third iteration used to be reduced for 4 coplanar
     "contacts" between nearly coplanar neighbours sharing a corner (planes
     1e-10 rad apart), which CGAL does not find; the exact tests no longer
-    report them (src/geometry/crossing.rs), and the build is kept as is."""
+    report them (src/geometry/crossing/), and the build is kept as is."""
     t2 = topomesh.tetrahedron().menger(2)
     plain = t2.menger(reduce_thickness=False)
     assert len(plain.self_intersections()) == 0

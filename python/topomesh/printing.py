@@ -10,7 +10,7 @@ and 3MF by :func:`topomesh.io.save`):
   the triangle mesh: sheets that touch at a point, which print as a zero
   width joint or not at all);
 * **no self-intersections**: the exact crossing check of
-  :meth:`Mesh.self_intersections` (``src/geometry/crossing.rs``), reported as
+  :meth:`Mesh.self_intersections` (``src/geometry/crossing/``), reported as
   face pairs;
 * **walls at least** ``min_thickness``: :meth:`Mesh.wall_thickness` casts a
   ray from every triangle's centroid along the inward normal

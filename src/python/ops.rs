@@ -250,7 +250,7 @@ impl PyMesh {
     /// lying in the other's plane across it (coplanar overlap). Triangles
     /// sharing an edge never count; sharing a vertex, only when they meet
     /// away from it. The exact check ``menger``, ``add_handle`` and
-    /// ``create_pipe`` use (``src/geometry/crossing.rs``); near-linear.
+    /// ``create_pipe`` use (``src/geometry/crossing/``); near-linear.
     fn self_intersections<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<i64>>> {
         let pairs = super::run_interruptible(py, || {
             let (tris, p) = crate::geometry::triangles_with_points(&self.inner);

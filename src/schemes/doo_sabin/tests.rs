@@ -1,0 +1,165 @@
+use super::*;
+use crate::schemes::hosts::test_meshes::*;
+
+#[test]
+fn weights_sum_to_one() {
+    for n in 2..12 {
+        let s: f64 = (0..n).map(|i| doo_sabin_weight(n, i)).sum();
+        assert!((s - 1.0).abs() < 1e-14, "n = {n}");
+    }
+}
+
+#[test]
+fn counts_and_validity_on_corpus() {
+    check_on_corpus(doo_sabin, |_, (v, e, f)| (2 * e, 4 * e, f + e + v), |name, m, r| {
+        let ps = n_point_spheres(m);
+        let mut want = face_sizes(m);
+        want.truncate(m.n_faces() - ps);
+        want.extend(std::iter::repeat(4).take(m.n_edges()));
+        want.extend(m.vertices().filter(|&x| m.point_sphere_face(x).is_none()).map(|x| m.valence(x)));
+        want.sort();
+        let mut got = face_sizes(r);
+        got.truncate(r.n_faces() - ps);
+        got.sort();
+        assert_eq!(got, want, "{name} face sizes");
+    });
+}
+
+#[test]
+fn level_equals_plain_on_corpus() {
+    level_matches_plain_on_corpus(doo_sabin, doo_sabin_level, |name, m, lv| {
+        let o = lv.origins.as_ref().unwrap();
+        let fl = FaceLayout::new(m).unwrap();
+        let (fv, ff, fe) = (
+            origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces()),
+            origin_counts(&o.face_kind, &o.face, FACE, m.n_faces()),
+            origin_counts(&o.edge_kind, &o.edge, FACE, m.n_faces()),
+        );
+        for f in 0..m.n_faces() {
+            let point = is_point_face(m, f);
+            // n corner points and n F-face sides per n-gon; a point-sphere keeps its vertex
+            assert_eq!((fv[f], ff[f], fe[f]), (fl.degree(f), 1, fl.degree(f)), "{name} face {f} {point}");
+        }
+        assert!(origin_counts(&o.face_kind, &o.face, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+        assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 2), "{name}");
+        let vf = origin_counts(&o.face_kind, &o.face, VERTEX, m.n_vertices());
+        assert!(vf.iter().enumerate().all(|(v, &c)| c == usize::from(m.v_out[v] & crate::mesh::POINT == 0)), "{name}");
+        let kinds = |k: &[u8], kind: u8| k.iter().filter(|&&x| x == kind).count();
+        let ps = n_point_spheres(m);
+        assert_eq!(kinds(&o.vertex_kind, FACE), m.n_halfedges(), "{name}");
+        assert_eq!(kinds(&o.vertex_kind, VERTEX), ps, "{name}");
+        assert_eq!((kinds(&o.face_kind, FACE), kinds(&o.face_kind, EDGE), kinds(&o.face_kind, VERTEX)), (m.n_faces(), m.n_edges(), m.n_vertices() - ps), "{name}");
+    });
+}
+
+#[test]
+fn open_meshes_keep_their_holes_with_a_chaikin_boundary() {
+    let full = crate::schemes::hosts::test_meshes::full_request();
+    for (name, m) in open_meshes() {
+        let lv = doo_sabin_level(&m, &full).unwrap();
+        check_level(name, &m, &lv);
+        let r = &lv.mesh;
+        let b = (0..m.n_halfedges()).filter(|&h| m.f_hole[m.he_face[h] as usize]).count();
+        let (v, e, f, h) = (m.n_vertices(), m.n_edges(), m.n_faces() - m.n_holes(), m.n_halfedges());
+        assert_eq!((r.n_vertices(), r.n_edges(), r.n_faces() - r.n_holes(), r.n_holes()), (h + b, 4 * e + b, f + e + v, m.n_holes()), "{name}");
+        assert_eq!(open_euler(r), open_euler(&m), "{name}");
+        assert_eq!(r.n_components(), m.n_components(), "{name}");
+        // the boundary polygon is refined by Chaikin's rule: output hole f runs through
+        // 3/4 a + 1/4 b and 1/4 a + 3/4 b of every edge a -> b of input hole f
+        let p = m.positions();
+        for hf in (0..m.n_faces()).filter(|&x| m.f_hole[x]) {
+            assert!(r.f_hole[hf], "{name}");
+            let want: Vec<DVec3> = m
+                .face_halfedges(crate::FaceId(hf as u32))
+                .flat_map(|g| {
+                    let (a, bb) = (p[m.vertex(g).idx()], p[m.head(g).idx()]);
+                    [a * 0.75 + bb * 0.25, a * 0.25 + bb * 0.75]
+                })
+                .collect();
+            let got: Vec<DVec3> = r.face_vertices(crate::FaceId(hf as u32)).map(|x| r.position(x)).collect();
+            assert_eq!(got.len(), want.len(), "{name}");
+            for (a, bb) in got.iter().zip(&want) {
+                assert!((*a - *bb).length() < 1e-12, "{name}: {a} vs {bb}");
+            }
+        }
+        // interior corner points keep Doo & Sabin's mask
+        let fl = FaceLayout::new(&m).unwrap();
+        for ff in (0..m.n_faces()).filter(|&x| !m.f_hole[x]) {
+            let hs = fl.corners(ff);
+            let n = hs.len();
+            for k in 0..n {
+                let want: DVec3 = (0..n).map(|i| p[m.he_vert[hs[i] as usize] as usize] * doo_sabin_weight(n, (i + n - k) % n)).sum();
+                assert!((r.positions()[fl.off[ff] as usize + k] - want).length() < 1e-12, "{name}");
+            }
+        }
+        // origins: n corner points per real n-gon, 2 Chaikin points and 1 E-face per boundary edge
+        let o = lv.origins.as_ref().unwrap();
+        let fv = origin_counts(&o.vertex_kind, &o.vertex, FACE, m.n_faces());
+        let ev = origin_counts(&o.vertex_kind, &o.vertex, EDGE, m.n_edges());
+        for x in 0..m.n_faces() {
+            assert_eq!(fv[x], if m.f_hole[x] { 0 } else { fl.degree(x) }, "{name}");
+        }
+        for x in 0..m.n_edges() {
+            let bnd = m.f_hole[m.he_face[2 * x] as usize] || m.f_hole[m.he_face[2 * x + 1] as usize];
+            assert_eq!(ev[x], if bnd { 2 } else { 0 }, "{name}");
+        }
+        assert!(origin_counts(&o.face_kind, &o.face, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
+        // two steps: still open, still Chaikin
+        let lv2 = doo_sabin_level(r, &full).unwrap();
+        check_level(name, r, &lv2);
+        assert_eq!((lv2.mesh.n_holes(), open_euler(&lv2.mesh)), (m.n_holes(), open_euler(&m)), "{name}");
+    }
+    // the plain call still refuses holes
+    match doo_sabin(&cube_with_hole()) {
+        Err(crate::error::MeshError::Precondition(msg)) => assert!(msg.starts_with("doo_sabin"), "{msg}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn direct_data_equals_the_stencils_on_corpus() {
+    let mut n = 0;
+    for (name, m) in corpus() {
+        let k = 3;
+        let a: Vec<f64> = (0..m.n_vertices() * k).map(|i| ((i * 7919) % 613) as f64 * 0.1 - 3.0).collect();
+        let with = Request { stencils: true, ..Default::default() };
+        let st = doo_sabin_level(&m, &with).unwrap().stencils.unwrap();
+        let want = st.apply(&a, k).unwrap();
+        let (lv, got) = doo_sabin_level_with(&m, &Request::default(), &[(a.clone(), k)]).unwrap();
+        assert!(lv.stencils.is_none(), "{name}: no stencils asked for");
+        assert_eq!(got[0].len(), want.len(), "{name}");
+        for (i, (x, y)) in got[0].iter().zip(&want).enumerate() {
+            assert!((x - y).abs() < 1e-12, "{name}: value {i}: {x} vs {y}");
+        }
+        n += 1;
+    }
+    assert!(n >= 10);
+}
+
+#[test]
+fn matches_direct_weights() {
+    let m = crate::primitives::dodecahedron();
+    let r = doo_sabin(&m).unwrap();
+    let fl = FaceLayout::new(&m).unwrap();
+    for f in 0..m.n_faces() {
+        let hs = fl.corners(f);
+        let n = hs.len();
+        for k in 0..n {
+            let want: DVec3 = (0..n).map(|i| m.positions()[m.vertex(crate::HalfedgeId(hs[i])).idx()] * doo_sabin_weight(n, (i + n - k) % n)).sum();
+            assert!((r.positions()[fl.off[f] as usize + k] - want).length() < 1e-13);
+        }
+    }
+}
+
+#[test]
+fn handle_self_loop_opens() {
+    let m = cube_with_handle_loop();
+    let r = doo_sabin(&m).unwrap();
+    // no two corner points coincide
+    let p = r.positions();
+    for i in 0..p.len() {
+        for j in 0..i {
+            assert!((p[i] - p[j]).length() > 1e-6, "{i} {j}");
+        }
+    }
+}
