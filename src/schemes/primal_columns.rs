@@ -62,6 +62,20 @@ impl FaceInfo {
             _ => 2,
         }
     }
+    /// Offset in this face's block of the lower of the two output corners
+    /// at the edge point of input corner `k`'s edge on this side: the inner
+    /// corner after `a(h)` (slot 1, not in a hole) and `b(next h)`. Index
+    /// arithmetic only (`next h` is corner `k + 1` of the same face).
+    #[inline]
+    fn edge_point_corner(&self, k: u32) -> u32 {
+        let k1 = (k + 1) % self.n;
+        match self.kind {
+            Q => (4 * k + 1).min(4 * k1 + 3),
+            T => (3 * k + 1).min(3 * k1 + 2),
+            // b(next h) is the second corner of h's own sub-block
+            _ => 2 * k + 1,
+        }
+    }
 }
 
 struct Ctx<'a> {
@@ -354,28 +368,30 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         *o = ctx.id_a(best);
     });
     // edge points: the lowest of e(h)'s corners, h one of the edge's halves:
-    // the inner corner after a(h) (not in a hole) and b(next h)
+    // the inner corner after a(h) (not in a hole) and b(next h). Positions
+    // first (arithmetic on the two sides' faces), then the id of the winner
+    // only: an id may chase a twin into another face's block.
     cols.v_out[nv as usize..(nv + ne) as usize].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
         if crate::cancel::requested() {
             return;
         }
-        let mut best = (u32::MAX, 0u32);
-        for h in [2 * e as u32, 2 * e as u32 + 1] {
+        let side = |h: u32| {
             let (fi, k, c) = ctx.loc(h);
-            if fi.kind != H {
-                let p = fi.base + fi.stride() * k + 1;
-                if p < best.0 {
-                    let id = if ctx.is_first(c, 1) { ctx.first_id(fi, c, 1) } else { ctx.first_id(fi, fi.off, 2) + 1 };
-                    best = (p, id);
-                }
+            let j = fi.edge_point_corner(k);
+            (fi.base + j, fi, k, c, j, h)
+        };
+        let (s0, s1) = (side(2 * e as u32), side(2 * e as u32 + 1));
+        let (_, fi, k, c, j, h) = if s0.0 < s1.0 { s0 } else { s1 };
+        *o = if fi.kind != H && j == fi.stride() * k + 1 {
+            // slot 1 of h's sub-block
+            if ctx.is_first(c, 1) {
+                ctx.first_id(fi, c, 1)
+            } else {
+                ctx.first_id(fi, fi.off, 2) + 1
             }
-            let g = next[h as usize];
-            let p = ctx.pos_b(g);
-            if p < best.0 {
-                best = (p, ctx.id_b(g));
-            }
-        }
-        *o = best.1;
+        } else {
+            ctx.id_b(next[h as usize])
+        };
     });
     crate::cancel::check()?;
     let out = Mesh::from_columns(cols)?;
