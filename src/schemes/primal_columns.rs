@@ -79,7 +79,6 @@ impl FaceInfo {
 }
 
 struct Ctx<'a> {
-    next: &'a [u32],
     prev: &'a [u32],
     face: &'a [u32],
     cidx: &'a [u32],
@@ -104,10 +103,19 @@ impl Ctx<'_> {
         let (fi, k, _) = self.loc(h);
         fi.base + fi.stride() * k
     }
-    /// Output corner index of `b(h)`.
+    /// [`Self::loc`] of `next[t]`, by index arithmetic on `t`'s own: the
+    /// face's next corner. One dependent load fewer than through `next`,
+    /// and `t`'s entries share a cache line with its twin's, which the
+    /// callers (`t = h ^ 1`) have usually just read.
     #[inline]
-    fn pos_b(&self, h: u32) -> u32 {
-        let (fi, k, _) = self.loc(h);
+    fn loc_next(&self, t: u32) -> (&FaceInfo, u32, u32) {
+        let (fi, k, _) = self.loc(t);
+        let k1 = if k + 1 == fi.n { 0 } else { k + 1 };
+        (fi, k1, fi.off + k1)
+    }
+    /// Output corner index of `b(h)`, from [`Self::loc`] of `h`.
+    #[inline]
+    fn pos_b(&self, (fi, k, _): (&FaceInfo, u32, u32)) -> u32 {
         match fi.kind {
             Q => fi.base + 4 * k + 3,
             T => fi.base + 3 * k + 2,
@@ -139,9 +147,10 @@ impl Ctx<'_> {
             _ => (fi.off + (k + fi.n - 1) % fi.n, 1),
         }
     }
+    /// Id of `b(h)` when it is the first corner of its edge, from
+    /// [`Self::loc`] of `h`.
     #[inline]
-    fn first_b(&self, h: u32) -> u32 {
-        let (fi, k, c) = self.loc(h);
+    fn first_b(&self, (fi, k, c): (&FaceInfo, u32, u32)) -> u32 {
         let (c, s) = Self::slot_b(fi, k, c);
         self.first_id(fi, c, s)
     }
@@ -151,7 +160,7 @@ impl Ctx<'_> {
         if self.is_first(c, 0) {
             self.first_id(fi, c, 0)
         } else {
-            self.first_b(self.next[(h ^ 1) as usize]) + 1
+            self.first_b(self.loc_next(h ^ 1)) + 1
         }
     }
     #[inline]
@@ -200,7 +209,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         fb += nfo;
     }
     let (nc, nfo) = (b as usize, fb as usize);
-    let mut ctx = Ctx { next, prev, face, cidx: &fl.cidx, fi, rm: vec![0; m.n_halfedges()] };
+    let mut ctx = Ctx { prev, face, cidx: &fl.cidx, fi, rm: vec![0; m.n_halfedges()] };
     // pass 1: first corners, per input corner and per face
     let cnt: Vec<u32> = {
         let rmp = SyncPtr(ctx.rm.as_mut_ptr());
@@ -219,7 +228,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
                 for (k, &h) in hs.iter().enumerate() {
                     let k = k as u32;
                     let pa = fi.base + fi.stride() * k;
-                    let first_a = ctx.pos_b(next[(h ^ 1) as usize]) > pa;
+                    let first_a = ctx.pos_b(ctx.loc_next(h ^ 1)) > pa;
                     let mask = match fi.kind {
                         Q => {
                             let pb = pa + 3;
