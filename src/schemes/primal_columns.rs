@@ -62,10 +62,23 @@ impl FaceInfo {
             _ => 2,
         }
     }
+    /// Offset in this face's block of the lower of the two output corners
+    /// at the edge point of input corner `k`'s edge on this side: the inner
+    /// corner after `a(h)` (slot 1, not in a hole) and `b(next h)`. Index
+    /// arithmetic only (`next h` is corner `k + 1` of the same face).
+    #[inline]
+    fn edge_point_corner(&self, k: u32) -> u32 {
+        let k1 = (k + 1) % self.n;
+        match self.kind {
+            Q => (4 * k + 1).min(4 * k1 + 3),
+            T => (3 * k + 1).min(3 * k1 + 2),
+            // b(next h) is the second corner of h's own sub-block
+            _ => 2 * k + 1,
+        }
+    }
 }
 
 struct Ctx<'a> {
-    next: &'a [u32],
     prev: &'a [u32],
     face: &'a [u32],
     cidx: &'a [u32],
@@ -90,10 +103,19 @@ impl Ctx<'_> {
         let (fi, k, _) = self.loc(h);
         fi.base + fi.stride() * k
     }
-    /// Output corner index of `b(h)`.
+    /// [`Self::loc`] of `next[t]`, by index arithmetic on `t`'s own: the
+    /// face's next corner. One dependent load fewer than through `next`,
+    /// and `t`'s entries share a cache line with its twin's, which the
+    /// callers (`t = h ^ 1`) have usually just read.
     #[inline]
-    fn pos_b(&self, h: u32) -> u32 {
-        let (fi, k, _) = self.loc(h);
+    fn loc_next(&self, t: u32) -> (&FaceInfo, u32, u32) {
+        let (fi, k, _) = self.loc(t);
+        let k1 = if k + 1 == fi.n { 0 } else { k + 1 };
+        (fi, k1, fi.off + k1)
+    }
+    /// Output corner index of `b(h)`, from [`Self::loc`] of `h`.
+    #[inline]
+    fn pos_b(&self, (fi, k, _): (&FaceInfo, u32, u32)) -> u32 {
         match fi.kind {
             Q => fi.base + 4 * k + 3,
             T => fi.base + 3 * k + 2,
@@ -125,9 +147,10 @@ impl Ctx<'_> {
             _ => (fi.off + (k + fi.n - 1) % fi.n, 1),
         }
     }
+    /// Id of `b(h)` when it is the first corner of its edge, from
+    /// [`Self::loc`] of `h`.
     #[inline]
-    fn first_b(&self, h: u32) -> u32 {
-        let (fi, k, c) = self.loc(h);
+    fn first_b(&self, (fi, k, c): (&FaceInfo, u32, u32)) -> u32 {
         let (c, s) = Self::slot_b(fi, k, c);
         self.first_id(fi, c, s)
     }
@@ -137,7 +160,7 @@ impl Ctx<'_> {
         if self.is_first(c, 0) {
             self.first_id(fi, c, 0)
         } else {
-            self.first_b(self.next[(h ^ 1) as usize]) + 1
+            self.first_b(self.loc_next(h ^ 1)) + 1
         }
     }
     #[inline]
@@ -186,7 +209,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         fb += nfo;
     }
     let (nc, nfo) = (b as usize, fb as usize);
-    let mut ctx = Ctx { next, prev, face, cidx: &fl.cidx, fi, rm: vec![0; m.n_halfedges()] };
+    let mut ctx = Ctx { prev, face, cidx: &fl.cidx, fi, rm: vec![0; m.n_halfedges()] };
     // pass 1: first corners, per input corner and per face
     let cnt: Vec<u32> = {
         let rmp = SyncPtr(ctx.rm.as_mut_ptr());
@@ -205,7 +228,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
                 for (k, &h) in hs.iter().enumerate() {
                     let k = k as u32;
                     let pa = fi.base + fi.stride() * k;
-                    let first_a = ctx.pos_b(next[(h ^ 1) as usize]) > pa;
+                    let first_a = ctx.pos_b(ctx.loc_next(h ^ 1)) > pa;
                     let mask = match fi.kind {
                         Q => {
                             let pb = pa + 3;
@@ -354,28 +377,30 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         *o = ctx.id_a(best);
     });
     // edge points: the lowest of e(h)'s corners, h one of the edge's halves:
-    // the inner corner after a(h) (not in a hole) and b(next h)
+    // the inner corner after a(h) (not in a hole) and b(next h). Positions
+    // first (arithmetic on the two sides' faces), then the id of the winner
+    // only: an id may chase a twin into another face's block.
     cols.v_out[nv as usize..(nv + ne) as usize].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| {
         if crate::cancel::requested() {
             return;
         }
-        let mut best = (u32::MAX, 0u32);
-        for h in [2 * e as u32, 2 * e as u32 + 1] {
+        let side = |h: u32| {
             let (fi, k, c) = ctx.loc(h);
-            if fi.kind != H {
-                let p = fi.base + fi.stride() * k + 1;
-                if p < best.0 {
-                    let id = if ctx.is_first(c, 1) { ctx.first_id(fi, c, 1) } else { ctx.first_id(fi, fi.off, 2) + 1 };
-                    best = (p, id);
-                }
+            let j = fi.edge_point_corner(k);
+            (fi.base + j, fi, k, c, j, h)
+        };
+        let (s0, s1) = (side(2 * e as u32), side(2 * e as u32 + 1));
+        let (_, fi, k, c, j, h) = if s0.0 < s1.0 { s0 } else { s1 };
+        *o = if fi.kind != H && j == fi.stride() * k + 1 {
+            // slot 1 of h's sub-block
+            if ctx.is_first(c, 1) {
+                ctx.first_id(fi, c, 1)
+            } else {
+                ctx.first_id(fi, fi.off, 2) + 1
             }
-            let g = next[h as usize];
-            let p = ctx.pos_b(g);
-            if p < best.0 {
-                best = (p, ctx.id_b(g));
-            }
-        }
-        *o = best.1;
+        } else {
+            ctx.id_b(next[h as usize])
+        };
     });
     crate::cancel::check()?;
     let out = Mesh::from_columns(cols)?;

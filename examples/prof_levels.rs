@@ -1,0 +1,64 @@
+//! One warm subdivision step at a chosen level on the 81,920-triangle
+//! icosphere (issue 19), for profilers and A/B runs, one thread:
+//! `RAYON_NUM_THREADS=1 cargo run --release --example prof_levels -- catmull_clark 3 [REPS]`.
+//! Level L times one step on the output of L − 1 steps; `iter` as a 4th
+//! argument times `L` steps from the sphere instead (what `iterations=L` does),
+//! `counts` the budget's `Counts::of` on the level's input. Prints the median
+//! wall time per call and per output face. Deterministic counts for A/B runs:
+//! `valgrind --tool=cachegrind --cache-sim=yes --LL=33554432,16,64` on it.
+use std::time::Instant;
+use topomesh::schemes::{catmull_clark::catmull_clark, loop_subdivision::loop_subdivision};
+use topomesh::{primitives, Mesh};
+
+fn main() {
+    let a: Vec<String> = std::env::args().collect();
+    let scheme = a.get(1).map_or("catmull_clark", |s| s.as_str());
+    let level: usize = a.get(2).map_or(3, |s| s.parse().unwrap());
+    let reps: usize = a.get(3).map_or(5, |s| s.parse().unwrap());
+    let iter = a.get(4).is_some_and(|s| s == "iter");
+    let counts = a.get(4).is_some_and(|s| s == "counts");
+    let step: fn(&Mesh) -> topomesh::Result<Mesh> = if scheme == "loop" { loop_subdivision } else { catmull_clark };
+    let mut sphere = primitives::icosahedron();
+    for _ in 0..6 {
+        sphere = loop_subdivision(&sphere).unwrap();
+    }
+    let mut input = sphere.clone();
+    if !iter {
+        for _ in 1..level {
+            input = step(&input).unwrap();
+        }
+    }
+    if counts {
+        // the budget's per-level count of the input (python iterate_with)
+        let mut t = Vec::new();
+        for _ in 0..reps {
+            let t0 = Instant::now();
+            std::hint::black_box(topomesh::budget::Counts::of(&input));
+            t.push(t0.elapsed().as_secs_f64() * 1e3);
+        }
+        t.sort_by(f64::total_cmp);
+        println!("Counts::of on {} faces: median {:.2} ms", input.n_faces(), t[t.len() / 2]);
+        return;
+    }
+    let run = |m: &Mesh| -> Mesh {
+        if !iter {
+            return step(m).unwrap();
+        }
+        let mut cur = step(m).unwrap();
+        for _ in 1..level {
+            cur = step(&cur).unwrap();
+        }
+        cur
+    };
+    let mut t = Vec::new();
+    let mut nf = 0;
+    for _ in 0..reps {
+        let t0 = Instant::now();
+        let r = run(&input);
+        t.push(t0.elapsed().as_secs_f64() * 1e3);
+        nf = r.n_faces();
+    }
+    t.sort_by(f64::total_cmp);
+    let med = t[t.len() / 2];
+    println!("{scheme} {} L{level}: {nf} faces, median {med:.1} ms, min {:.1} ms, {:.1} ns/face", if iter { "iter" } else { "step" }, t[0], med / nf as f64 * 1e6);
+}
