@@ -150,7 +150,7 @@ pub fn remesh_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
 /// dual): V' = V + 4E, E' = 9E, F' = F + 4E; histogram: the input's face
 /// sizes plus 4E quads (checkerboard's new vertices are 4-valent).
 pub fn dual_checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
-    dual(&super::checkerboard::checkerboard(&dual(m)?, thickness)?)
+    super::checkerboard_dual::dual_of_checkerboard(&dual(m)?, thickness)
 }
 
 /// Dual hexagon preserving (`subdivideDualHexagonPreserving`: dual, root-4,

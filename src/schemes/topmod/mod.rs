@@ -42,6 +42,7 @@
 //! | Extrusions | [`extrude`] |
 
 pub mod checkerboard;
+mod checkerboard_dual;
 pub mod compose;
 pub mod corner_cutting;
 pub mod doo_sabin_bc_new;
