@@ -143,7 +143,7 @@ pub fn dual_pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
 /// 12.6.4 (`subdivide1264`: dual + dual 12.6.4 + dual): V' = V + E + F,
 /// E' = 6E, F' = 4E triangles.
 pub fn remesh_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
-    dual(&super::twelve_six_four::dual_12_6_4(&dual(m)?, scale)?)
+    super::twelve_six_four_dual::dual_of_dual_12_6_4(&dual(m)?, scale)
 }
 
 /// Dual checkerboard (`subdivideDualCheckerBoard`: dual + checkerboard +

@@ -53,6 +53,7 @@ pub mod loop_style;
 pub mod pentagonal;
 pub mod stellate;
 pub mod twelve_six_four;
+mod twelve_six_four_dual;
 
 #[cfg(test)]
 pub(crate) mod tests {
