@@ -157,7 +157,7 @@ pub fn dual_checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
 /// dual): V' = V + E, E' = 4E, F' = F + 2E; histogram: the input's face
 /// sizes plus 2E triangles (root-4's inner points are 3-valent).
 pub fn dual_hexagon_preserving(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
-    dual(&super::loop_style::root4(&dual(m)?, weight, twist)?)
+    super::root4_dual::dual_of_root4(&dual(m)?, weight, twist)
 }
 
 /// Doo-Sabin BC (`dooSabinSubdivideBC`: every edge split at its midpoint,

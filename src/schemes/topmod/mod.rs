@@ -50,6 +50,7 @@ pub mod extrude;
 mod extrude_platonic;
 pub mod linear;
 pub mod loop_style;
+mod root4_dual;
 pub mod pentagonal;
 pub mod stellate;
 pub mod twelve_six_four;
