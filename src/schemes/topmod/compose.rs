@@ -137,7 +137,7 @@ pub fn dual_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
 /// pentagon preserving + dual). With S the valence sum over the input's
 /// vertices of valence ≥ 3: V' = V + S, E' = 2E + 2S, F' = F + E + S.
 pub fn dual_pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
-    dual(&super::pentagonal::pentagon_preserving(&dual(m)?, scale)?)
+    super::pentagonal_dual::dual_of_pentagon_preserving(&dual(m)?, scale)
 }
 
 /// 12.6.4 (`subdivide1264`: dual + dual 12.6.4 + dual): V' = V + E + F,
