@@ -10,7 +10,7 @@ use crate::schemes::dual::dual;
 /// Root-3 (`subdivideRoot3`: dual + honeycomb + dual): V' = V + F,
 /// E' = 3E, F' = 2E triangles (the √3 connectivity, honeycomb's points).
 pub fn root3(m: &Mesh) -> Result<Mesh> {
-    dual(&crate::schemes::honeycomb::honeycomb(&dual(m)?, 0.5, None)?)
+    super::root3_dual::dual_of_honeycomb(&dual(m)?, 0.5)
 }
 
 /// Dual Loop (`subdivideDualLoop`: dual + Loop + dual). Loop fans the dual's

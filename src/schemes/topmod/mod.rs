@@ -52,6 +52,7 @@ pub mod linear;
 pub mod loop_style;
 mod root4_dual;
 pub mod pentagonal;
+mod root3_dual;
 mod pentagonal_dual;
 pub mod stellate;
 pub mod twelve_six_four;
