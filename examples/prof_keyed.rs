@@ -46,6 +46,16 @@ fn main() {
     ops.push(("doo_sabin_bc_new".into(), Box::new(|m: &Mesh| topmod::doo_sabin_bc_new::doo_sabin_bc_new(m, 1.0, 1.0))));
     ops.push(("double_stellate_misc".into(), Box::new(|m: &Mesh| topmod::stellate::double_stellate_misc(m, 0.0, 0.0))));
     ops.push(("stellate_edge_removal".into(), Box::new(|m: &Mesh| topmod::stellate::stellate_edge_removal(m, 0.0))));
+    // TopMod's compositions (dual + X + dual) and their parts
+    ops.push(("dual".into(), Box::new(topomesh::schemes::dual::dual)));
+    ops.push(("loop".into(), Box::new(topomesh::schemes::loop_subdivision::loop_subdivision)));
+    ops.push(("root3".into(), Box::new(topmod::compose::root3)));
+    ops.push(("dual_loop".into(), Box::new(topmod::compose::dual_loop)));
+    ops.push(("cubic_pentagonalize".into(), Box::new(|m: &Mesh| topmod::compose::cubic_pentagonalize(m, 0.0))));
+    ops.push(("dual_pentagon_preserving".into(), Box::new(|m: &Mesh| topmod::compose::dual_pentagon_preserving(m, 0.75))));
+    ops.push(("remesh_12_6_4".into(), Box::new(|m: &Mesh| topmod::compose::remesh_12_6_4(m, 0.7))));
+    ops.push(("dual_checkerboard".into(), Box::new(|m: &Mesh| topmod::compose::dual_checkerboard(m, 0.33))));
+    ops.push(("dual_hexagon_preserving".into(), Box::new(|m: &Mesh| topmod::compose::dual_hexagon_preserving(m, 0.0, 0.0))));
     let filter: Option<String> = std::env::args().nth(2);
     for (name, op) in &ops {
         if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {

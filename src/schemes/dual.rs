@@ -142,7 +142,7 @@ fn step_one_pass(m: &Mesh) -> Result<Mesh> {
 /// Corner mean of face `f`, summed from its first corner (the same bits as
 /// [`face_centroids`]).
 #[inline]
-fn face_centroid(m: &Mesh, next: &[u32], f: usize) -> DVec3 {
+pub(crate) fn face_centroid(m: &Mesh, next: &[u32], f: usize) -> DVec3 {
     let s = m.f_start[f];
     let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
     loop {

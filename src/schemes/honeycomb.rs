@@ -84,6 +84,16 @@ pub fn default_tension(n: usize) -> f64 {
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
     let fl = FaceLayout::new(m)?;
+    let new_pos = positions(m, &fl, t, tension)?;
+
+    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
+    // written straight into the columns
+    super::face_vertex_columns::honeycomb_columns(m, &fl, new_pos)
+}
+
+/// Honeycomb's new vertices, one per old half-edge (eq. 2; holes and
+/// one-gons keep their edge points); shared with `topmod::root3_dual`.
+pub(crate) fn positions(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>) -> Result<Vec<DVec3>> {
     let nh = m.n_halfedges();
     let nf = m.n_faces();
     let (_, vert, _) = m.halfedge_columns();
@@ -129,10 +139,7 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
         }
     });
     crate::cancel::check()?;
-
-    // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
-    // written straight into the columns
-    super::face_vertex_columns::honeycomb_columns(m, &fl, new_pos)
+    Ok(new_pos)
 }
 
 /// One step with what `req` asks for (see the module docs); without

@@ -40,10 +40,15 @@ fn step(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
         sigma += c.fl.degree(f);
     }
     reserve("kis", m, c.nv + s, c.ne + sigma, c.nf - s + sigma)?;
-    fan("kis", &c, chosen, |f| {
-        let r = c.corners(f).map(|h| c.p(c.tail(h)).distance(c.cen[f])).sum::<f64>() / c.fl.degree(f) as f64;
-        c.cen[f] + c.normal(f) * (0.1 * r)
-    })
+    fan("kis", &c, chosen, |f| apex(&c, f))
+}
+
+/// Kis's apex over face `f` (see the module docs); shared with
+/// [`super::dual_kis`], which must give the same bits.
+#[inline]
+pub(crate) fn apex(c: &Ctx<'_>, f: usize) -> DVec3 {
+    let r = c.corners(f).map(|h| c.p(c.tail(h)).distance(c.cen[f])).sum::<f64>() / c.fl.degree(f) as f64;
+    c.cen[f] + c.normal(f) * (0.1 * r)
 }
 
 /// The centroid fan written once, for Conway's kis and TopMod's stellate:

@@ -64,6 +64,7 @@ mod ambo;
 pub(crate) mod build;
 pub mod canonical;
 mod chiral;
+mod dual_kis;
 mod inset;
 pub(crate) mod kis;
 pub mod seeds;
@@ -193,6 +194,7 @@ impl Op {
         match self {
             Dual => dual(m),
             Ambo => ambo(m),
+            Truncate(None) => dual_kis::dual_kis(&dual(m)?),
             Truncate(n) => dual(&kis(&dual(m)?, n)?),
             Kis(n) => kis(m, n),
             Join => dual(&ambo(m)?),
@@ -200,9 +202,10 @@ impl Op {
             Ortho => dual(&ambo(&ambo(m)?)?),
             Gyro => gyro(m),
             Snub => dual(&gyro(m)?),
-            Bevel => dual(&kis(&dual(&ambo(m)?)?, None)?),
+            Bevel => dual_kis::dual_kis(&dual(&ambo(m)?)?),
             Meta => kis(&dual(&ambo(m)?)?, None),
             Needle(n) => kis(&dual(m)?, n),
+            Zip(None) => dual_kis::dual_kis(m),
             Zip(n) => dual(&kis(m, n)?),
             Chamfer => chamfer(m),
             Subdivide => subdivide(m),

@@ -29,32 +29,7 @@ pub fn checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
     with_point_spheres("checkerboard", m, |m| {
         let i = In::new(m)?;
         let (v, nh, ne) = (i.nv, i.nh, i.ne);
-        let normals = i.normals();
-        let mut pos = i.positions(2 * nh);
-        for h in 0..nh {
-            pos.push(i.p(h).lerp(i.q(h), thickness));
-        }
-        pos.resize(v + 2 * nh, glam::DVec3::ZERO);
-        for f in 0..i.nf {
-            let n = normals[f];
-            for &h in i.fl.corners(f) {
-                let h = h as usize;
-                let x = i.p(h);
-                let (pv, nv) = (i.p(i.prev[h] as usize) - x, i.q(h) - x);
-                let s = pv + nv;
-                let scale = pv.length().max(nv.length());
-                let off = if s.length() > 1e-9 * scale {
-                    if nv.cross(pv).dot(n) < 0.0 {
-                        -thickness * s
-                    } else {
-                        thickness * s
-                    }
-                } else {
-                    thickness * nv.length() * n.cross(nv).normalize_or_zero()
-                };
-                pos[v + nh + h] = x + off;
-            }
-        }
+        let pos = positions(&i, thickness);
         let (tp, ip) = (|h: usize| (v + h) as u32, |h: usize| (v + nh + h) as u32);
         // keys: [0, H) segment at tail(h), [H, H+E) middle segment, [H+E, 2H+E)
         // inset side of corner h, then p(h)–i(h), then i(h)–p(twin prev h)
@@ -84,6 +59,39 @@ pub fn checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
         }
         o.finish("checkerboard")
     })
+}
+
+/// Checkerboard's vertices (old ones, trisection points at V + h, inset
+/// points at V + 2E + h); shared with [`super::checkerboard_dual`].
+pub(crate) fn positions(i: &In<'_>, thickness: f64) -> Vec<glam::DVec3> {
+    let (v, nh) = (i.nv, i.nh);
+    let normals = i.normals();
+    let mut pos = i.positions(2 * nh);
+    for h in 0..nh {
+        pos.push(i.p(h).lerp(i.q(h), thickness));
+    }
+    pos.resize(v + 2 * nh, glam::DVec3::ZERO);
+    for f in 0..i.nf {
+        let n = normals[f];
+        for &h in i.fl.corners(f) {
+            let h = h as usize;
+            let x = i.p(h);
+            let (pv, nv) = (i.p(i.prev[h] as usize) - x, i.q(h) - x);
+            let s = pv + nv;
+            let scale = pv.length().max(nv.length());
+            let off = if s.length() > 1e-9 * scale {
+                if nv.cross(pv).dot(n) < 0.0 {
+                    -thickness * s
+                } else {
+                    thickness * s
+                }
+            } else {
+                thickness * nv.length() * n.cross(nv).normalize_or_zero()
+            };
+            pos[v + nh + h] = x + off;
+        }
+    }
+    pos
 }
 
 #[cfg(test)]

@@ -13,8 +13,12 @@ use crate::schemes::face_parents::via_origins;
 pub fn root3(m: &Mesh) -> Result<Mesh> {
     use crate::schemes::honeycomb as h;
     let d = dual(m)?;
-    // face parents through the level's origins (honeycomb does not record)
-    dual(&via_origins(&d, |r| h::honeycomb_level(&d, 0.5, None, r), || h::honeycomb(&d, 0.5, None))?)
+    if crate::schemes::face_parents::recording() {
+        // face parents through honeycomb's origins: the one-pass build below
+        // records none (same mesh, keyed::hashes)
+        return dual(&via_origins(&d, |r| h::honeycomb_level(&d, 0.5, None, r), || h::honeycomb(&d, 0.5, None))?);
+    }
+    super::root3_dual::dual_of_honeycomb(&d, 0.5)
 }
 
 /// Dual Loop (`subdivideDualLoop`: dual + Loop + dual). Loop fans the dual's
@@ -32,7 +36,104 @@ pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
 /// dual, dual): pentagonalization's counts, positions the centroids of
 /// centroids.
 pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
-    dual(&dual(&super::pentagonal::pentagonalize(m, offset)?)?)
+    dual_dual(&super::pentagonal::pentagonalize(m, offset)?)
+}
+
+/// `dual(dual(p))` without the intermediate dual (issue 16: the two duals
+/// were two thirds of cubic pentagonalization's time). The double dual has
+/// p's connectivity: face f of it is p's face f and its vertex v is p's
+/// vertex v, at the mean of the centroids around v (summed in v's rotation
+/// from `v_out`, the order of the dual's face v). What differs is the
+/// numbering: the outer dual walks p's faces in order, each from the corner
+/// at which the inner dual first met its centroid (the first face of p met
+/// walking p's vertices in order) and numbers edges by first crossing.
+/// Both are reproduced here bit for bit (`keyed::hashes`); with holes or
+/// point-spheres it is the two duals.
+fn dual_dual(p: &Mesh) -> Result<Mesh> {
+    use crate::mesh::{Columns, NONE, POINT};
+    use crate::schemes::dual::face_centroid;
+    use glam::DVec3;
+    if p.n_holes() > 0 || p.v_out.iter().any(|&o| o & POINT != 0) {
+        return dual(&dual(p)?);
+    }
+    let (nv, ne, nf, nh) = (p.n_vertices(), p.n_edges(), p.n_faces(), p.n_halfedges());
+    crate::schemes::hosts::check_output_size("dual", nh, nf)?;
+    crate::schemes::hosts::check_output_size("dual", nh, nv)?;
+    let (next, vert, face) = p.halfedge_columns();
+    let mut cen = Vec::with_capacity(nf);
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        cen.push(face_centroid(p, next, f));
+    }
+    // the dual's faces: positions, and the corner c0[f] of each centroid's
+    // first appearance
+    let mut pos = Vec::with_capacity(nv);
+    let mut c0 = vec![NONE; nf];
+    for v in 0..nv {
+        crate::cancel::poll(v)?;
+        let s = p.v_out[v];
+        let (mut h, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
+        loop {
+            let f = face[h as usize] as usize;
+            sum += cen[f];
+            k += 1;
+            if c0[f] == NONE {
+                c0[f] = h;
+            }
+            h = p.he_prev[h as usize] ^ 1;
+            if h == s {
+                break;
+            }
+        }
+        pos.push(sum / k as f64);
+    }
+    drop(cen);
+    let mut cols = Columns::new(pos, nh, nf);
+    cols.v_out.fill(NONE);
+    // slot[e]: 0 before edge e's first side, else its output edge + 1
+    let mut slot = vec![0u32; ne];
+    let mut n_out = 0u32;
+    for (f, &s) in c0.iter().enumerate() {
+        crate::cancel::poll(f)?;
+        let (mut h, mut last) = (s, NONE);
+        loop {
+            let sl = &mut slot[(h >> 1) as usize];
+            let i = if *sl == 0 {
+                n_out += 1;
+                *sl = n_out;
+                2 * (n_out - 1)
+            } else {
+                2 * (*sl - 1) + 1
+            };
+            let v = vert[h as usize];
+            cols.he_vert[i as usize] = v;
+            cols.he_face[i as usize] = f as u32;
+            let o = &mut cols.v_out[v as usize];
+            if *o == NONE {
+                *o = i;
+            }
+            if last == NONE {
+                cols.f_start[f] = i;
+            } else {
+                cols.he_next[last as usize] = i;
+                cols.he_prev[i as usize] = last;
+            }
+            last = i;
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
+        }
+        let first = cols.f_start[f];
+        cols.he_next[last as usize] = first;
+        cols.he_prev[first as usize] = last;
+    }
+    if crate::schemes::face_parents::recording() {
+        // the two duals' steps composed: faces and vertices keep their ids
+        let v = crate::schemes::face_parents::VERT;
+        crate::schemes::face_parents::record(Some(crate::schemes::face_parents::Step { in_v: nv, in_f: nf, face: (0..nf as u32).collect(), vertex: (0..nv as u32).map(|i| v | i).collect() }));
+    }
+    Mesh::from_columns(cols)
 }
 
 /// Dual pentagonalization (`subdivideDualPentagonal`: dual +
@@ -46,27 +147,27 @@ pub fn dual_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
 /// pentagon preserving + dual). With S the valence sum over the input's
 /// vertices of valence ≥ 3: V' = V + S, E' = 2E + 2S, F' = F + E + S.
 pub fn dual_pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
-    dual(&super::pentagonal::pentagon_preserving(&dual(m)?, scale)?)
+    super::pentagonal_dual::dual_of_pentagon_preserving(&dual(m)?, scale)
 }
 
 /// 12.6.4 (`subdivide1264`: dual + dual 12.6.4 + dual): V' = V + E + F,
 /// E' = 6E, F' = 4E triangles.
 pub fn remesh_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
-    dual(&super::twelve_six_four::dual_12_6_4(&dual(m)?, scale)?)
+    super::twelve_six_four_dual::dual_of_dual_12_6_4(&dual(m)?, scale)
 }
 
 /// Dual checkerboard (`subdivideDualCheckerBoard`: dual + checkerboard +
 /// dual): V' = V + 4E, E' = 9E, F' = F + 4E; histogram: the input's face
 /// sizes plus 4E quads (checkerboard's new vertices are 4-valent).
 pub fn dual_checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
-    dual(&super::checkerboard::checkerboard(&dual(m)?, thickness)?)
+    super::checkerboard_dual::dual_of_checkerboard(&dual(m)?, thickness)
 }
 
 /// Dual hexagon preserving (`subdivideDualHexagonPreserving`: dual, root-4,
 /// dual): V' = V + E, E' = 4E, F' = F + 2E; histogram: the input's face
 /// sizes plus 2E triangles (root-4's inner points are 3-valent).
 pub fn dual_hexagon_preserving(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
-    dual(&super::loop_style::root4(&dual(m)?, weight, twist)?)
+    super::root4_dual::dual_of_root4(&dual(m)?, weight, twist)
 }
 
 /// Doo-Sabin BC (`dooSabinSubdivideBC`: every edge split at its midpoint,

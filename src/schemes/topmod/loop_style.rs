@@ -96,35 +96,7 @@ pub fn root4(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
     with_point_spheres("root4", m, |m| {
         let i = In::new(m)?;
         let (v, nh) = (i.nv, i.nh);
-        let mut pos = i.positions(nh);
-        if weight != 0.0 {
-            for x in 0..v {
-                let h0 = m.v_out[x] as usize;
-                let (mut s, mut n, mut k) = (DVec3::ZERO, 0.0, h0);
-                loop {
-                    s += i.q(k);
-                    n += 1.0;
-                    k = i.rot(k);
-                    if k == h0 {
-                        break;
-                    }
-                }
-                pos[x] = weight * (s / n) + (1.0 - weight) * m.pos[x];
-            }
-        }
-        pos.resize(v + nh, DVec3::ZERO);
-        let (mut mu, mut out) = (Vec::new(), Vec::new());
-        for f in 0..i.nf {
-            let hs = i.fl.corners(f);
-            mu.clear();
-            out.clear();
-            mu.extend(hs.iter().map(|&h| i.p(h as usize).lerp(i.q(h as usize), twist)));
-            let alpha = std::f64::consts::FRAC_1_SQRT_2 - 0.25 + 5.0 / (4.0 * hs.len() as f64);
-            cut_face(&mu, alpha, &mut out);
-            for (&h, p) in hs.iter().zip(&out) {
-                pos[v + h as usize] = *p;
-            }
-        }
+        let pos = root4_positions(&i, weight, twist);
         let inner = |h: usize| (v + h) as u32;
         // keys: [0, H) the inner side of corner h, [H, 2H) the spoke tail(h)–i(h)
         let mut o = Out::new(pos, 2 * nh, i.nf + i.ne, 4 * nh).of(&i);
@@ -151,6 +123,42 @@ pub fn root4(m: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
         }
         o.finish("root4")
     })
+}
+
+/// Root-4's vertices: the input's (moved by `weight`), then the inner
+/// point of each corner h at V + h; shared with [`super::root4_dual`].
+pub(crate) fn root4_positions(i: &In<'_>, weight: f64, twist: f64) -> Vec<DVec3> {
+    let (v, nh) = (i.nv, i.nh);
+    let mut pos = i.positions(nh);
+    if weight != 0.0 {
+        for x in 0..v {
+            let h0 = i.m.v_out[x] as usize;
+            let (mut s, mut n, mut k) = (DVec3::ZERO, 0.0, h0);
+            loop {
+                s += i.q(k);
+                n += 1.0;
+                k = i.rot(k);
+                if k == h0 {
+                    break;
+                }
+            }
+            pos[x] = weight * (s / n) + (1.0 - weight) * i.m.pos[x];
+        }
+    }
+    pos.resize(v + nh, DVec3::ZERO);
+    let (mut mu, mut out) = (Vec::new(), Vec::new());
+    for f in 0..i.nf {
+        let hs = i.fl.corners(f);
+        mu.clear();
+        out.clear();
+        mu.extend(hs.iter().map(|&h| i.p(h as usize).lerp(i.q(h as usize), twist)));
+        let alpha = std::f64::consts::FRAC_1_SQRT_2 - 0.25 + 5.0 / (4.0 * hs.len() as f64);
+        cut_face(&mu, alpha, &mut out);
+        for (&h, p) in hs.iter().zip(&out) {
+            pos[v + h as usize] = *p;
+        }
+    }
+    pos
 }
 
 /// TopMod's fractal remeshing (`fractalSubdivide(obj, offset)`): edges

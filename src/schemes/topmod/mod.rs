@@ -42,6 +42,7 @@
 //! | Extrusions | [`extrude`] |
 
 pub mod checkerboard;
+mod checkerboard_dual;
 pub mod compose;
 pub mod corner_cutting;
 pub mod doo_sabin_bc_new;
@@ -49,9 +50,13 @@ pub mod extrude;
 mod extrude_platonic;
 pub mod linear;
 pub mod loop_style;
+mod root4_dual;
 pub mod pentagonal;
+mod root3_dual;
+mod pentagonal_dual;
 pub mod stellate;
 pub mod twelve_six_four;
+mod twelve_six_four_dual;
 
 #[cfg(test)]
 pub(crate) mod tests {

@@ -73,24 +73,8 @@ pub fn pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
     }
     with_point_spheres("pentagon_preserving", m, |m| {
         let i = In::new(m)?;
-        let (v, nh, ne) = (i.nv, i.nh, i.ne);
-        let mut pos = i.positions(ne + nh);
-        for e in 0..ne {
-            pos.push((i.p(2 * e) + i.q(2 * e)) * 0.5);
-        }
-        let mut inner = vec![0u32; nh];
-        for f in 0..i.nf {
-            let hs = i.fl.corners(f);
-            if hs.len() < 3 {
-                continue;
-            }
-            let c: DVec3 = hs.iter().map(|&h| pos[v + (h as usize >> 1)]).sum::<DVec3>() / hs.len() as f64;
-            for &h in hs {
-                inner[h as usize] = pos.len() as u32;
-                let q = pos[v + (h as usize >> 1)];
-                pos.push(c + scale * (q - c));
-            }
-        }
+        let (v, nh) = (i.nv, i.nh);
+        let (pos, inner) = preserving_positions(&i, scale);
         let mid = |h: usize| (v + (h >> 1)) as u32;
         // keys: [0, H) the half of edge(h) at tail(h), [H, 2H) the inner side
         // of corner h, [2H, 3H) the spoke m(h)–i(h)
@@ -124,6 +108,31 @@ pub fn pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
         }
         o.finish("pentagon_preserving")
     })
+}
+
+/// Pentagon preserving's vertices (old ones, edge midpoints at V + e, then
+/// the inner points of the faces of 3 or more corners, in face order) and
+/// the inner point of each corner; shared with [`super::pentagonal_dual`].
+pub(crate) fn preserving_positions(i: &In<'_>, scale: f64) -> (Vec<DVec3>, Vec<u32>) {
+    let (v, nh, ne) = (i.nv, i.nh, i.ne);
+    let mut pos = i.positions(ne + nh);
+    for e in 0..ne {
+        pos.push((i.p(2 * e) + i.q(2 * e)) * 0.5);
+    }
+    let mut inner = vec![0u32; nh];
+    for f in 0..i.nf {
+        let hs = i.fl.corners(f);
+        if hs.len() < 3 {
+            continue;
+        }
+        let c: DVec3 = hs.iter().map(|&h| pos[v + (h as usize >> 1)]).sum::<DVec3>() / hs.len() as f64;
+        for &h in hs {
+            inner[h as usize] = pos.len() as u32;
+            let q = pos[v + (h as usize >> 1)];
+            pos.push(c + scale * (q - c));
+        }
+    }
+    (pos, inner)
 }
 
 #[cfg(test)]

@@ -28,24 +28,7 @@ pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
     with_point_spheres("dual_12_6_4", m, |m| {
         let i = In::new(m)?;
         let nh = i.nh as u32;
-        let mut pos = vec![DVec3::ZERO; 2 * i.nh];
-        for f in 0..i.nf {
-            let hs = i.fl.corners(f);
-            let mut c = DVec3::ZERO;
-            for &h in hs {
-                let (a, b) = (i.p(h as usize), i.q(h as usize));
-                let (p1, p2) = (a.lerp(b, 1.0 / 3.0), a.lerp(b, 2.0 / 3.0));
-                pos[2 * h as usize] = p1;
-                pos[2 * h as usize + 1] = p2;
-                c += p1 + p2;
-            }
-            c /= 2.0 * hs.len() as f64;
-            for &h in hs {
-                for p in &mut pos[2 * h as usize..2 * h as usize + 2] {
-                    *p = c + scale * (*p - c);
-                }
-            }
-        }
+        let pos = positions(&i, scale);
         // keys: [0, H) the side along h, [H, 2H) the side cutting corner h,
         // [2H, 3H) the quad side at tail(h)
         let mut o = Out::new(pos, 3 * i.nh, i.nf + i.ne + i.nv, 6 * i.nh).of(&i);
@@ -87,6 +70,30 @@ pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
         }
         o.finish("dual_12_6_4")
     })
+}
+
+/// Dual 12.6.4's vertices: points 2h, 2h + 1 of half-edge h; shared with
+/// [`super::twelve_six_four_dual`].
+pub(crate) fn positions(i: &In<'_>, scale: f64) -> Vec<DVec3> {
+    let mut pos = vec![DVec3::ZERO; 2 * i.nh];
+    for f in 0..i.nf {
+        let hs = i.fl.corners(f);
+        let mut c = DVec3::ZERO;
+        for &h in hs {
+            let (a, b) = (i.p(h as usize), i.q(h as usize));
+            let (p1, p2) = (a.lerp(b, 1.0 / 3.0), a.lerp(b, 2.0 / 3.0));
+            pos[2 * h as usize] = p1;
+            pos[2 * h as usize + 1] = p2;
+            c += p1 + p2;
+        }
+        c /= 2.0 * hs.len() as f64;
+        for &h in hs {
+            for p in &mut pos[2 * h as usize..2 * h as usize + 2] {
+                *p = c + scale * (*p - c);
+            }
+        }
+    }
+    pos
 }
 
 #[cfg(test)]
