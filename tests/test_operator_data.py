@@ -29,15 +29,18 @@ def with_all(m: tm.Mesh) -> tm.Mesh:
 
 
 DROPPING = {
-    "root3": lambda m: m.root3(),
     "subdivide_all_edges": lambda m: m.subdivide_all_edges(),
     "wireframe": lambda m: m.wireframe(0.1),
     "cut_faces": lambda m: m.cut_faces([0]),
 }
 
-# the catalog built through the keyed builder: face attributes are inherited by the
-# child faces (tests/test_catalog_face_data.py), the rest is named and dropped
+# the catalog built through the keyed builder (and root3, dual_loop, doo_sabin_bc through
+# their middle scheme's origins): face attributes are inherited by the child faces
+# (tests/test_catalog_face_data.py), the rest is named and dropped
 INHERITING = {
+    "root3": lambda m: m.root3(),
+    "dual_loop": lambda m: m.dual_loop(),
+    "doo_sabin_bc": lambda m: m.doo_sabin_bc(),
     "truncate": lambda m: m.truncate(),
     "kis": lambda m: m.kis(),
     "ambo": lambda m: m.ambo(),
