@@ -83,12 +83,16 @@ pub fn default_tension(n: usize) -> f64 {
 /// Errors: `t` outside `[0, 1]` or `tension` outside `[0, 1]` (including NaN).
 pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
     check_args(t, tension)?;
-    let fl = FaceLayout::new(m)?;
-    let new_pos = positions(m, &fl, t, tension)?;
+    honeycomb_on(m, &FaceLayout::new(m)?, t, tension)
+}
 
+/// [`honeycomb`] on `m`'s face layout (built once by the callers that
+/// need it again: stencils, origins, data masks). Arguments checked.
+fn honeycomb_on(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>) -> Result<Mesh> {
+    let new_pos = positions(m, fl, t, tension)?;
     // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
     // written straight into the columns
-    super::face_vertex_columns::honeycomb_columns(m, &fl, new_pos)
+    super::face_vertex_columns::honeycomb_columns(m, fl, new_pos)
 }
 
 /// Honeycomb's new vertices, one per old half-edge (eq. 2; holes and
@@ -147,11 +151,16 @@ pub(crate) fn positions(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>)
 /// This scheme has no sharpness rules: `req.creases` is ignored and
 /// `Level.creases` is `None` (creases are dropped).
 pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) -> Result<Level> {
-    let mesh = honeycomb(m, t, tension)?;
+    check_args(t, tension)?;
+    level_on(m, &FaceLayout::new(m)?, t, tension, req)
+}
+
+/// [`honeycomb_level`] on `m`'s face layout. Arguments checked.
+fn level_on(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>, req: &Request) -> Result<Level> {
+    let mesh = honeycomb_on(m, fl, t, tension)?;
     if !req.stencils && !req.origins {
         return Ok(Level::plain(mesh));
     }
-    let fl = FaceLayout::new(m)?;
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (_, vert, face) = m.halfedge_columns();
     let points: Vec<u32> = (0..nv as u32).filter(|&v| m.v_out[v as usize] & crate::mesh::POINT != 0).collect();
@@ -224,11 +233,12 @@ pub fn honeycomb_level(m: &Mesh, t: f64, tension: Option<f64>, req: &Request) ->
 /// row-major arrays) by the scheme's own masks on a closed mesh without
 /// point-spheres (no stencils built), else through the stencils.
 pub fn honeycomb_level_with(m: &Mesh, t: f64, tension: Option<f64>, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
-    let fl = std::cell::OnceCell::new();
+    check_args(t, tension)?;
+    // one face layout for the level and the masks
+    let fl = FaceLayout::new(m)?;
     let vert = &m.he_vert;
-    super::level::level_with_data(m, req, data, |m, r| honeycomb_level(m, t, tension, r), |a, k| {
-        let fl = super::level::once(&fl, || FaceLayout::new(m))?;
-        face_masks(m, fl, t, tension, a, k, |_, h| vert[h as usize] as usize)
+    super::level::level_with_data(m, req, data, |m, r| level_on(m, &fl, t, tension, r), |a, k| {
+        face_masks(m, &fl, t, tension, a, k, |_, h| vert[h as usize] as usize)
     })
 }
 
@@ -256,7 +266,7 @@ pub(crate) fn face_masks(
     if k == 0 {
         return Ok(out);
     }
-    let (next, _, face) = m.halfedge_columns();
+    let (next, _, _) = m.halfedge_columns();
     let row = |c: usize, h: u32| {
         let i = at(c, h);
         &a[i * k..(i + 1) * k]
@@ -268,47 +278,48 @@ pub(crate) fn face_masks(
             *o = (1.0 - t) * x + t * y;
         }
     };
-    // per face: Σp, C, S
-    let mut sums = vec![0.0; nf * 3 * k];
-    sums.par_chunks_mut(3 * k).with_min_len(MIN_LEN).enumerate().for_each_init(
-        || vec![0.0; k],
-        |p, (f, s)| {
-            if crate::cancel::requested() {
-                return; // the check below reports it
-            }
+    // per face, in one pass (as `positions`): its edge points, Σp, C, S,
+    // then eq. 2 for each of its corners, written to the corner's half-edge
+    // row (every half-edge belongs to one face: one writer per row)
+    let op = super::hosts::SyncPtr(out.as_mut_ptr());
+    (0..nf).into_par_iter().with_min_len(MIN_LEN / 4).for_each_init(
+        || (Vec::new(), vec![0.0; 3 * k]),
+        |(ps, s), f| {
             let hs = fl.corners(f);
+            if crate::cancel::requested() || hs.is_empty() {
+                return; // cancelled: the check below reports it
+            }
             let (n, c0) = (hs.len(), fl.off[f] as usize);
+            ps.resize(n * k, 0.0);
+            s.fill(0.0);
             for (i, &h) in hs.iter().enumerate() {
+                let p = &mut ps[i * k..(i + 1) * k];
                 edge_point(p, c0, n, i, h);
-                let (sn, cs) = (std::f64::consts::TAU * i as f64 / n as f64).sin_cos();
+                let (cs, sn) = super::hosts::turn_cos_sin(i, n);
                 for j in 0..k {
                     s[j] += p[j];
                     s[k + j] += p[j] * cs;
                     s[2 * k + j] += p[j] * sn;
                 }
             }
+            let a = if n == 1 || m.f_hole[f] { 1.0 } else { tension.unwrap_or_else(|| default_tension(n)) };
+            let c1 = (1.0 - a) / (3.0 * n as f64 - 5.0);
+            for (i, &h) in hs.iter().enumerate() {
+                // SAFETY: row h is written by the task of h's face only
+                let o = unsafe { std::slice::from_raw_parts_mut(op.get().add(h as usize * k), k) };
+                let p = &ps[i * k..(i + 1) * k];
+                if a == 1.0 {
+                    o.copy_from_slice(p);
+                    continue;
+                }
+                // from the table, as the positions (same bits as sin_cos)
+                let (cs, sn) = super::hosts::turn_cos_sin(i, n);
+                for j in 0..k {
+                    o[j] = a * p[j] + c1 * (3.0 * s[j] - 5.0 * p[j] + 2.0 * (cs * s[k + j] + sn * s[2 * k + j]));
+                }
+            }
         },
     );
-    crate::cancel::check()?;
-    out.par_chunks_mut(k).with_min_len(MIN_LEN).enumerate().for_each(|(h, o)| {
-        if crate::cancel::requested() {
-            return;
-        }
-        let f = face[h] as usize;
-        let (n, c0, i) = (fl.degree(f), fl.off[f] as usize, fl.local(h as u32, f as u32));
-        edge_point(o, c0, n, i, h as u32);
-        let a = if n == 1 || m.f_hole[f] { 1.0 } else { tension.unwrap_or_else(|| default_tension(n)) };
-        if a == 1.0 {
-            return;
-        }
-        let s = &sums[f * 3 * k..(f + 1) * 3 * k];
-        let (sn, cs) = (std::f64::consts::TAU * i as f64 / n as f64).sin_cos();
-        let c1 = (1.0 - a) / (3.0 * n as f64 - 5.0);
-        for j in 0..k {
-            let p = o[j];
-            o[j] = a * p + c1 * (3.0 * s[j] - 5.0 * p + 2.0 * (cs * s[k + j] + sn * s[2 * k + j]));
-        }
-    });
     crate::cancel::check()?;
     Ok(out)
 }
