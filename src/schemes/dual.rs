@@ -46,6 +46,7 @@ use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE
 use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
 use crate::mesh::{Columns, Mesh, NONE};
+use crate::schemes::dual_walk::DualWalk;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -91,52 +92,24 @@ fn step_one_pass(m: &Mesh) -> Result<Mesh> {
         crate::cancel::poll(f)?;
         pos.push(face_centroid(m, next, f));
     }
-    let mut cols = Columns::new(pos, nh, nv);
-    cols.v_out.fill(NONE);
-    // slot[e]: 0 before edge e's first crossing, else its output edge + 1
-    let mut slot = vec![0u32; ne];
-    let mut n_out = 0u32;
+    // keys: the input's edges
+    let mut walk = DualWalk::new(pos, nh, nv, ne);
     for v in 0..nv {
         crate::cancel::poll(v)?;
         let s = m.v_out[v];
         let (mut h, mut last) = (s, NONE);
         loop {
             let p = prev[h as usize];
-            let sl = &mut slot[(p >> 1) as usize];
-            let i = if *sl == 0 {
-                n_out += 1;
-                *sl = n_out;
-                2 * (n_out - 1)
-            } else {
-                2 * (*sl - 1) + 1
-            };
             let f = face[h as usize];
-            cols.he_vert[i as usize] = f;
-            cols.he_face[i as usize] = v as u32;
-            let o = &mut cols.v_out[f as usize];
-            if *o == NONE {
-                *o = i;
-            }
-            if last == NONE {
-                cols.f_start[v] = i;
-            } else {
-                cols.he_next[last as usize] = i;
-                cols.he_prev[i as usize] = last;
-            }
-            last = i;
+            walk.put(v, f, (p >> 1) as usize, &mut last);
             h = p ^ 1;
             if h == s {
                 break;
             }
         }
-        let first = cols.f_start[v];
-        cols.he_next[last as usize] = first;
-        cols.he_prev[first as usize] = last;
+        walk.close(v, last);
     }
-    if 2 * n_out as usize != nh {
-        return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * n_out)));
-    }
-    Mesh::from_columns(cols)
+    Mesh::from_columns(walk.finish()?)
 }
 
 /// Corner mean of face `f`, summed from its first corner (the same bits as

@@ -20,7 +20,8 @@
 
 use super::build::{reserve, Ctx};
 use crate::error::Result;
-use crate::mesh::{Columns, Mesh, NONE, POINT};
+use crate::mesh::{Mesh, NONE, POINT};
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -66,35 +67,10 @@ pub(crate) fn dual_kis(m: &Mesh) -> Result<Mesh> {
         }
     }
     let nho = 2 * (ne + nh);
-    let mut cols = Columns::new(pos, nho, nv + nf);
-    cols.v_out.fill(NONE);
     // slot[key] (kis's keys: edge e, spoke ne + h): 0 before its first
     // crossing, else its output edge + 1
-    let mut slot = vec![0u32; ne + nh];
-    let mut n_out = 0u32;
-    let mut put = |w: usize, g: u32, key: usize, last: &mut u32| {
-        let sl = &mut slot[key];
-        let i = if *sl == 0 {
-            n_out += 1;
-            *sl = n_out;
-            2 * (n_out - 1)
-        } else {
-            2 * (*sl - 1) + 1
-        };
-        cols.he_vert[i as usize] = g;
-        cols.he_face[i as usize] = w as u32;
-        let o = &mut cols.v_out[g as usize];
-        if *o == NONE {
-            *o = i;
-        }
-        if *last == NONE {
-            cols.f_start[w] = i;
-        } else {
-            cols.he_next[*last as usize] = i;
-            cols.he_prev[i as usize] = *last;
-        }
-        *last = i;
-    };
+    let mut walk = DualWalk::new(pos, nho, nv + nf, ne + nh);
+    let mut put = |w: usize, g: u32, key: usize, last: &mut u32| walk.put(w, g, key, last);
     let mut lasts = vec![NONE; nv + nf];
     for v in 0..nv {
         crate::cancel::poll(v)?;
@@ -132,14 +108,7 @@ pub(crate) fn dual_kis(m: &Mesh) -> Result<Mesh> {
         lasts[nv + f] = last;
     }
     drop(put);
-    if 2 * n_out as usize != nho {
-        return Err(crate::error::MeshError::Invariant(format!("dual: {nho} corners but {} half-edges", 2 * n_out)));
-    }
-    for (w, &last) in lasts.iter().enumerate() {
-        let s = cols.f_start[w];
-        cols.he_next[last as usize] = s;
-        cols.he_prev[s as usize] = last;
-    }
+    let cols = walk.finish_at(&lasts)?;
     if fp::recording() {
         // kis then dual, composed: face w is born around kis vertex w (an
         // input vertex, or the apex of face f), vertex g inside face(h)

@@ -19,8 +19,9 @@
 //! Edges are numbered by first crossing, as [`crate::schemes::dual`] does,
 //! so the output is the composition's bit for bit (`keyed::hashes`).
 
-use crate::error::{MeshError, Result};
-use crate::mesh::{Columns, Mesh, NONE, POINT};
+use crate::error::Result;
+use crate::mesh::{Mesh, NONE, POINT};
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -75,36 +76,11 @@ pub(crate) fn dual_of_checkerboard(x: &Mesh, thickness: f64) -> Result<Mesh> {
     let s_id = |h: usize| (face_of(h) + 2 + 2 * cidx[h] as usize) as u32;
     let (km, ki, ka, kb) = (nh, nh + ne, 2 * nh + ne, 3 * nh + ne);
     let n_out_he = 2 * n_keys;
-    let mut cols = Columns::new(pos, n_out_he, n_cv);
-    cols.v_out.fill(NONE);
-    let mut slot = vec![0u32; n_keys];
-    let mut n_out = 0u32;
+    let mut walk = DualWalk::new(pos, n_out_he, n_cv, n_keys);
     let mut lasts = vec![NONE; n_cv];
     // one corner of the dual's face w: the centroid of checkerboard face
     // `cf`, the side crossing key `key`
-    let mut put = |w: usize, cf: u32, key: usize, last: &mut u32| {
-        let sl = &mut slot[key];
-        let i = if *sl == 0 {
-            n_out += 1;
-            *sl = n_out;
-            2 * (n_out - 1)
-        } else {
-            2 * (*sl - 1) + 1
-        };
-        cols.he_vert[i as usize] = cf;
-        cols.he_face[i as usize] = w as u32;
-        let o = &mut cols.v_out[cf as usize];
-        if *o == NONE {
-            *o = i;
-        }
-        if *last == NONE {
-            cols.f_start[w] = i;
-        } else {
-            cols.he_next[*last as usize] = i;
-            cols.he_prev[i as usize] = *last;
-        }
-        *last = i;
-    };
+    let mut put = |w: usize, cf: u32, key: usize, last: &mut u32| walk.put(w, cf, key, last);
     // old vertices: from the corner of lowest layout index
     let mut first = vec![NONE; nv];
     for &h in fh {
@@ -158,14 +134,7 @@ pub(crate) fn dual_of_checkerboard(x: &Mesh, thickness: f64) -> Result<Mesh> {
         lasts[nv + nh + h] = last;
     }
     drop(put);
-    if 2 * n_out as usize != n_out_he {
-        return Err(MeshError::Invariant(format!("dual: {n_out_he} corners but {} half-edges", 2 * n_out)));
-    }
-    for (w, &last) in lasts.iter().enumerate() {
-        let s = cols.f_start[w];
-        cols.he_next[last as usize] = s;
-        cols.he_prev[s as usize] = last;
-    }
+    let cols = walk.finish_at(&lasts)?;
     if fp::recording() {
         // checkerboard then dual, composed: face w is born around
         // checkerboard's vertex w (whose source is the face of its first

@@ -5,6 +5,7 @@
 
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::via_origins;
 
@@ -50,7 +51,7 @@ pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
 /// Both are reproduced here bit for bit (`keyed::hashes`); with holes or
 /// point-spheres it is the two duals.
 fn dual_dual(p: &Mesh) -> Result<Mesh> {
-    use crate::mesh::{Columns, NONE, POINT};
+    use crate::mesh::{NONE, POINT};
     use crate::schemes::dual::face_centroid;
     use glam::DVec3;
     if p.n_holes() > 0 || p.v_out.iter().any(|&o| o & POINT != 0) {
@@ -88,52 +89,27 @@ fn dual_dual(p: &Mesh) -> Result<Mesh> {
         pos.push(sum / k as f64);
     }
     drop(cen);
-    let mut cols = Columns::new(pos, nh, nf);
-    cols.v_out.fill(NONE);
-    // slot[e]: 0 before edge e's first side, else its output edge + 1
-    let mut slot = vec![0u32; ne];
-    let mut n_out = 0u32;
+    // keys: p's edges
+    let mut walk = DualWalk::new(pos, nh, nf, ne);
     for (f, &s) in c0.iter().enumerate() {
         crate::cancel::poll(f)?;
         let (mut h, mut last) = (s, NONE);
         loop {
-            let sl = &mut slot[(h >> 1) as usize];
-            let i = if *sl == 0 {
-                n_out += 1;
-                *sl = n_out;
-                2 * (n_out - 1)
-            } else {
-                2 * (*sl - 1) + 1
-            };
             let v = vert[h as usize];
-            cols.he_vert[i as usize] = v;
-            cols.he_face[i as usize] = f as u32;
-            let o = &mut cols.v_out[v as usize];
-            if *o == NONE {
-                *o = i;
-            }
-            if last == NONE {
-                cols.f_start[f] = i;
-            } else {
-                cols.he_next[last as usize] = i;
-                cols.he_prev[i as usize] = last;
-            }
-            last = i;
+            walk.put(f, v, (h >> 1) as usize, &mut last);
             h = next[h as usize];
             if h == s {
                 break;
             }
         }
-        let first = cols.f_start[f];
-        cols.he_next[last as usize] = first;
-        cols.he_prev[first as usize] = last;
+        walk.close(f, last);
     }
     if crate::schemes::face_parents::recording() {
         // the two duals' steps composed: faces and vertices keep their ids
         let v = crate::schemes::face_parents::VERT;
         crate::schemes::face_parents::record(Some(crate::schemes::face_parents::Step { in_v: nv, in_f: nf, face: (0..nf as u32).collect(), vertex: (0..nv as u32).map(|i| v | i).collect() }));
     }
-    Mesh::from_columns(cols)
+    Mesh::from_columns(walk.finish()?)
 }
 
 /// Dual pentagonalization (`subdivideDualPentagonal`: dual +

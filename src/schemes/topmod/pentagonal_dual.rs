@@ -21,8 +21,9 @@
 //! so the output is the composition's bit for bit (`keyed::hashes`). Inputs
 //! with one-gons or two-gons (laid differently) take the composition.
 
-use crate::error::{MeshError, Result};
-use crate::mesh::{Columns, Mesh, NONE, POINT};
+use crate::error::Result;
+use crate::mesh::{Mesh, NONE, POINT};
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -73,35 +74,10 @@ pub(crate) fn dual_of_pentagon_preserving(x: &Mesh, scale: f64) -> Result<Mesh> 
     drop((pp, inner));
     let n_out_he = 6 * nh;
     let n_pv = nv + ne + nh;
-    let mut cols = Columns::new(pos, n_out_he, n_pv);
-    cols.v_out.fill(NONE);
-    let mut slot = vec![0u32; 3 * nh];
-    let mut n_out = 0u32;
+    let mut walk = DualWalk::new(pos, n_out_he, n_pv, 3 * nh);
     // the corner of the dual's face w at the centroid of face `pf`,
     // crossing key `key`
-    let mut put = |w: usize, pf: u32, key: usize, last: &mut u32| {
-        let sl = &mut slot[key];
-        let i = if *sl == 0 {
-            n_out += 1;
-            *sl = n_out;
-            2 * (n_out - 1)
-        } else {
-            2 * (*sl - 1) + 1
-        };
-        cols.he_vert[i as usize] = pf;
-        cols.he_face[i as usize] = w as u32;
-        let o = &mut cols.v_out[pf as usize];
-        if *o == NONE {
-            *o = i;
-        }
-        if *last == NONE {
-            cols.f_start[w] = i;
-        } else {
-            cols.he_next[*last as usize] = i;
-            cols.he_prev[i as usize] = *last;
-        }
-        *last = i;
-    };
+    let mut put = |w: usize, pf: u32, key: usize, last: &mut u32| walk.put(w, pf, key, last);
     let p_id = |h: usize| (face[h] as usize + 1 + cidx[h] as usize) as u32;
     // old vertices: v is P(y)'s 2nd corner for each y entering v, from the
     // lowest layout index
@@ -157,14 +133,7 @@ pub(crate) fn dual_of_pentagon_preserving(x: &Mesh, scale: f64) -> Result<Mesh> 
         lasts[w] = last;
     }
     drop(put);
-    if 2 * n_out as usize != n_out_he {
-        return Err(MeshError::Invariant(format!("dual: {n_out_he} corners but {} half-edges", 2 * n_out)));
-    }
-    for (w, &last) in lasts.iter().enumerate() {
-        let s = cols.f_start[w];
-        cols.he_next[last as usize] = s;
-        cols.he_prev[s as usize] = last;
-    }
+    let cols = walk.finish_at(&lasts)?;
     if fp::recording() {
         // pentagon preserving then dual, composed: each face from its
         // vertex's source (old v; a midpoint's first face's; h's face), each

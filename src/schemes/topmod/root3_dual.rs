@@ -12,8 +12,9 @@
 //! does, so the output is the composition's bit for bit (`keyed::hashes`);
 //! holes and point-spheres take the composition.
 
-use crate::error::{MeshError, Result};
-use crate::mesh::{Columns, Mesh, NONE, POINT};
+use crate::error::Result;
+use crate::mesh::{Mesh, NONE, POINT};
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::hosts::{check_output_size, FaceLayout};
 use glam::DVec3;
@@ -60,46 +61,18 @@ pub(crate) fn dual_of_honeycomb(x: &Mesh, t: f64) -> Result<Mesh> {
     }
     drop((hp, fl));
     let n_out_he = 6 * ne;
-    let mut cols = Columns::new(pos, n_out_he, nh);
-    cols.v_out.fill(NONE);
     // keys: the front side of h (h), the inserted edge of edge e (H + e)
-    let mut slot = vec![0u32; nh + ne];
-    let mut n_out = 0u32;
+    let mut walk = DualWalk::new(pos, n_out_he, nh, nh + ne);
     for h in 0..nh {
         crate::cancel::poll(h)?;
         let ring = [(face[h] as usize, prev[h] as usize), (nf + vert[h] as usize, nh + (h >> 1)), (nf + vert[h ^ 1] as usize, h)];
         let mut last = NONE;
         for (hf, key) in ring {
-            let sl = &mut slot[key];
-            let i = if *sl == 0 {
-                n_out += 1;
-                *sl = n_out;
-                2 * (n_out - 1)
-            } else {
-                2 * (*sl - 1) + 1
-            };
-            cols.he_vert[i as usize] = hf as u32;
-            cols.he_face[i as usize] = h as u32;
-            let o = &mut cols.v_out[hf];
-            if *o == NONE {
-                *o = i;
-            }
-            if last == NONE {
-                cols.f_start[h] = i;
-            } else {
-                cols.he_next[last as usize] = i;
-                cols.he_prev[i as usize] = last;
-            }
-            last = i;
+            walk.put(h, hf as u32, key, &mut last);
         }
-        let s = cols.f_start[h];
-        cols.he_next[last as usize] = s;
-        cols.he_prev[s as usize] = last;
-    }
-    if 2 * n_out as usize != n_out_he {
-        return Err(MeshError::Invariant(format!("dual: {n_out_he} corners but {} half-edges", 2 * n_out)));
+        walk.close(h, last);
     }
     // honeycomb records no face parents, so the composition had none
     crate::schemes::face_parents::record(None);
-    Mesh::from_columns(cols)
+    Mesh::from_columns(walk.finish()?)
 }

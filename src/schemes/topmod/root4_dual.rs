@@ -15,8 +15,9 @@
 //! Edges are numbered by first crossing, as [`crate::schemes::dual`] does,
 //! so the output is the composition's bit for bit (`keyed::hashes`).
 
-use crate::error::{MeshError, Result};
-use crate::mesh::{Columns, Mesh, NONE, POINT};
+use crate::error::Result;
+use crate::mesh::{Mesh, NONE, POINT};
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -63,35 +64,10 @@ pub(crate) fn dual_of_root4(x: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
     }
     drop(rp);
     let n_out_he = 4 * nh;
-    let mut cols = Columns::new(pos, n_out_he, nv + nh);
-    cols.v_out.fill(NONE);
-    let mut slot = vec![0u32; 2 * nh];
-    let mut n_out = 0u32;
+    let mut walk = DualWalk::new(pos, n_out_he, nv + nh, 2 * nh);
     // the corner of the dual's face w at the centroid of root-4's face
     // `rf`, crossing key `key`
-    let mut put = |w: usize, rf: usize, key: usize, last: &mut u32| {
-        let sl = &mut slot[key];
-        let i = if *sl == 0 {
-            n_out += 1;
-            *sl = n_out;
-            2 * (n_out - 1)
-        } else {
-            2 * (*sl - 1) + 1
-        };
-        cols.he_vert[i as usize] = rf as u32;
-        cols.he_face[i as usize] = w as u32;
-        let o = &mut cols.v_out[rf];
-        if *o == NONE {
-            *o = i;
-        }
-        if *last == NONE {
-            cols.f_start[w] = i;
-        } else {
-            cols.he_next[*last as usize] = i;
-            cols.he_prev[i as usize] = *last;
-        }
-        *last = i;
-    };
+    let mut put = |w: usize, rf: usize, key: usize, last: &mut u32| walk.put(w, rf as u32, key, last);
     let h_id = |y: usize| nf + (y >> 1);
     // each old vertex's first corner: hexagon e lists tail(2e + 1) before
     // tail(2e)
@@ -128,14 +104,7 @@ pub(crate) fn dual_of_root4(x: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
         lasts[nv + h] = last;
     }
     drop(put);
-    if 2 * n_out as usize != n_out_he {
-        return Err(MeshError::Invariant(format!("dual: {n_out_he} corners but {} half-edges", 2 * n_out)));
-    }
-    for (w, &last) in lasts.iter().enumerate() {
-        let s = cols.f_start[w];
-        cols.he_next[last as usize] = s;
-        cols.he_prev[s as usize] = last;
-    }
+    let cols = walk.finish_at(&lasts)?;
     if fp::recording() {
         // root-4 then dual, composed: the face of old v from v, that of
         // i(h) from h's face; the centroids of I(f), H(e) from f and e's

@@ -17,8 +17,9 @@
 //! Edges are numbered by first crossing, as [`crate::schemes::dual`] does,
 //! so the output is the composition's bit for bit (`keyed::hashes`).
 
-use crate::error::{MeshError, Result};
-use crate::mesh::{Columns, Mesh, NONE, POINT};
+use crate::error::Result;
+use crate::mesh::{Mesh, NONE, POINT};
+use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -77,35 +78,10 @@ pub(crate) fn dual_of_dual_12_6_4(x: &Mesh, scale: f64) -> Result<Mesh> {
     }
     drop(tp);
     let n_out_he = 6 * nh;
-    let mut cols = Columns::new(pos, n_out_he, 2 * nh);
-    cols.v_out.fill(NONE);
-    let mut slot = vec![0u32; 3 * nh];
-    let mut n_out = 0u32;
+    let mut walk = DualWalk::new(pos, n_out_he, 2 * nh, 3 * nh);
     // the corner of the dual's face w at the centroid of face `tf`,
     // crossing key `key`
-    let mut put = |w: usize, tf: usize, key: usize, last: &mut u32| {
-        let sl = &mut slot[key];
-        let i = if *sl == 0 {
-            n_out += 1;
-            *sl = n_out;
-            2 * (n_out - 1)
-        } else {
-            2 * (*sl - 1) + 1
-        };
-        cols.he_vert[i as usize] = tf as u32;
-        cols.he_face[i as usize] = w as u32;
-        let o = &mut cols.v_out[tf];
-        if *o == NONE {
-            *o = i;
-        }
-        if *last == NONE {
-            cols.f_start[w] = i;
-        } else {
-            cols.he_next[*last as usize] = i;
-            cols.he_prev[i as usize] = *last;
-        }
-        *last = i;
-    };
+    let mut put = |w: usize, tf: usize, key: usize, last: &mut u32| walk.put(w, tf as u32, key, last);
     let (e_id, v_id) = (|h: usize| nf + (h >> 1), |v: u32| nf + ne + v as usize);
     let mut lasts = vec![NONE; 2 * nh];
     for h in 0..nh {
@@ -123,14 +99,7 @@ pub(crate) fn dual_of_dual_12_6_4(x: &Mesh, scale: f64) -> Result<Mesh> {
         lasts[2 * h + 1] = last;
     }
     drop(put);
-    if 2 * n_out as usize != n_out_he {
-        return Err(MeshError::Invariant(format!("dual: {n_out_he} corners but {} half-edges", 2 * n_out)));
-    }
-    for (w, &last) in lasts.iter().enumerate() {
-        let s = cols.f_start[w];
-        cols.he_next[last as usize] = s;
-        cols.he_prev[s as usize] = last;
-    }
+    let cols = walk.finish_at(&lasts)?;
     if fp::recording() {
         // dual 12.6.4 then dual, composed: face 2h, 2h + 1 (around h's
         // points) from h's face; the centroids of F(f), E(e), V(v) from f,

@@ -1,0 +1,88 @@
+//! The columns of a dual written by walking round its faces: the one-pass
+//! dual ([`super::dual`]) and the compositions fused with their last dual
+//! (`topmod::*_dual`, `conway::dual_kis`, `topmod::compose::dual_dual`) lay
+//! each output face's corners in turn. A corner's side crosses an edge of
+//! the mesh being dualized, named by a key; the first crossing of a key
+//! makes output edge `n` (half-edge `2n`), the second its twin (`2n + 1`),
+//! so edges are numbered by first crossing as [`super::dual`] numbers them.
+
+use crate::error::{MeshError, Result};
+use crate::mesh::{Columns, NONE};
+use glam::DVec3;
+
+pub(crate) struct DualWalk {
+    cols: Columns,
+    /// Per key: 0 before its first crossing, else its output edge + 1.
+    slot: Vec<u32>,
+    n_out: u32,
+}
+
+impl DualWalk {
+    /// A walk writing `n_halfedges` half-edges and `n_faces` faces over the
+    /// output vertices `pos`, whose sides cross `n_keys` keys.
+    pub(crate) fn new(pos: Vec<DVec3>, n_halfedges: usize, n_faces: usize, n_keys: usize) -> DualWalk {
+        let mut cols = Columns::new(pos, n_halfedges, n_faces);
+        cols.v_out.fill(NONE);
+        DualWalk { cols, slot: vec![0; n_keys], n_out: 0 }
+    }
+
+    /// The next corner of face `w`: at output vertex `v`, its side crossing
+    /// `key`; `last` is the face's previous corner (`NONE` before its first)
+    /// and becomes this one.
+    #[inline]
+    pub(crate) fn put(&mut self, w: usize, v: u32, key: usize, last: &mut u32) {
+        let sl = &mut self.slot[key];
+        let i = if *sl == 0 {
+            self.n_out += 1;
+            *sl = self.n_out;
+            2 * (self.n_out - 1)
+        } else {
+            2 * (*sl - 1) + 1
+        };
+        let c = &mut self.cols;
+        c.he_vert[i as usize] = v;
+        c.he_face[i as usize] = w as u32;
+        let o = &mut c.v_out[v as usize];
+        if *o == NONE {
+            *o = i;
+        }
+        if *last == NONE {
+            c.f_start[w] = i;
+        } else {
+            c.he_next[*last as usize] = i;
+            c.he_prev[i as usize] = *last;
+        }
+        *last = i;
+    }
+
+    /// Closes face `w`, whose last corner is `last`.
+    #[inline]
+    pub(crate) fn close(&mut self, w: usize, last: u32) {
+        let c = &mut self.cols;
+        let s = c.f_start[w];
+        c.he_next[last as usize] = s;
+        c.he_prev[s as usize] = last;
+    }
+
+    /// The columns, once every key was crossed twice (every face closed).
+    pub(crate) fn finish(self) -> Result<Columns> {
+        let nh = self.cols.he_next.len();
+        if 2 * self.n_out as usize != nh {
+            return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * self.n_out)));
+        }
+        Ok(self.cols)
+    }
+
+    /// [`finish`](Self::finish) for walks that closed no face yet: face `w`
+    /// is closed at `lasts[w]` once the count is checked.
+    pub(crate) fn finish_at(mut self, lasts: &[u32]) -> Result<Columns> {
+        let nh = self.cols.he_next.len();
+        if 2 * self.n_out as usize != nh {
+            return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * self.n_out)));
+        }
+        for (w, &last) in lasts.iter().enumerate() {
+            self.close(w, last);
+        }
+        Ok(self.cols)
+    }
+}
