@@ -86,3 +86,16 @@ impl DualWalk {
         Ok(self.cols)
     }
 }
+
+/// The dual's vertex of a face whose corners `hs` carry the points `p(h)`:
+/// their mean, summed in corner order from zero as the dual sums a face's
+/// corners ([`super::dual::face_centroid`]), so the fused builds give the
+/// composition's bits.
+#[inline]
+pub(crate) fn corner_mean(hs: &[u32], p: impl Fn(usize) -> DVec3) -> DVec3 {
+    let mut s = DVec3::ZERO;
+    for &h in hs {
+        s += p(h as usize);
+    }
+    s / hs.len() as f64
+}

@@ -23,7 +23,7 @@
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
-use crate::schemes::dual_walk::DualWalk;
+use crate::schemes::dual_walk::{corner_mean, DualWalk};
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -55,11 +55,7 @@ pub(crate) fn dual_of_pentagon_preserving(x: &Mesh, scale: f64) -> Result<Mesh> 
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let hs = i.fl.corners(f);
-        let mut s = DVec3::ZERO;
-        for &h in hs {
-            s += ip(h as usize);
-        }
-        pos.push(s / hs.len() as f64);
+        pos.push(corner_mean(hs, ip));
         for &h in hs {
             let (h, nx) = (h as usize, next[h as usize] as usize);
             let mut s = DVec3::ZERO;

@@ -14,7 +14,7 @@
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
-use crate::schemes::dual_walk::DualWalk;
+use crate::schemes::dual_walk::{corner_mean, DualWalk};
 use crate::schemes::dual::dual;
 use crate::schemes::hosts::{check_output_size, FaceLayout};
 use glam::DVec3;
@@ -37,11 +37,7 @@ pub(crate) fn dual_of_honeycomb(x: &Mesh, t: f64) -> Result<Mesh> {
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let hs = fl.corners(f);
-        let mut s = DVec3::ZERO;
-        for &h in hs {
-            s += hp[h as usize];
-        }
-        pos.push(s / hs.len() as f64);
+        pos.push(corner_mean(hs, |h| hp[h]));
     }
     for v in 0..nv {
         crate::cancel::poll(v)?;

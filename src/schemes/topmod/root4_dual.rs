@@ -17,7 +17,7 @@
 
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
-use crate::schemes::dual_walk::DualWalk;
+use crate::schemes::dual_walk::{corner_mean, DualWalk};
 use crate::schemes::dual::dual;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -44,11 +44,7 @@ pub(crate) fn dual_of_root4(x: &Mesh, weight: f64, twist: f64) -> Result<Mesh> {
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let hs = i.fl.corners(f);
-        let mut s = DVec3::ZERO;
-        for &h in hs {
-            s += inner(h as usize);
-        }
-        pos.push(s / hs.len() as f64);
+        pos.push(corner_mean(hs, inner));
     }
     for e in 0..ne {
         let (h, t) = (2 * e, 2 * e + 1);
