@@ -55,6 +55,50 @@ pub fn reset() {
     CANCELLED.store(false, Ordering::Relaxed);
 }
 
+/// Elements per task of [`par_collect`].
+const COLLECT_CHUNK: usize = 1 << 12;
+
+/// `(0..n).map(f)` collected in parallel, chunk by chunk, stopping at the
+/// first chunk after cancellation. A rayon `collect` whose bodies return
+/// early still writes every element, and writing a large output onto memory
+/// the machine has not touched yet page-faults at ~2.5 s/GB on these VMs:
+/// that pass was 0.7-1.5 s of Ctrl-C latency in a Doo-Sabin level. Here an
+/// unwritten chunk's pages are never touched.
+pub fn par_collect<T: Copy + Send + Sync>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Result<Vec<T>> {
+    par_collect_flag(&CANCELLED, n, f)
+}
+
+/// `n` copies of `value`, written as [`par_collect`] writes (in parallel,
+/// stopping once cancelled) rather than by `vec![value; n]`'s sequential
+/// pass, which no poll can interrupt.
+pub fn par_filled<T: Copy + Send + Sync>(n: usize, value: T) -> Result<Vec<T>> {
+    par_collect(n, |_| value)
+}
+
+fn par_collect_flag<T: Copy + Send + Sync>(flag: &AtomicBool, n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Result<Vec<T>> {
+    use rayon::prelude::*;
+    use std::sync::atomic::AtomicUsize;
+    let mut v: Vec<T> = Vec::with_capacity(n);
+    let done = AtomicUsize::new(0);
+    v.spare_capacity_mut()[..n].par_chunks_mut(COLLECT_CHUNK).enumerate().for_each(|(k, ch)| {
+        if flag.load(Ordering::Relaxed) {
+            return;
+        }
+        for (j, slot) in ch.iter_mut().enumerate() {
+            slot.write(f(k * COLLECT_CHUNK + j));
+        }
+        done.fetch_add(ch.len(), Ordering::Relaxed);
+    });
+    check_flag(flag)?;
+    if done.load(Ordering::Relaxed) != n {
+        return Err(MeshError::Interrupted);
+    }
+    // SAFETY: the chunks cover 0..n and every one was written in full (their
+    // lengths sum to n); T is Copy, so nothing needs dropping either way.
+    unsafe { v.set_len(n) };
+    Ok(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -71,5 +115,22 @@ mod tests {
         flag.store(false, Ordering::Relaxed);
         assert!(check_flag(&flag).is_ok());
         assert!(check().is_ok() && !requested());
+    }
+
+    #[test]
+    fn par_collect_is_map_collect_and_stops_when_cancelled() {
+        let flag = AtomicBool::new(false);
+        for n in [0, 1, COLLECT_CHUNK - 1, COLLECT_CHUNK, 5 * COLLECT_CHUNK + 7] {
+            let v = par_collect_flag(&flag, n, |i| (i as u64) * 3 + 1).unwrap();
+            assert_eq!(v, (0..n as u64).map(|i| i * 3 + 1).collect::<Vec<_>>());
+        }
+        // set from inside the bodies: later chunks stop and the call errs
+        let v = par_collect_flag(&flag, 64 * COLLECT_CHUNK, |i| {
+            if i == 3 {
+                flag.store(true, Ordering::Relaxed);
+            }
+            i
+        });
+        assert_eq!(v, Err(MeshError::Interrupted));
     }
 }

@@ -175,7 +175,7 @@ impl Mesh {
         // pair each bucket's sides, in parallel over vertex ranges; the error
         // reported is the one of the lowest vertex, as in a sequential sweep,
         // and unmatched sides are listed in vertex order
-        let mut twin = vec![NONE; n];
+        let mut twin = crate::cancel::par_filled(n, NONE)?;
         let tw = SyncPtr(twin.as_mut_ptr());
         let pieces: Vec<Result<Vec<u32>>> = (0..nv.div_ceil(VERTEX_CHUNK))
             .into_par_iter()
@@ -376,16 +376,17 @@ impl Mesh {
         let (he_of, ne) = number_halfedges(twin);
         crate::cancel::check()?;
         let nh = 2 * ne;
+        let (v_out, f_start) = (crate::cancel::par_filled(nv, NONE)?, crate::cancel::par_filled(nf, NONE)?);
         let mut m = Mesh {
             pos: positions,
-            v_out: vec![NONE; nv],
+            v_out,
             // every entry is written below; zeroed (calloc) memory is mapped
             // lazily, so its page faults are taken by the parallel fill
             he_next: vec![0; nh],
             he_prev: vec![0; nh],
             he_vert: vec![0; nh],
             he_face: vec![0; nh],
-            f_start: vec![NONE; nf],
+            f_start,
             f_hole,
         };
         // the half-edge columns, face by face in parallel. Writes are disjoint:

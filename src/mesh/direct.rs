@@ -45,6 +45,24 @@ impl Columns {
     }
 }
 
+/// `n` points at the origin from zeroed (calloc) memory: a fresh block's
+/// pages are mapped zero, so unlike `vec![DVec3::ZERO; n]` nothing writes
+/// the whole block before the caller's fill (issue 19: one pass less over
+/// a level's largest column; the fill then takes the page faults). That
+/// pass was also a sequential write no poll could interrupt: on memory the
+/// machine had not touched yet it took 2-4 s for a 0.75 GB column, which
+/// was Ctrl-C's latency.
+pub fn zeroed_points(n: usize) -> Vec<DVec3> {
+    let mut v = std::mem::ManuallyDrop::new(vec![0.0f64; 3 * n]);
+    let (ptr, len, cap) = (v.as_mut_ptr(), v.len(), v.capacity());
+    assert_eq!(len, cap, "vec! allocates exactly");
+    // SAFETY: DVec3 is three f64 (size 24, align 8, no padding), so 3n
+    // zeroed f64 are n valid points with the same size and alignment, and
+    // the allocation's layout (3n f64) equals that of n DVec3.
+    const _: () = assert!(std::mem::size_of::<DVec3>() == 24 && std::mem::align_of::<DVec3>() == 8);
+    unsafe { Vec::from_raw_parts(ptr as *mut DVec3, len / 3, cap / 3) }
+}
+
 /// Elements per task of the range check.
 const CHUNK: usize = 1 << 15;
 

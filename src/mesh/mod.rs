@@ -26,7 +26,7 @@ mod query;
 mod validate;
 
 pub use build::{BuildOptions, PolygonFaces};
-pub use direct::Columns;
+pub use direct::{zeroed_points, Columns};
 pub use euler::Corner;
 pub use query::Histogram;
 

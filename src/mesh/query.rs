@@ -124,7 +124,7 @@ impl Mesh {
             .into_par_iter()
             .map(|f| if self.f_hole[f as usize] { DVec3::ZERO } else { self.face_newell(super::FaceId(f)) })
             .collect();
-        let mut vn = vec![DVec3::ZERO; self.n_vertices()];
+        let mut vn = crate::mesh::zeroed_points(self.n_vertices());
         for (h, &v) in self.he_vert.iter().enumerate() {
             vn[v as usize] += fnv[self.he_face[h] as usize];
         }

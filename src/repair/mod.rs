@@ -191,7 +191,7 @@ pub fn repair(positions: &[DVec3], sizes: &[i64], indices: &[i64], tolerance: Op
 /// lowest member, in that member's order) and the cluster of every input vertex.
 pub fn merge_vertices(positions: &[DVec3], tol: f64) -> (Vec<DVec3>, Vec<u32>) {
     let (cluster, n) = weld::weld(positions, tol);
-    let mut out = vec![DVec3::ZERO; n];
+    let mut out = crate::mesh::zeroed_points(n);
     let mut seen = vec![false; n];
     for (v, &c) in cluster.iter().enumerate() {
         if !seen[c as usize] {

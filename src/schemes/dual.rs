@@ -135,7 +135,7 @@ fn step_parallel(m: &Mesh) -> Result<Mesh> {
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
-    let mut pos = vec![DVec3::ZERO; nf];
+    let mut pos = crate::mesh::zeroed_points(nf);
     face_centroids(m, &fl, &mut pos);
     crate::cancel::check()?;
     // Connectivity straight into the columns (issue 19), numbered as
@@ -379,7 +379,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     })?;
     let pos = if m.n_holes() == 0 {
         // closed: the centroids exactly as the plain path sums them (same layout)
-        let mut p = vec![DVec3::ZERO; nf];
+        let mut p = crate::mesh::zeroed_points(nf);
         face_centroids(m, &fl, &mut p);
         crate::cancel::check()?;
         p

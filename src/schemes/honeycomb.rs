@@ -105,7 +105,7 @@ pub(crate) fn positions(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>)
 
     // ---- new positions, one per old half-edge, face by face: the sums of the
     // face's edge points p_m (relative to its first vertex), then eq. 2 per corner
-    let mut new_pos = vec![DVec3::ZERO; nh];
+    let mut new_pos = crate::mesh::zeroed_points(nh);
     let np = super::hosts::SyncPtr(new_pos.as_mut_ptr());
     (0..nf).into_par_iter().with_min_len(super::hosts::MIN_LEN / 4).for_each(|f| {
         let hs = fl.corners(f);

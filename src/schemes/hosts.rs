@@ -514,20 +514,7 @@ pub(crate) fn primal_host_twins(m: &Mesh, fl: &FaceLayout, face_point: &[u32], p
     Ok((out, sides))
 }
 
-/// `n` points at the origin from zeroed (calloc) memory: a fresh block's
-/// pages are mapped zero, so unlike `vec![DVec3::ZERO; n]` nothing writes
-/// the whole block before the caller's fill (issue 19: one pass less over
-/// a level's largest column; the fill then takes the page faults).
-pub(crate) fn zeroed_points(n: usize) -> Vec<DVec3> {
-    let mut v = std::mem::ManuallyDrop::new(vec![0.0f64; 3 * n]);
-    let (ptr, len, cap) = (v.as_mut_ptr(), v.len(), v.capacity());
-    assert_eq!(len, cap, "vec! allocates exactly");
-    // SAFETY: DVec3 is three f64 (size 24, align 8, no padding), so 3n
-    // zeroed f64 are n valid points with the same size and alignment, and
-    // the allocation's layout (3n f64) equals that of n DVec3.
-    const _: () = assert!(std::mem::size_of::<DVec3>() == 24 && std::mem::align_of::<DVec3>() == 8);
-    unsafe { Vec::from_raw_parts(ptr as *mut DVec3, len / 3, cap / 3) }
-}
+pub(crate) use crate::mesh::zeroed_points;
 
 /// Sum of `pos[head(h)]` over the outgoing half-edges of `v` and their count.
 #[inline]

@@ -461,7 +461,7 @@ mod tests {
                 let nf = m.n_faces();
                 let fp: Vec<u32> = if name == "loop" { vec![NONE; nf] } else { (0..nf as u32).collect() };
                 let n_fp = if name == "loop" { 0 } else { nf };
-                let pos = vec![DVec3::ZERO; m.n_vertices() + m.n_edges() + n_fp];
+                let pos = crate::mesh::zeroed_points(m.n_vertices() + m.n_edges() + n_fp);
                 let (mut old, mut new) = (f64::MAX, f64::MAX);
                 let mut faces = 0;
                 for _ in 0..5 {

@@ -79,7 +79,7 @@ impl Mesh {
         let even = n % 2 == 0;
         let dir = |h: HalfedgeId| self.position(self.head(h)) - self.position(self.vertex(h));
         // axes and the shared up vector of every edge
-        let mut up = vec![DVec3::ZERO; ne];
+        let mut up = crate::mesh::zeroed_points(ne);
         for e in self.edges() {
             let h = e.halfedge();
             let d = dir(h);

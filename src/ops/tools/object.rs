@@ -121,7 +121,7 @@ impl Mesh {
         while done < iterations && residual > tol {
             crate::cancel::check()?;
             let planes = self.best_fit_planes();
-            let mut sum = vec![DVec3::ZERO; self.n_vertices()];
+            let mut sum = crate::mesh::zeroed_points(self.n_vertices());
             let mut cnt = vec![0u32; self.n_vertices()];
             for h in self.halfedges() {
                 if let Some((c, n)) = planes[self.face(h).idx()] {

@@ -48,7 +48,7 @@ impl Mesh {
         }
         let nh = self.n_halfedges();
         let centroids = self.face_centroids();
-        let mut pos = vec![DVec3::ZERO; 2 * nh];
+        let mut pos = crate::mesh::zeroed_points(2 * nh);
         for h in self.halfedges() {
             let v0 = self.position(self.vertex(h));
             let v1 = self.position(self.vertex(self.prev(h)));

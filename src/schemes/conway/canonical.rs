@@ -154,7 +154,7 @@ pub fn canonicalize(m: &Mesh, iterations: usize, tol: f64) -> Result<(Mesh, f64)
             p.iter_mut().for_each(|q| *q /= mean);
         }
     }
-    let mut acc = vec![DVec3::ZERO; p.len()];
+    let mut acc = crate::mesh::zeroed_points(p.len());
     for k in 0..iterations {
         crate::cancel::check()?;
         let moved = topo.step(p, &mut acc);

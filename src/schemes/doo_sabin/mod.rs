@@ -97,31 +97,23 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let p = &m.pos;
 
     // --- positions: per face Σx, C, S, then per corner
-    let sums: Vec<[DVec3; 3]> = (0..nf)
-        .into_par_iter()
-        .with_min_len(MIN_LEN)
-        .map(|f| {
-            let mut s = [DVec3::ZERO; 3];
-            if crate::cancel::requested() {
-                return s; // the check below reports it
-            }
-            let hs = fl.corners(f);
-            let n = hs.len();
-            let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
-            let (mut cs, mut sn) = (1.0, 0.0);
-            for &h in hs {
-                let x = p[vert[h as usize] as usize];
-                s[0] += x;
-                s[1] += x * cs;
-                s[2] += x * sn;
-                // (cos, sin) of the next multiple of 2π/n
-                (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
-            }
-            s
-        })
-        .collect();
-    crate::cancel::check()?;
-    let mut pos = vec![DVec3::ZERO; nh];
+    let sums: Vec<[DVec3; 3]> = crate::cancel::par_collect(nf, |f| {
+        let mut s = [DVec3::ZERO; 3];
+        let hs = fl.corners(f);
+        let n = hs.len();
+        let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
+        let (mut cs, mut sn) = (1.0, 0.0);
+        for &h in hs {
+            let x = p[vert[h as usize] as usize];
+            s[0] += x;
+            s[1] += x * cs;
+            s[2] += x * sn;
+            // (cos, sin) of the next multiple of 2π/n
+            (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
+        }
+        s
+    })?;
+    let mut pos = crate::mesh::zeroed_points(nh);
     // corner c belongs to the face whose range holds it: walk faces in parallel
     // by splitting the buffer along face offsets
     let mut chunks: Vec<&mut [DVec3]> = Vec::with_capacity(nf);

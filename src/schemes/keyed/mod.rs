@@ -414,7 +414,7 @@ impl<'a> In<'a> {
     }
     /// Centroid of every face (corner mean).
     pub fn centroids(&self) -> Vec<DVec3> {
-        let mut c = vec![DVec3::ZERO; self.nf];
+        let mut c = crate::mesh::zeroed_points(self.nf);
         crate::schemes::hosts::face_centroids(self.m, &self.fl, &mut c);
         c
     }

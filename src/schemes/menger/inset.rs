@@ -60,7 +60,7 @@ pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions, red: Option<&Reducti
     let pos = m.positions();
     let p = |h: HalfedgeId| pos[m.vertex(h).idx()];
     // --- faces: normal, width, thickness
-    let mut face_n = vec![DVec3::ZERO; nf];
+    let mut face_n = crate::mesh::zeroed_points(nf);
     let mut face_d = vec![0.0; nf];
     for f in m.faces() {
         crate::cancel::poll(f.0 as usize)?;
@@ -116,7 +116,7 @@ pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions, red: Option<&Reducti
         }
     }
     // --- inset corners
-    let mut q = vec![DVec3::ZERO; nh];
+    let mut q = crate::mesh::zeroed_points(nh);
     for h in m.halfedges() {
         crate::cancel::poll(h.0 as usize)?;
         let f = m.face(h).idx();

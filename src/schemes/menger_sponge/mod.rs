@@ -197,7 +197,7 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     // --- pass 3: positions and half-edge columns, slab by slab
     let nh = 2 * ne;
     let mut m = Mesh {
-        pos: vec![DVec3::ZERO; nv],
+        pos: crate::mesh::zeroed_points(nv),
         v_out: vec![0; nv],
         // zeroed (calloc) memory is mapped lazily: the parallel fill takes its page faults
         he_next: vec![0; nh],

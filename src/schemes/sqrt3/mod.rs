@@ -82,7 +82,7 @@ pub(super) fn positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let (next, vert, _) = m.halfedge_columns();
     let p = &m.pos;
-    let mut pos = vec![DVec3::ZERO; nv + nf];
+    let mut pos = crate::mesh::zeroed_points(nv + nf);
     let (vp, fp) = pos.split_at_mut(nv);
     rayon::join(
         || {

@@ -134,7 +134,7 @@ pub fn corner_cutting(m: &Mesh, alpha: f64) -> Result<Mesh> {
     }
     with_point_spheres("corner_cutting", m, |m| {
         let i = In::new(m)?;
-        let mut pts = vec![DVec3::ZERO; i.nh];
+        let mut pts = crate::mesh::zeroed_points(i.nh);
         let (mut x, mut y) = (Vec::new(), Vec::new());
         for f in 0..i.nf {
             let hs = i.fl.corners(f);
@@ -160,7 +160,7 @@ pub fn modified_corner_cutting(m: &Mesh, thickness: f64) -> Result<Mesh> {
         let i = In::new(m)?;
         let cent = i.centroids();
         let t = thickness / 2.0;
-        let mut pts = vec![DVec3::ZERO; i.nh];
+        let mut pts = crate::mesh::zeroed_points(i.nh);
         for f in 0..i.nf {
             let hs = i.fl.corners(f);
             let n = hs.len();

@@ -65,7 +65,7 @@ fn step(m: &Mesh, scale: f64, length: f64) -> Result<Mesh> {
         }
     }
     if length != 1.0 {
-        let mut sum = vec![DVec3::ZERO; i.nv];
+        let mut sum = crate::mesh::zeroed_points(i.nv);
         let mut cnt = vec![0u32; i.nv];
         for h in 0..i.nh {
             let v = i.vert[h] as usize;

@@ -75,7 +75,7 @@ pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
 /// Dual 12.6.4's vertices: points 2h, 2h + 1 of half-edge h; shared with
 /// [`super::twelve_six_four_dual`].
 pub(crate) fn positions(i: &In<'_>, scale: f64) -> Vec<DVec3> {
-    let mut pos = vec![DVec3::ZERO; 2 * i.nh];
+    let mut pos = crate::mesh::zeroed_points(2 * i.nh);
     for f in 0..i.nf {
         let hs = i.fl.corners(f);
         let mut c = DVec3::ZERO;
