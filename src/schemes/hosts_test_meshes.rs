@@ -140,6 +140,31 @@ pub fn corpus() -> Vec<(&'static str, Mesh)> {
     ]
 }
 
+/// A scheme's direct vertex-data masks (`level_with`, no stencils asked
+/// for) equal its stencils applied to the same `k`-column rows, on every
+/// corpus mesh.
+pub fn check_direct_data_on_corpus(
+    k: usize,
+    level: impl Fn(&Mesh, &crate::schemes::level::Request) -> crate::Result<crate::schemes::level::Level>,
+    level_with: impl Fn(&Mesh, &crate::schemes::level::Request, &[(Vec<f64>, usize)]) -> crate::Result<(crate::schemes::level::Level, Vec<Vec<f64>>)>,
+) {
+    use crate::schemes::level::Request;
+    let mut n = 0;
+    for (name, m) in corpus() {
+        let a: Vec<f64> = (0..m.n_vertices() * k).map(|i| ((i * 7919) % 613) as f64 * 0.1 - 3.0).collect();
+        let st = level(&m, &Request { stencils: true, ..Default::default() }).unwrap().stencils.unwrap();
+        let want = st.apply(&a, k).unwrap();
+        let (lv, got) = level_with(&m, &Request::default(), &[(a.clone(), k)]).unwrap();
+        assert!(lv.stencils.is_none(), "{name}: no stencils asked for");
+        assert_eq!(got[0].len(), want.len(), "{name}");
+        for (i, (x, y)) in got[0].iter().zip(&want).enumerate() {
+            assert!((x - y).abs() < 1e-12, "{name}: value {i}: {x} vs {y}");
+        }
+        n += 1;
+    }
+    assert!(n >= 10);
+}
+
 /// The degree of every face, in face order.
 pub fn face_sizes(m: &Mesh) -> Vec<usize> {
     m.faces().map(|f| m.face_degree(f)).collect()

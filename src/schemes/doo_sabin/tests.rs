@@ -118,22 +118,7 @@ fn open_meshes_keep_their_holes_with_a_chaikin_boundary() {
 
 #[test]
 fn direct_data_equals_the_stencils_on_corpus() {
-    let mut n = 0;
-    for (name, m) in corpus() {
-        let k = 3;
-        let a: Vec<f64> = (0..m.n_vertices() * k).map(|i| ((i * 7919) % 613) as f64 * 0.1 - 3.0).collect();
-        let with = Request { stencils: true, ..Default::default() };
-        let st = doo_sabin_level(&m, &with).unwrap().stencils.unwrap();
-        let want = st.apply(&a, k).unwrap();
-        let (lv, got) = doo_sabin_level_with(&m, &Request::default(), &[(a.clone(), k)]).unwrap();
-        assert!(lv.stencils.is_none(), "{name}: no stencils asked for");
-        assert_eq!(got[0].len(), want.len(), "{name}");
-        for (i, (x, y)) in got[0].iter().zip(&want).enumerate() {
-            assert!((x - y).abs() < 1e-12, "{name}: value {i}: {x} vs {y}");
-        }
-        n += 1;
-    }
-    assert!(n >= 10);
+    check_direct_data_on_corpus(3, doo_sabin_level, doo_sabin_level_with);
 }
 
 #[test]

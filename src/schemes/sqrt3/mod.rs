@@ -336,21 +336,7 @@ mod tests {
 
     #[test]
     fn direct_data_equals_the_stencils_on_corpus() {
-        let mut n = 0;
-        for (name, m) in crate::schemes::hosts::test_meshes::corpus() {
-            let k = 2;
-            let a: Vec<f64> = (0..m.n_vertices() * k).map(|i| ((i * 7919) % 613) as f64 * 0.1 - 3.0).collect();
-            let st = sqrt3_level(&m, &Request { stencils: true, ..Default::default() }).unwrap().stencils.unwrap();
-            let want = st.apply(&a, k).unwrap();
-            let (lv, got) = sqrt3_level_with(&m, &Request::default(), &[(a.clone(), k)]).unwrap();
-            assert!(lv.stencils.is_none(), "{name}");
-            assert_eq!(got[0].len(), want.len(), "{name}");
-            for (i, (x, y)) in got[0].iter().zip(&want).enumerate() {
-                assert!((x - y).abs() < 1e-12, "{name}: value {i}: {x} vs {y}");
-            }
-            n += 1;
-        }
-        assert!(n >= 10);
+        crate::schemes::hosts::test_meshes::check_direct_data_on_corpus(2, sqrt3_level, sqrt3_level_with);
     }
     use crate::schemes::hosts::test_meshes::*;
 
