@@ -293,16 +293,7 @@ mod tests {
 
     #[test]
     fn direct_data_masks_equal_the_stencils() {
-        for (name, m) in corpus() {
-            let a: Vec<f64> = (0..m.n_vertices() * 2).map(|i| ((i * 7919) % 101) as f64 / 7.0).collect();
-            let data = vec![(a.clone(), 2)];
-            let (_, fast) = catmull_clark_level_with(&m, &Request::plain(), &data).unwrap();
-            let lv = catmull_clark_level(&m, &full()).unwrap();
-            let want = lv.stencils.unwrap().apply(&a, 2).unwrap();
-            for (x, y) in fast[0].iter().zip(&want) {
-                assert!((x - y).abs() < 1e-11, "{name}");
-            }
-        }
+        check_direct_data_on_corpus(2, 1e-11, catmull_clark_level, catmull_clark_level_with);
     }
 
     #[test]

@@ -404,16 +404,7 @@ mod tests {
 
     #[test]
     fn direct_data_masks_equal_the_stencils() {
-        let full = Request { stencils: true, ..Default::default() };
-        for (name, m) in corpus() {
-            let a: Vec<f64> = (0..m.n_vertices() * 3).map(|i| ((i * 7919) % 101) as f64 / 7.0).collect();
-            let (_, fast) = loop_level_with(&m, &Request::plain(), &[(a.clone(), 3)]).unwrap();
-            let want = loop_level(&m, &full).unwrap().stencils.unwrap().apply(&a, 3).unwrap();
-            assert_eq!(fast[0].len(), want.len(), "{name}");
-            for (x, y) in fast[0].iter().zip(&want) {
-                assert!((x - y).abs() < 1e-11, "{name}");
-            }
-        }
+        check_direct_data_on_corpus(3, 1e-11, loop_level, loop_level_with);
     }
 
     #[test]

@@ -118,7 +118,7 @@ fn open_meshes_keep_their_holes_with_a_chaikin_boundary() {
 
 #[test]
 fn direct_data_equals_the_stencils_on_corpus() {
-    check_direct_data_on_corpus(3, doo_sabin_level, doo_sabin_level_with);
+    check_direct_data_on_corpus(3, 1e-12, doo_sabin_level, doo_sabin_level_with);
 }
 
 #[test]

@@ -336,7 +336,7 @@ mod tests {
 
     #[test]
     fn direct_data_equals_the_stencils_on_corpus() {
-        crate::schemes::hosts::test_meshes::check_direct_data_on_corpus(2, sqrt3_level, sqrt3_level_with);
+        crate::schemes::hosts::test_meshes::check_direct_data_on_corpus(2, 1e-12, sqrt3_level, sqrt3_level_with);
     }
     use crate::schemes::hosts::test_meshes::*;
 
