@@ -103,22 +103,7 @@ fn table() -> Vec<(String, u64)> {
 
 #[test]
 fn catalog_outputs_are_unchanged() {
-    let t = table();
-    if std::env::var_os("TOPOMESH_PRINT_HASHES").is_some() {
-        for (k, h) in &t {
-            println!("    (\"{k}\", 0x{h:016x}),");
-        }
-        return;
-    }
-    let mut bad = Vec::new();
-    for (k, h) in &t {
-        match RECORDED.iter().find(|(n, _)| n == k) {
-            Some((_, w)) if w == h => {}
-            Some((_, w)) => bad.push(format!("{k}: 0x{h:016x}, recorded 0x{w:016x}")),
-            None => bad.push(format!("{k}: not recorded")),
-        }
-    }
-    assert!(bad.is_empty(), "{} outputs changed:\n{}", bad.len(), bad.join("\n"));
+    crate::schemes::output_hashes::check_recorded(&table(), RECORDED);
 }
 
 /// Recorded at 7244d68 (before the issue-16 speed work).
