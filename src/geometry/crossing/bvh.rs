@@ -7,6 +7,12 @@
 //! put hundreds of triangles in a cell of a thin or dense surface (a
 //! wireframe's tubes, a fine torus) and tested every pair in it: the
 //! wireframe tools' crossing report took seconds (issue 16).
+//!
+//! The tree is built over the triangles' records themselves, which the
+//! median splits leave in leaf order: the leaf loops, where the scan spends
+//! its time (a wireframe's tubes test about ten box pairs per triangle),
+//! read them contiguously, and no centroid table or permutation is
+//! allocated (fresh pages cost as much as the scan's arithmetic here).
 
 use glam::DVec3;
 
@@ -15,13 +21,20 @@ const LEAF: usize = 8;
 /// Traversal depth below which node pairs are split across threads.
 const PAR_DEPTH: u32 = 10;
 
-type Box3 = (DVec3, DVec3);
+/// A triangle: its bounding box, its index, whether it is focused.
+#[derive(Clone, Copy)]
+pub(super) struct Item {
+    pub lo: DVec3,
+    pub hi: DVec3,
+    pub id: u32,
+    pub focus: bool,
+}
 
 #[derive(Clone, Copy)]
 struct Node {
     lo: DVec3,
     hi: DVec3,
-    /// Leaf: `order[a..b]`; inner node: children `a` and `b`.
+    /// Leaf: `items[a..b]`; inner node: children `a` and `b`.
     a: u32,
     b: u32,
     leaf: bool,
@@ -29,63 +42,25 @@ struct Node {
     focus: bool,
 }
 
-pub(super) struct Bvh<'a> {
-    boxes: &'a [Box3],
-    focus: Option<&'a [bool]>,
-    order: Vec<u32>,
+pub(super) struct Bvh {
+    items: Vec<Item>,
     nodes: Vec<Node>,
 }
 
 #[inline]
-fn overlap(a: &Box3, b: &Box3) -> bool {
+fn overlap(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
     // touching boxes overlap (the grid tested them too)
     !(a.0.cmpgt(b.1).any() || b.0.cmpgt(a.1).any())
 }
 
-impl<'a> Bvh<'a> {
-    /// The hierarchy over triangles `items` (indices into `boxes`).
-    pub fn new(boxes: &'a [Box3], focus: Option<&'a [bool]>, mut items: Vec<u32>) -> Bvh<'a> {
-        let mut t = Bvh { boxes, focus, order: Vec::new(), nodes: Vec::with_capacity(2 * items.len() / LEAF + 1) };
+impl Bvh {
+    /// The hierarchy over `items` (reordered into leaf order).
+    pub fn new(mut items: Vec<Item>) -> Bvh {
+        let mut nodes = Vec::with_capacity(2 * items.len() / LEAF + 1);
         if !items.is_empty() {
-            let cen: Vec<DVec3> = boxes.iter().map(|b| (b.0 + b.1) * 0.5).collect();
-            t.build(&mut items, 0, &cen);
+            build(&mut nodes, &mut items, 0);
         }
-        t.order = items;
-        t
-    }
-
-    fn focused(&self, i: u32) -> bool {
-        self.focus.map_or(true, |f| f[i as usize])
-    }
-
-    /// Builds the node of `items` (which start at `first` in the final
-    /// order) and returns its index.
-    fn build(&mut self, items: &mut [u32], first: usize, cen: &[DVec3]) -> u32 {
-        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        let (mut clo, mut chi) = (lo, hi);
-        let mut focus = false;
-        for &i in items.iter() {
-            let b = &self.boxes[i as usize];
-            lo = lo.min(b.0);
-            hi = hi.max(b.1);
-            clo = clo.min(cen[i as usize]);
-            chi = chi.max(cen[i as usize]);
-            focus |= self.focus.map_or(true, |f| f[i as usize]);
-        }
-        let k = self.nodes.len() as u32;
-        self.nodes.push(Node { lo, hi, a: first as u32, b: (first + items.len()) as u32, leaf: true, focus });
-        if items.len() > LEAF {
-            // split at the median centroid along the centroids' longest axis
-            let ext = chi - clo;
-            let axis = if ext.x >= ext.y && ext.x >= ext.z { 0 } else if ext.y >= ext.z { 1 } else { 2 };
-            let mid = items.len() / 2;
-            items.select_nth_unstable_by(mid, |&x, &y| cen[x as usize][axis].total_cmp(&cen[y as usize][axis]));
-            let (l, r) = items.split_at_mut(mid);
-            let a = self.build(l, first, cen);
-            let b = self.build(r, first + mid, cen);
-            self.nodes[k as usize] = Node { lo, hi, a, b, leaf: false, focus };
-        }
-        k
+        Bvh { items, nodes }
     }
 
     /// Every pair `(i, j)`, `i < j`, of triangles with overlapping boxes
@@ -105,10 +80,10 @@ impl<'a> Bvh<'a> {
         }
         if n.leaf {
             let mut out = Vec::new();
-            let items = &self.order[n.a as usize..n.b as usize];
-            for (k, &i) in items.iter().enumerate() {
-                for &j in &items[k + 1..] {
-                    self.leaf_pair(i, j, test, &mut out);
+            let items = &self.items[n.a as usize..n.b as usize];
+            for (k, x) in items.iter().enumerate() {
+                for y in &items[k + 1..] {
+                    leaf_pair(x, y, test, &mut out);
                 }
             }
             return out;
@@ -134,13 +109,24 @@ impl<'a> Bvh<'a> {
 
     fn between_into(&self, a: u32, b: u32, test: &(impl Fn(u32, u32) -> bool + Sync), depth: u32, out: &mut Vec<(u32, u32)>) {
         let (na, nb) = (self.nodes[a as usize], self.nodes[b as usize]);
-        if !(na.focus || nb.focus) || !overlap(&(na.lo, na.hi), &(nb.lo, nb.hi)) {
+        if !(na.focus || nb.focus) || !overlap((na.lo, na.hi), (nb.lo, nb.hi)) {
             return;
         }
         if na.leaf && nb.leaf {
-            for &i in &self.order[na.a as usize..na.b as usize] {
-                for &j in &self.order[nb.a as usize..nb.b as usize] {
-                    self.leaf_pair(i, j, test, out);
+            // only the boxes that reach into the other leaf's box can
+            // overlap one of its boxes: most of a leaf's 8 × 8 pairs end here
+            let near = |n: &Node, o: &Node| {
+                let (mut k, mut at) = (0, [0usize; LEAF]);
+                for x in n.a as usize..n.b as usize {
+                    at[k] = x;
+                    k += overlap((self.items[x].lo, self.items[x].hi), (o.lo, o.hi)) as usize;
+                }
+                (k, at)
+            };
+            let ((ka, xa), (kb, yb)) = (near(&na, &nb), near(&nb, &na));
+            for &x in &xa[..ka] {
+                for &y in &yb[..kb] {
+                    leaf_pair(&self.items[x], &self.items[y], test, out);
                 }
             }
             return;
@@ -160,11 +146,41 @@ impl<'a> Bvh<'a> {
             self.between_into(y, other, test, depth + 1, out);
         }
     }
+}
 
-    #[inline]
-    fn leaf_pair(&self, i: u32, j: u32, test: &(impl Fn(u32, u32) -> bool + Sync), out: &mut Vec<(u32, u32)>) {
-        if (self.focused(i) || self.focused(j)) && overlap(&self.boxes[i as usize], &self.boxes[j as usize]) && test(i, j) {
-            out.push((i.min(j), i.max(j)));
-        }
+/// Builds the node of `items` (which start at `first` in the final order)
+/// and returns its index.
+fn build(nodes: &mut Vec<Node>, items: &mut [Item], first: usize) -> u32 {
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    // centroids doubled (lo + hi): the same order, one multiplication less
+    let (mut clo, mut chi) = (lo, hi);
+    let mut focus = false;
+    for b in items.iter() {
+        lo = lo.min(b.lo);
+        hi = hi.max(b.hi);
+        clo = clo.min(b.lo + b.hi);
+        chi = chi.max(b.lo + b.hi);
+        focus |= b.focus;
+    }
+    let k = nodes.len() as u32;
+    nodes.push(Node { lo, hi, a: first as u32, b: (first + items.len()) as u32, leaf: true, focus });
+    if items.len() > LEAF {
+        // split at the median centroid along the centroids' longest axis
+        let ext = chi - clo;
+        let axis = if ext.x >= ext.y && ext.x >= ext.z { 0 } else if ext.y >= ext.z { 1 } else { 2 };
+        let mid = items.len() / 2;
+        items.select_nth_unstable_by(mid, |x, y| (x.lo[axis] + x.hi[axis]).total_cmp(&(y.lo[axis] + y.hi[axis])));
+        let (l, r) = items.split_at_mut(mid);
+        let a = build(nodes, l, first);
+        let b = build(nodes, r, first + mid);
+        nodes[k as usize] = Node { lo, hi, a, b, leaf: false, focus };
+    }
+    k
+}
+
+#[inline]
+fn leaf_pair(x: &Item, y: &Item, test: &(impl Fn(u32, u32) -> bool + Sync), out: &mut Vec<(u32, u32)>) {
+    if (x.focus || y.focus) && overlap((x.lo, x.hi), (y.lo, y.hi)) && test(x.id, y.id) {
+        out.push((x.id.min(y.id), x.id.max(y.id)));
     }
 }

@@ -113,34 +113,38 @@ pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], fir
 /// Cancellable like [`local_crossings`].
 pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
-    let boxes: Vec<(DVec3, DVec3)> = tris
+    // the hierarchy's records, made once (boxes, ids and focus together:
+    // no box table, centroid table or permutation besides them)
+    let mut items: Vec<bvh::Item> = tris
         .par_iter()
-        .map(|t| {
+        .enumerate()
+        .map(|(i, t)| {
             let q = t.map(|v| p[v as usize]);
-            (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]))
+            bvh::Item { lo: q[0].min(q[1]).min(q[2]), hi: q[0].max(q[1]).max(q[2]), id: i as u32, focus: focus.map_or(true, |f| f[i]) }
         })
         .collect();
     if crate::cancel::requested() {
         return Vec::new();
     }
-    let focused = |i: usize| focus.map_or(true, |f| f[i]);
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     let mut n_focus = 0usize;
-    for (i, b) in boxes.iter().enumerate() {
-        if focused(i) {
-            lo = lo.min(b.0);
-            hi = hi.max(b.1);
-            n_focus += 1;
-        }
+    for b in items.iter().filter(|b| b.focus) {
+        lo = lo.min(b.lo);
+        hi = hi.max(b.hi);
+        n_focus += 1;
     }
     if n_focus == 0 {
         return Vec::new();
     }
-    let overlaps = |b: &(DVec3, DVec3)| !(b.0.cmpgt(hi).any() || b.1.cmplt(lo).any());
-    let cand: Vec<u32> = (0..tris.len() as u32).filter(|&i| overlaps(&boxes[i as usize])).collect();
-    let tree = bvh::Bvh::new(&boxes, focus, cand);
+    items.retain(|b| !(b.lo.cmpgt(hi).any() || b.hi.cmplt(lo).any()));
+    let tree = bvh::Bvh::new(items);
     let test = |i: u32, j: u32| {
         let (ti, tj) = (tris[i as usize], tris[j as usize]);
+        // two sides shared (a face's own triangles): never a contact, and
+        // a sixth of a wireframe's pairs; decided before reading the points
+        if ti.iter().filter(|v| tj.contains(v)).count() >= 2 {
+            return false;
+        }
         triangles_meet(ti, ti.map(|v| p[v as usize]), tj, tj.map(|v| p[v as usize]), coplanar)
     };
     let mut found = tree.pairs(&test);
