@@ -18,13 +18,16 @@ const CROSSING_ROUNDS: usize = 3;
 /// The polygons and the mesh of one iteration (module docs): built with the
 /// rules of VII.3–VII.5, then every input vertex whose local result crosses
 /// itself is rebuilt fully collapsed, for up to [`CROSSING_ROUNDS`] rounds.
-/// Also returns how many input vertices still cross at the end.
-pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) -> Result<((Built, Mesh), usize)> {
+/// Also returns how many input vertices still cross at the end, and the
+/// output's crossing pairs when [`release_full`] scanned it.
+pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) -> Result<Checked> {
     let mut full = vec![false; m.n_vertices()];
     // after the first round only vertices next to a change are checked again
     let mut recheck = vec![false; m.n_vertices()];
     // whether each vertex crossed when it was last checked
     let mut crossing = vec![false; m.n_vertices()];
+    // vertices whose vertex face was coned in some round
+    let mut coned = vec![false; m.n_vertices()];
     let mut round = 0;
     loop {
         // (the previous round's build is dropped before this one is made)
@@ -44,12 +47,15 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
         }
         // per-face corners (module docs) have no full collapse to fall back on
         if round == CROSSING_ROUNDS || o.offset == super::Offset::PerFace {
-            return Ok((cur, crossing.iter().filter(|&&c| c).count()));
+            return release_full(m, o, red, cur, &full, &crossing, &coned);
         }
         // a vertex face with no planar split would be coned from a new
         // vertex, a saddle-like point the next iteration cannot offset:
         // such vertices are fully collapsed too (no vertex face)
         lc.extend(cur.0.coned.iter().copied());
+        for &v in &cur.0.coned {
+            coned[v as usize] = true;
+        }
         let mut changed = false;
         recheck.iter_mut().for_each(|x| *x = false);
         for v in lc {
@@ -64,10 +70,64 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
             }
         }
         if !changed {
-            return Ok((cur, crossing.iter().filter(|&&c| c).count()));
+            return release_full(m, o, red, cur, &full, &crossing, &coned);
         }
         round += 1;
     }
+}
+
+/// The end of the crossing check (module docs, "Crossing check"): a vertex
+/// that still crosses once fully collapsed may cross less as first built.
+/// With the thickness reduction on (it scans the whole output anyway), such
+/// vertices (not coned, which must stay collapsed) are released together
+/// in the first build (not in the reduction's rebuilds),
+/// then each keeps the state whose build has fewer crossing pairs with a
+/// corner it placed, and the build with the fewest pairs of the three is
+/// returned. A crossing-free output has no such vertex and is unchanged.
+/// A build of [`build_valid`]: the polygons and mesh, the input vertices
+/// still crossing, and the crossing pairs if they were scanned.
+pub(super) type Checked = ((Built, Mesh), usize, Option<Vec<(u32, u32)>>);
+
+fn release_full(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>, cur: (Built, Mesh), full: &[bool], crossing: &[bool], coned: &[bool]) -> Result<Checked> {
+    let n = crossing.iter().filter(|&&c| c).count();
+    let cand: Vec<usize> = (0..full.len()).filter(|&v| full[v] && crossing[v] && !coned[v]).collect();
+    // (only before the reduction's rebuilds: each costs two builds and three scans)
+    if !o.reduce_thickness || red.is_some() || cand.is_empty() {
+        return Ok((cur, n, None));
+    }
+    let mut released = full.to_vec();
+    cand.iter().for_each(|&v| released[v] = false);
+    let alt = build_once(m, o, &released, red)?;
+    let (pc, pa) = (output_crossings(&cur.1, cur.0.first_inner), output_crossings(&alt.1, alt.0.first_inner));
+    let (cc, ca) = (pairs_per_owner(&cur, &pc, full.len()), pairs_per_owner(&alt, &pa, full.len()));
+    let mut mixed = full.to_vec();
+    cand.iter().filter(|&&v| ca[v] < cc[v]).for_each(|&v| mixed[v] = false);
+    let mut best = if pa.len() < pc.len() { (alt, pa) } else { (cur, pc) };
+    if mixed != full && mixed != released {
+        let mix = build_once(m, o, &mixed, red)?;
+        let pm = output_crossings(&mix.1, mix.0.first_inner);
+        if pm.len() < best.1.len() {
+            best = (mix, pm);
+        }
+    }
+    crate::cancel::check()?;
+    Ok((best.0, n, Some(best.1)))
+}
+
+/// Crossing pairs per input vertex: those with a corner its rules placed.
+fn pairs_per_owner(b: &(Built, Mesh), pairs: &[(u32, u32)], nv: usize) -> Vec<usize> {
+    let mut count = vec![0usize; nv];
+    let mut vs: Vec<u32> = Vec::new();
+    for &(x, y) in pairs {
+        vs.clear();
+        for f in [x, y] {
+            vs.extend(b.1.face_vertices(crate::mesh::FaceId(f)).filter_map(|w| b.0.owner.get(w.idx()).copied()).filter(|&o| o != u32::MAX));
+        }
+        vs.sort_unstable();
+        vs.dedup();
+        vs.iter().for_each(|&v| count[v as usize] += 1);
+    }
+    count
 }
 
 /// One build with the given fully collapsed vertices: with the `4D` miter
@@ -157,13 +217,13 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
     // the build with the fewest crossing pairs so far
     let mut best: Option<((Built, Mesh), MengerReport)> = None;
     loop {
-        let ((b, mesh), vertices) = build_valid(m, o, (rounds > 0).then_some(&red))?;
+        let ((b, mesh), vertices, scanned) = build_valid(m, o, (rounds > 0).then_some(&red))?;
         if !reduce {
             let face_factor = if per_face { b.depth_factor.clone() } else { vec![1.0; nf] };
             let report = MengerReport { face_factor, rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
             return Ok(((b, mesh), report));
         }
-        let pairs = output_crossings(&mesh, b.first_inner);
+        let pairs = scanned.unwrap_or_else(|| output_crossings(&mesh, b.first_inner));
         crate::cancel::check()?;
         if best.as_ref().is_some_and(|(_, r)| r.crossing_pairs.is_some_and(|n| n <= pairs.len())) {
             // this round did not lower the count: the best so far stands

@@ -101,7 +101,7 @@ fn classify_crossings() {
     let o = MengerOptions { offset: if std::env::var("PER_FACE").is_ok() { Offset::PerFace } else { Offset::Merged }, ..Default::default() };
     for (name, n) in cases("octahedron:3,dodecahedron:3") {
         let m = menger_iterated(&input(&name), n - 1, &MengerOptions::default()).unwrap();
-        let ((b, mesh), left) = build_valid(&m, &o, None).unwrap();
+        let ((b, mesh), left, _) = build_valid(&m, &o, None).unwrap();
         let pl = plan(&m, &o, &vec![false; m.n_vertices()], None).unwrap();
         let pos = m.positions();
         let t = mesh.triangulate();
@@ -153,6 +153,11 @@ fn classify_crossings() {
             *roles.entry(format!("{ra} × {rb}")).or_default() += 1;
             if let (Some(a), Some(c)) = (input_face(fa), input_face(fb)) {
                 *rel.entry(format!("{ra} × {rb}, {}", relation(a, c))).or_default() += 1;
+                if a == c && std::env::var("HEIGHTS").is_ok() {
+                    let (n, p0) = (pl.face_n[a as usize], pos[m.face_vertices(FaceId(a)).next().unwrap().idx()]);
+                    let hgt = |k: u32| tris[k as usize].map(|v| (n.dot(p[v as usize] - p0) / pl.face_d[a as usize] * 1000.0).round() / 1000.0);
+                    eprintln!("    same face {a}: heights/D {:?} (face {ra}) {:?} (face {rb}) pairs {i} {j}", hgt(i), hgt(j));
+                }
             }
         }
         roles.iter().for_each(|(k, v)| eprintln!("  {v:6} {k}"));

@@ -71,7 +71,12 @@
 //!    `√3·D` like every merged corner; where the normals do not fit in a
 //!    hemisphere, the least squares point of step 3. Up to three rounds;
 //!    the check is linear in the output (a vertex's triangles are bounded
-//!    by its valence).
+//!    by its valence). With the thickness reduction on, vertices that still
+//!    cross once fully collapsed (and were not coned) are then released:
+//!    the level is rebuilt with them as first built, each keeps the state
+//!    whose build has fewer crossing pairs with a corner it placed, and
+//!    the build with the fewest pairs of the three is kept (icosahedron 3:
+//!    1980 → 1800; the others unchanged, `docs/schemes/menger.md`).
 //! 4. **Outer remeshing** (step 4): every edge is trisected at distance
 //!    `d_e = ½(D₁ + D₂)` (capped at 0.4 |e|) from its ends and every face is
 //!    split into one corner quad per corner, one edge quad per side and its
