@@ -185,7 +185,7 @@ def _interrupt_once(setup, call):
         exit_seconds = time.perf_counter() - t
     finally:
         p.kill()
-    assert "finished" not in out, f"{call} finished within the {0.5} s before the signal: lengthen it"
+    assert "finished" not in out, f"{call} finished within the 0.5 s before the signal: lengthen it"
     assert "KeyboardInterrupt" in err, err
     word, latency = out.split()
     assert word == "interrupted"

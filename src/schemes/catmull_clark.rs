@@ -53,7 +53,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
 fn smooth_positions(m: &Mesh, fl: &FaceLayout) -> Result<Vec<DVec3>> {
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, face) = m.halfedge_columns();
-    let mut pos = super::hosts::zeroed_points(nv + ne + nf);
+    let mut pos = crate::mesh::zeroed_points(nv + ne + nf);
     let (vp, rest) = pos.split_at_mut(nv);
     let (ep, fp) = rest.split_at_mut(ne);
     face_centroids(m, &fl, fp);

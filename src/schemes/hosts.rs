@@ -514,8 +514,6 @@ pub(crate) fn primal_host_twins(m: &Mesh, fl: &FaceLayout, face_point: &[u32], p
     Ok((out, sides))
 }
 
-pub(crate) use crate::mesh::zeroed_points;
-
 /// Sum of `pos[head(h)]` over the outgoing half-edges of `v` and their count.
 #[inline]
 pub(crate) fn neighbor_sum(m: &Mesh, v: usize) -> (DVec3, usize) {

@@ -72,7 +72,7 @@ fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (_, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
     let p = &m.pos;
-    let mut pos = super::hosts::zeroed_points(nv + ne);
+    let mut pos = crate::mesh::zeroed_points(nv + ne);
     let (vp, ep) = pos.split_at_mut(nv);
     rayon::join(
         || {

@@ -76,6 +76,10 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
     }
 }
 
+/// A build of [`build_valid`]: the polygons and mesh, the input vertices
+/// still crossing, and the crossing pairs if they were scanned.
+pub(super) type Checked = ((Built, Mesh), usize, Option<Vec<(u32, u32)>>);
+
 /// The end of the crossing check (module docs, "Crossing check"): a vertex
 /// that still crosses once fully collapsed may cross less as first built.
 /// With the thickness reduction on (it scans the whole output anyway), such
@@ -84,10 +88,6 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
 /// then each keeps the state whose build has fewer crossing pairs with a
 /// corner it placed, and the build with the fewest pairs of the three is
 /// returned. A crossing-free output has no such vertex and is unchanged.
-/// A build of [`build_valid`]: the polygons and mesh, the input vertices
-/// still crossing, and the crossing pairs if they were scanned.
-pub(super) type Checked = ((Built, Mesh), usize, Option<Vec<(u32, u32)>>);
-
 fn release_full(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>, cur: (Built, Mesh), full: &[bool], crossing: &[bool], coned: &[bool]) -> Result<Checked> {
     let n = crossing.iter().filter(|&&c| c).count();
     let cand: Vec<usize> = (0..full.len()).filter(|&v| full[v] && crossing[v] && !coned[v]).collect();
