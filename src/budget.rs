@@ -257,12 +257,17 @@ pub type Predictor = fn(&Counts) -> (Counts, Counts);
 pub fn check_levels(call: &str, start: &Counts, levels: u64, step: Predictor) -> Result<()> {
     let budget = get()?;
     let (mut before, mut lo) = (None, *start);
+    let mut work = 0u64;
     for k in 1..=levels {
         let next = step(&lo).0;
-        // counts that come back after two levels (dual) repeat from here on
-        if before == Some(next) {
-            break;
+        // counts that stay, or come back after two levels (dual), repeat
+        // from here on: the levels left cost what these two cost, each
+        if before == Some(next) || next == lo {
+            let each = level_work(&lo).max(level_work(&next));
+            return check_work(call, start, levels, work.saturating_add((levels - k + 1).saturating_mul(each)), k - 1, each);
         }
+        work = work.saturating_add(level_work(&next));
+        check_work(call, start, levels, work, k - 1, level_work(&next))?;
         check_ids(call, k, levels, &next)?;
         let need = level_bytes(&lo, &next);
         if need > budget {
@@ -276,6 +281,34 @@ pub fn check_levels(call: &str, start: &Counts, levels: u64, step: Predictor) ->
         lo = next;
     }
     Ok(())
+}
+
+/// The most work one call of a multi-level scheme may be asked for, in
+/// [`level_work`] units: about two minutes at this machine's 10–20 ns per
+/// output half-edge. Only levels whose counts do not grow reach it (a
+/// growing scheme meets the memory budget first): a dual asked for 10¹²
+/// iterations would otherwise run for days, with no error to tell the typo.
+pub const WORK_LIMIT: u64 = 10_000_000_000;
+
+/// Work of one level with output `c`: its half-edges, plus a level's fixed
+/// cost (allocation, set-up, a progress poll), counted as 4,096.
+fn level_work(c: &Counts) -> u64 {
+    c.e.saturating_mul(2).saturating_add(4096)
+}
+
+/// Refuses a call whose levels add up to more than [`WORK_LIMIT`]; `done`
+/// levels cost `work` so far, each further one about `each`.
+fn check_work(call: &str, start: &Counts, levels: u64, work: u64, done: u64, each: u64) -> Result<()> {
+    if work <= WORK_LIMIT {
+        return Ok(());
+    }
+    let most = done.max(WORK_LIMIT / each.max(1));
+    Err(MeshError::InvalidArgument(format!(
+        "{call}: iterations = {levels} on this mesh ({} faces) is about {work:.1e} output half-edges of work, more than one call runs ({WORK_LIMIT:.0e}, minutes); at most about {most} iterations here",
+        start.f,
+        work = work as f64,
+        WORK_LIMIT = WORK_LIMIT as f64
+    )))
 }
 
 /// Checks one level `k` of `levels` of `call` from the real counts of its
@@ -550,5 +583,25 @@ mod tests {
         assert!(check_levels("catmull_clark", &c, 3, predict::catmull_clark).is_ok());
         assert!(probe("t", "x", u64::MAX).is_err());
         assert!(probe("t", "x", 100 << 20).is_ok());
+    }
+
+    /// Levels whose counts repeat (dual) never meet the memory budget: a
+    /// typo of 10¹² iterations is refused by the work limit, at once, and
+    /// the refusal names the iterations and how many would run.
+    #[test]
+    fn repeating_levels_meet_the_work_limit() {
+        let c = Counts::of(&primitives::cube());
+        let t = std::time::Instant::now();
+        let e = check_levels("dual", &c, 1_000_000_000_000, predict::dual).unwrap_err();
+        assert!(t.elapsed().as_secs_f64() < 1.0, "the check itself must not iterate the levels");
+        let msg = e.to_string();
+        assert!(matches!(e, MeshError::InvalidArgument(_)), "{msg}");
+        assert!(msg.starts_with("dual: iterations = 1000000000000 on this mesh (6 faces)") && msg.contains("at most about"), "{msg}");
+        // the bound it states is allowed, ten times more is not
+        let most: u64 = msg.rsplit("at most about ").next().unwrap().split(' ').next().unwrap().parse().unwrap();
+        assert!(check_levels("dual", &c, most, predict::dual).is_ok(), "{msg}");
+        assert!(check_levels("dual", &c, 10 * most, predict::dual).is_err());
+        // ordinary requests pass
+        assert!(check_levels("dual", &c, 1000, predict::dual).is_ok());
     }
 }

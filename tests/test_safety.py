@@ -32,6 +32,9 @@ REPRODUCERS = [
     "topomesh.tetrahedron().sierpinski(20)",
     "topomesh.cube().menger(8)",
     "topomesh.torus(10**6, 10**6)",
+    # levels that do not grow never meet the memory budget: the work limit refuses them
+    "topomesh.cube().dual(10**12)",
+    "topomesh.cube().dual_loop(10**12)",
     "topomesh.ifs.subdivide_curve(np.random.default_rng(0).random((6, 3)), 'chaikin', 25)",
     "topomesh.ifs.subdivide_surface(np.random.default_rng(0).random((19, 3)), 'loop', 30)",
 ]
@@ -75,7 +78,10 @@ def test_reproducers_raise_mesh_error_within_a_second(limit):
         assert seconds < 1.0, (expr, seconds)
         call = out.split(": ")[1]
         assert call in expr, (expr, out)  # the message names the call
-        if "31-bit" not in out:
+        if "of work" in out:
+            # the iterations asked for and how many one call runs
+            assert "iterations = 1000000000000" in out and "at most about" in out, out
+        elif "31-bit" not in out:
             # the level, the bytes needed and the budget
             assert "needs about" in out and "memory budget" in out or "refused" in out, out
 
@@ -438,3 +444,12 @@ def test_peeling_every_face_is_refused():
         p.peel([5])
     # punching them all keeps the walls: a frame of genus F - 1
     assert r.punch(range(6)).mesh.genus == 5
+
+
+@pytest.mark.parametrize("call", ["from_trimesh", "printable"])
+@pytest.mark.parametrize("bad", [None, 3, "cube.obj", np.zeros((4, 3))], ids=["None", "int", "str", "array"])
+def test_wrong_object_is_a_named_error(call, bad):
+    # a demanding user's first mistake: passing something else than the mesh
+    fn = {"from_trimesh": topomesh.Mesh.from_trimesh, "printable": lambda m: topomesh.printable(m, 0.1)}[call]
+    with pytest.raises(MeshError, match=rf"{call}: expected a .*, got {type(bad).__name__}"):
+        fn(bad)

@@ -304,6 +304,8 @@ def from_trimesh(
     the wrong length, non-numeric or non-finite vertex data are left out
     with a :class:`GeometryWarning`; ``repair=True`` leaves all attributes
     out (it renumbers vertices and faces)."""
+    if not (hasattr(tm, "vertices") and hasattr(tm, "faces")):
+        raise MeshError(f"from_trimesh: expected a trimesh.Trimesh (vertices and faces), got {type(tm).__name__}")
     faces = np.asarray(tm.faces, dtype=np.int64).reshape(-1, 3)
     vertex = dict(getattr(tm, "vertex_attributes", {}) or {})
     face = dict(getattr(tm, "face_attributes", {}) or {})

@@ -156,6 +156,8 @@ def printable(mesh: Mesh, min_thickness: float) -> PrintReport:
     >>> r.ok, len(r.thin_faces) > 0
     (False, True)
     """
+    if not isinstance(mesh, Mesh):
+        raise MeshError(f"printable: expected a topomesh.Mesh, got {type(mesh).__name__}")
     try:
         t = float(min_thickness)
     except (TypeError, ValueError):

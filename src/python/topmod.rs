@@ -36,7 +36,9 @@ predictor!(p_linear, |v, e, f| (a(a(v, e), f), s(e, 4), s(e, 2)), (a(a(v, e), f)
 predictor!(p_dual_host, |v, e, f| (s(e, 2), s(e, 4), a(a(f, e), v)), (s(e, 2), s(e, 4), a(a(f, e), v)));
 predictor!(p_loop_style, |v, e, f| (a(v, e), s(e, 4), a(f, s(e, 2))), (a(v, e), s(e, 4), a(f, s(e, 2))));
 predictor!(p_root4, |v, e, f| (a(v, s(e, 2)), s(e, 4), a(f, e)), (a(v, s(e, 2)), s(e, 4), a(f, e)));
-predictor!(p_dual_loop, |v, e, f| (v, e, f), (s(e, 8), s(e, 12), a(a(v, f), s(e, 3))));
+// dual Loop (closed meshes only): E' = 4·E_t with E ≤ E_t ≤ 3E, V' = 4·F_t
+// = 8·E_t/3, F' = V_t + E_t with V_t ≥ F (compose::dual_loop's counts)
+predictor!(p_dual_loop, |v, e, f| (s(e, 2), s(e, 4), a(f, e)), (s(e, 8), s(e, 12), a(a(v, f), s(e, 3))));
 predictor!(p_pentagonal, |v, e, f| (a(a(v, s(e, 2)), f), s(e, 5), s(e, 2)), (a(a(v, s(e, 2)), f), s(e, 5), s(e, 2)));
 predictor!(p_dual_pentagonal, |v, e, f| (s(e, 2), s(e, 5), a(a(v, f), s(e, 2))), (s(e, 2), s(e, 5), a(a(v, f), s(e, 2))));
 predictor!(p_pentagon_preserving, |v, e, f| (a(v, e), s(e, 2), f), (a(v, s(e, 3)), s(e, 6), a(f, s(e, 2))));
