@@ -12,7 +12,10 @@
 use glam::DVec3;
 
 mod bvh;
+mod local;
 mod predicate;
+
+pub use local::crossings_of_new_faces;
 
 #[cfg(test)]
 pub(crate) use predicate::{contact_parts, meet_without_rejection, separated_for_test};
@@ -264,79 +267,6 @@ pub fn mesh_crossing_pairs(m: &crate::mesh::Mesh, coplanar: bool) -> Vec<(u32, u
     crossing_pairs(&p, &tris, None, coplanar)
 }
 
-/// Crossing triangle pairs that involve a face of `after` that is not a face
-/// of `before` (same vertex cycle up to rotation, vertex ids kept): the
-/// check of a local operator (a handle, a pipe) that added or reshaped
-/// those faces, blind to crossings the input already had. Coplanar
-/// contacts count ([`triangles_meet`]).
-pub fn crossings_of_new_faces(before: &crate::mesh::Mesh, after: &crate::mesh::Mesh) -> usize {
-    let new_face = new_faces(before, after);
-    let t = after.triangulate();
-    let focus: Vec<bool> = t.tri_face.iter().map(|&f| new_face[f as usize]).collect();
-    let mut p = after.positions().to_vec();
-    p.extend_from_slice(&t.points);
-    crossing_pairs(&p, &t.tris, Some(&focus), true).len()
-}
-
-/// Per face of `after`: a real face whose vertex cycle (up to rotation)
-/// is not one of `before`'s real faces.
-fn new_faces(before: &crate::mesh::Mesh, after: &crate::mesh::Mesh) -> Vec<bool> {
-    let old = Cycles::of(before);
-    // (no old faces, as for the wireframe tools: every face is new)
-    if old.off.len() == 1 {
-        after.faces().map(|f| !after.is_hole(f)).collect()
-    } else {
-        let new = Cycles::of(after);
-        let mut keys: Vec<(u64, u32)> = (0..old.len()).filter(|&f| !before.is_hole(crate::mesh::FaceId(f as u32))).map(|f| (old.hash(f), f as u32)).collect();
-        keys.sort_unstable();
-        (0..new.len())
-            .map(|f| {
-                if after.is_hole(crate::mesh::FaceId(f as u32)) {
-                    return false;
-                }
-                let h = new.hash(f);
-                let first = keys.partition_point(|&(k, _)| k < h);
-                !keys[first..].iter().take_while(|&&(k, _)| k == h).any(|&(_, g)| new.same(f, &old, g as usize))
-            })
-            .collect()
-    }
-}
-
-/// Every face's vertex cycle, read from the rotation that starts at its
-/// smallest vertex (its first occurrence), in one flat array: faces of two
-/// meshes are compared as cycles up to rotation, vertex ids kept, with one
-/// allocation per mesh instead of one per face.
-struct Cycles {
-    v: Vec<u32>,
-    off: Vec<usize>,
-}
-
-impl Cycles {
-    fn of(m: &crate::mesh::Mesh) -> Cycles {
-        let mut c = Cycles { v: Vec::with_capacity(m.n_halfedges() + m.n_faces()), off: vec![0] };
-        for f in m.faces() {
-            let s = c.v.len();
-            c.v.extend(m.face_vertices(f).map(|v| v.0));
-            let k = (0..c.v.len() - s).min_by_key(|&i| c.v[s + i]).unwrap_or(0);
-            c.v[s..].rotate_left(k);
-            c.off.push(c.v.len());
-        }
-        c
-    }
-    fn len(&self) -> usize {
-        self.off.len() - 1
-    }
-    fn cycle(&self, f: usize) -> &[u32] {
-        &self.v[self.off[f]..self.off[f + 1]]
-    }
-    fn hash(&self, f: usize) -> u64 {
-        self.cycle(f).iter().fold(self.cycle(f).len() as u64, |h, &x| (h ^ x as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15).rotate_left(29))
-    }
-    fn same(&self, f: usize, other: &Cycles, g: usize) -> bool {
-        self.cycle(f) == other.cycle(g)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -428,43 +358,6 @@ mod tests {
             assert_eq!(crossing_pairs(&p, &tris, Some(&focus), coplanar), crossing_pairs_grid(&p, &tris, Some(&focus), coplanar));
             assert_eq!(crossing_pairs(&wp, &wt, None, coplanar), crossing_pairs_grid(&wp, &wt, None, coplanar));
             assert_eq!(crossing_pairs(&wp, &wt, Some(&wfocus), coplanar), crossing_pairs_grid(&wp, &wt, Some(&wfocus), coplanar));
-        }
-    }
-
-    /// New faces by the flat cycle table equal those by a set of cycles
-    /// (the table's predecessor) on handles, a wireframe and a mesh
-    /// against itself.
-    #[test]
-    fn new_faces_as_by_a_set() {
-        use std::collections::HashSet;
-        let by_set = |before: &crate::mesh::Mesh, after: &crate::mesh::Mesh| -> Vec<bool> {
-            let cycle = |m: &crate::mesh::Mesh, f: crate::mesh::FaceId| {
-                let mut c: Vec<u32> = m.face_vertices(f).map(|v| v.0).collect();
-                let k = (0..c.len()).min_by_key(|&i| c[i]).unwrap_or(0);
-                c.rotate_left(k);
-                c
-            };
-            let old: HashSet<Vec<u32>> = before.faces().filter(|&f| !before.is_hole(f)).map(|f| cycle(before, f)).collect();
-            after.faces().map(|f| !after.is_hole(f) && !old.contains(&cycle(after, f))).collect()
-        };
-        let g = crate::primitives::genus_surface(2).unwrap();
-        let t = crate::primitives::torus(12, 8, 3.0, 1.0).unwrap();
-        // the highest and the lowest face (the catalog's selection for handles)
-        let ends = |m: &crate::mesh::Mesh| {
-            let z: Vec<f64> = m.face_centroids().iter().map(|p| p.z).collect();
-            [(0..z.len()).max_by(|&a, &b| z[a].total_cmp(&z[b])).unwrap(), (0..z.len()).min_by(|&a, &b| z[a].total_cmp(&z[b])).unwrap()]
-        };
-        let cases = [
-            (t.clone(), t.multi_face_handle(&ends(&t), 0.5, -0.25).unwrap()),
-            (g.clone(), g.multi_face_handle_edges(&ends(&g)).unwrap().0),
-            (crate::mesh::Mesh::new(), g.wireframe(0.05, None).unwrap()),
-            (g.clone(), g.clone()),
-            (crate::schemes::hosts::test_meshes::cube_with_self_loop(), crate::schemes::hosts::test_meshes::cube_with_self_loop()),
-        ];
-        for (before, after) in &cases {
-            let got = new_faces(before, after);
-            assert_eq!(got, by_set(before, after));
-            assert!(got.iter().any(|&x| x) == (before != after));
         }
     }
 

@@ -382,6 +382,27 @@ fn multi_edge_copies(m: &Mesh) -> Vec<u32> {
     copies
 }
 
+/// [`multi_edge_copies`] among the sides of the listed faces: the same
+/// copies wherever every face around those sides' ends is listed.
+fn multi_edge_copies_among(m: &Mesh, faces: &[u32]) -> Vec<u32> {
+    let (_, vert, _) = m.halfedge_columns();
+    let mut ends: Vec<(u32, u32, u32)> = faces
+        .iter()
+        .flat_map(|&f| m.face_halfedges(FaceId(f)))
+        .map(|h| {
+            let e = h.edge().idx();
+            let (a, b) = (vert[2 * e], vert[2 * e + 1]);
+            (a.min(b), a.max(b), e as u32)
+        })
+        .filter(|&(a, b, _)| a != b)
+        .collect();
+    ends.sort_unstable();
+    ends.dedup();
+    let mut copies: Vec<u32> = ends.windows(2).filter(|w| (w[0].0, w[0].1) == (w[1].0, w[1].1)).map(|w| w[1].2).collect();
+    copies.sort_unstable();
+    copies
+}
+
 /// The diagonal key that marks a bent face (no vertex pair has it).
 const BENT_KEY: u64 = u64::MAX;
 
@@ -389,7 +410,7 @@ const BENT_KEY: u64 = u64::MAX;
 /// diagonal as (pair key, face).
 type BlockOut = (Vec<[u32; 3]>, Vec<u32>, Vec<(u64, u32)>);
 
-fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: std::ops::Range<usize>) -> BlockOut {
+fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: impl Iterator<Item = usize>) -> BlockOut {
     let mut s = Scratch::default();
     let (mut tris, mut tri_face, mut diags) = (Vec::new(), Vec::new(), Vec::new());
     for f in faces {
@@ -436,15 +457,33 @@ fn first_block(m: &Mesh, pos: &[DVec3], split: &[u32], faces: std::ops::Range<us
 /// early with an incomplete triangulation, so a caller that may be cancelled
 /// calls [`crate::cancel::check`] before using the result.
 pub fn triangulate(m: &Mesh) -> Triangulation {
-    triangulate_with(m, true)
+    triangulate_with(m, true, None)
 }
 
-/// [`triangulate`], with the retry pass grouped (parallel) or sequential.
-fn triangulate_with(m: &Mesh, grouped: bool) -> Triangulation {
+/// The triangles of the listed faces only (ascending ids; holes skipped),
+/// in time proportional to them: what a check after a local change needs
+/// (`crossing::crossings_of_new_faces`). Each face is triangulated as in
+/// [`triangulate`] with the collisions among the listed faces resolved, so
+/// a face's triangles are those of the whole mesh's triangulation when
+/// every face around its vertices is listed too (the faces that can share
+/// a diagonal or a multi-edge with it), but for the order in which
+/// colliding faces farther away were retried. Added points are numbered
+/// from `n_vertices()` as in [`Triangulation`].
+pub fn triangulate_faces(m: &Mesh, faces: &[u32]) -> Triangulation {
+    debug_assert!(faces.windows(2).all(|w| w[0] < w[1]) && faces.last().is_none_or(|&f| (f as usize) < m.n_faces()));
+    triangulate_with(m, true, Some(faces))
+}
+
+/// [`triangulate`] (of the listed faces only, with `faces`), with the retry
+/// pass grouped (parallel) or sequential.
+fn triangulate_with(m: &Mesh, grouped: bool, faces: Option<&[u32]>) -> Triangulation {
     let nf = m.n_faces();
     let nv = m.n_vertices() as u32;
     // multi-edge copies get a point each: the first added points
-    let copies = multi_edge_copies(m);
+    let copies = match faces {
+        None => multi_edge_copies(m),
+        Some(list) => multi_edge_copies_among(m, list),
+    };
     let mut points: Vec<DVec3> = Vec::with_capacity(copies.len());
     let mut split = Vec::new();
     if !copies.is_empty() {
@@ -459,10 +498,18 @@ fn triangulate_with(m: &Mesh, grouped: bool) -> Triangulation {
         if points.is_empty() { m.positions().into() } else { [m.positions(), &points[..]].concat().into() };
     let pos = &pos[..];
     let split = &split[..];
-    let blocks: Vec<BlockOut> = (0..nf.div_ceil(BLOCK))
+    let n_listed = faces.map_or(nf, <[u32]>::len);
+    let blocks: Vec<BlockOut> = (0..n_listed.div_ceil(BLOCK))
         .into_par_iter()
         // cancelled: empty blocks, see `triangulate`'s docs
-        .map(|b| if crate::cancel::requested() { Default::default() } else { first_block(m, pos, split, b * BLOCK..nf.min((b + 1) * BLOCK)) })
+        .map(|b| {
+            let r = b * BLOCK..n_listed.min((b + 1) * BLOCK);
+            match faces {
+                _ if crate::cancel::requested() => Default::default(),
+                None => first_block(m, pos, split, r),
+                Some(list) => first_block(m, pos, split, list[r].iter().map(|&f| f as usize)),
+            }
+        })
         .collect();
     let nt = blocks.iter().map(|b| b.0.len()).sum();
     let nd = blocks.iter().map(|b| b.2.len()).sum();

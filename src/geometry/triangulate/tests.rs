@@ -314,6 +314,55 @@ fn multi_edges_are_split() {
 
 
 
+/// `triangulate_faces` of every face is `triangulate`; of a patch of faces
+/// and every face around its vertices, the patch's triangles are the whole
+/// mesh's (as points: added points are numbered by the listed faces), on
+/// meshes with multi-edges, colliding diagonals and retried faces.
+#[test]
+fn listed_faces_triangulate_as_the_whole_mesh() {
+    let mut corpus: Vec<Mesh> = crate::schemes::hosts::test_meshes::corpus().into_iter().map(|(_, m)| m).collect();
+    let f = schemes::sierpinski::sierpinski_iterated(&primitives::tetrahedron(), 2).unwrap();
+    corpus.push(schemes::catmull_clark::catmull_clark(&f).unwrap());
+    corpus.push(schemes::doo_sabin::doo_sabin(&f).unwrap());
+    let mut c = primitives::cube();
+    c.delete_edge(EdgeId(3)).unwrap();
+    corpus.push(c);
+    corpus.push(two_sided(star(40, 0.5)));
+    let (mut checked, mut with_points) = (0, 0);
+    for (k, m) in corpus.iter().enumerate() {
+        let all: Vec<u32> = (0..m.n_faces() as u32).filter(|&f| !m.is_hole(FaceId(f))).collect();
+        let whole = m.triangulate();
+        assert_eq!(triangulate_faces(m, &all), whole, "mesh {k}");
+        // the patch: every third face; listed: it and every face around its vertices
+        let patch: Vec<u32> = all.iter().copied().filter(|f| f % 3 == 0).collect();
+        let mut near = vec![false; m.n_faces()];
+        for &f in &patch {
+            for h in m.face_halfedges(FaceId(f)) {
+                let mut g = h;
+                loop {
+                    near[m.face(g).idx()] = true;
+                    g = m.rotate(g);
+                    if g == h {
+                        break;
+                    }
+                }
+            }
+        }
+        let listed: Vec<u32> = all.iter().copied().filter(|&f| near[f as usize]).collect();
+        let part = triangulate_faces(m, &listed);
+        let as_points = |t: &Triangulation, f: u32| -> Vec<[[u64; 3]; 3]> {
+            let at = |i: u32| if (i as usize) < m.n_vertices() { m.positions()[i as usize] } else { t.points[i as usize - m.n_vertices()] };
+            t.tris.iter().zip(&t.tri_face).filter(|(_, &g)| g == f).map(|(tr, _)| tr.map(|i| at(i).to_array().map(f64::to_bits))).collect()
+        };
+        for &f in &patch {
+            assert_eq!(as_points(&part, f), as_points(&whole, f), "mesh {k}, face {f}");
+            checked += 1;
+        }
+        with_points += (!whole.points.is_empty()) as usize;
+    }
+    assert!(checked > 100 && with_points >= 3, "{checked} faces, {with_points} meshes with added points");
+}
+
 #[test]
 fn grouped_retry_equals_the_sequential_pass() {
     // meshes with many colliding faces: small ones sharing vertex pairs
@@ -338,7 +387,7 @@ fn grouped_retry_equals_the_sequential_pass() {
     corpus.push(big);
     let mut redone_faces = 0;
     for (k, m) in corpus.iter().enumerate() {
-        let (a, b) = (triangulate_with(m, true), triangulate_with(m, false));
+        let (a, b) = (triangulate_with(m, true, None), triangulate_with(m, false, None));
         assert_eq!(a, b, "mesh {k}");
         redone_faces += a.points.len();
     }
