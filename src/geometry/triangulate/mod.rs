@@ -68,6 +68,11 @@ impl Mesh {
 pub const EXACT_LIMIT: usize = 40;
 /// Larger faces than this are never given to earcut (its node offsets are 32-bit).
 const EARCUT_LIMIT: usize = 1 << 25;
+/// Non-convex faces of more corners than this, not star-shaped from their
+/// mean, are cut into monotone pieces ([`monotone`]) rather than given to
+/// earcut, which is quadratic on noisy outlines; below it earcut's
+/// quadratic cases cost at most milliseconds.
+const MONOTONE_MIN: usize = 4096;
 /// Faces per parallel task.
 const BLOCK: usize = 2048;
 
@@ -321,14 +326,12 @@ fn first_choice(s: &mut Scratch, shape: Shape) {
     if star_from_mean(&s.p) && star_clip(&s.p, &mut s.local) && is_disk_triangulation(n, &s.local) {
         return;
     }
-    s.ear.earcut(s.p.iter().map(|q| q.to_array()), &[] as &[u32], &mut s.ear_out);
-    s.local.clear();
-    s.local.extend(s.ear_out.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
-    // earcut emits its own ring orientation: match the face's
-    let reversed = s.local.iter().any(|t| (0..3).any(|k| t[k] == 1 && t[(k + 1) % 3] == 0));
-    if reversed {
-        s.local.iter_mut().for_each(|t| t.swap(1, 2));
+    // and on noisy outlines and spirals: large faces take the monotone
+    // partition, O(n log n), when it covers the face
+    if n > MONOTONE_MIN && monotone::triangulate(&s.p, &mut s.local) && is_disk_triangulation(n, &s.local) && monotone::covers(&s.p, &s.local) {
+        return;
     }
+    earcut_into(&mut s.ear, &mut s.ear_out, &s.p, &mut s.local);
     // earcut drops collinear and coincident corners: such output is no disk
     if !is_disk_triangulation(n, &s.local) {
         if n <= 4096 {
@@ -336,6 +339,18 @@ fn first_choice(s: &mut Scratch, shape: Shape) {
         } else {
             fan(n, 0, &mut s.local);
         }
+    }
+}
+
+/// earcut's triangles of the polygon `p`, in its orientation (unchecked).
+fn earcut_into(ear: &mut earcut::Earcut<f64>, ear_out: &mut Vec<u32>, p: &[DVec2], out: &mut Vec<[u32; 3]>) {
+    ear.earcut(p.iter().map(|q| q.to_array()), &[] as &[u32], ear_out);
+    out.clear();
+    out.extend(ear_out.chunks_exact(3).map(|t| [t[0], t[1], t[2]]));
+    // earcut emits its own ring orientation: match the face's
+    let reversed = out.iter().any(|t| (0..3).any(|k| t[k] == 1 && t[(k + 1) % 3] == 0));
+    if reversed {
+        out.iter_mut().for_each(|t| t.swap(1, 2));
     }
 }
 
@@ -573,6 +588,7 @@ fn triangulate_with(m: &Mesh, grouped: bool, faces: Option<&[u32]>) -> Triangula
     Triangulation { points, tris: t2, tri_face: f2 }
 }
 
+mod monotone;
 mod plain;
 mod redo;
 

@@ -117,6 +117,10 @@ pub(super) fn exact(p: &[DVec2], shape: Shape, forbidden: &dyn Fn(usize, usize) 
 
 /// Re-triangulates a face whose first choice collided. Local indices; an
 /// index n + k is the added point `added[k]`.
+/// Largest face a retry gives to earcut (about a second in its quadratic
+/// cases, on the rare faces that get here).
+const EARCUT_RETRY_LIMIT: usize = 1 << 15;
+
 pub(super) fn retry(
     cyc: &[u32],
     pos: &[DVec3],
@@ -151,6 +155,30 @@ pub(super) fn retry(
         out.clear();
         out.extend((0..n).map(|i| [i as u32, ((i + 1) % n) as u32, n as u32]));
         return;
+    }
+    // a large face's first choice came from the monotone partition, which
+    // a face and its reverse (both sides of a sheet) make along the same
+    // direction: the sweep along x, then earcut (bounded: it can be
+    // quadratic), may choose other diagonals
+    if n > MONOTONE_MIN && shape == Shape::NonConvex {
+        let free = |t: &[[u32; 3]]| {
+            t.iter().all(|t| {
+                (0..3).all(|k| {
+                    let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                    j == (i + 1) % n || i == (j + 1) % n || !forbidden(i, j)
+                })
+            })
+        };
+        let q: Vec<DVec2> = p.iter().map(|v| DVec2::new(-v.y, v.x)).collect();
+        if super::monotone::triangulate(&q, out) && is_disk_triangulation(n, out) && super::monotone::covers(&q, out) && free(out) {
+            return;
+        }
+        if n <= EARCUT_RETRY_LIMIT {
+            super::earcut_into(&mut earcut::Earcut::new(), &mut Vec::new(), p, out);
+            if is_disk_triangulation(n, out) && super::monotone::covers(p, out) && free(out) {
+                return;
+            }
+        }
     }
     // split each forbidden diagonal of the first choice where it meets the
     // two triangles beside it, at a point a little off its middle

@@ -139,6 +139,64 @@ fn non_convex_stars() {
     assert_tiles_top(&m, &t);
 }
 
+/// A spiral strip's outline (turns of width 0.5), `n` corners in the plane z = 0.
+fn spiral(n: usize, turns: f64) -> Vec<DVec3> {
+    let h = n / 2;
+    let arm = |r0: f64| -> Vec<DVec3> {
+        (0..h)
+            .map(|i| {
+                let t = i as f64 / (h - 1) as f64;
+                let a = t * turns * std::f64::consts::TAU;
+                DVec3::new(a.cos(), a.sin(), 0.0) * (r0 + t * turns)
+            })
+            .collect()
+    };
+    let mut p = arm(1.0);
+    p.extend(arm(0.5).into_iter().rev());
+    p
+}
+
+/// Faces past `MONOTONE_MIN` corners that earcut was quadratic on (a
+/// spiral, a comb of thin spikes not star-shaped from the corners' mean)
+/// take the monotone partition: no added point on one side of a prism, and
+/// both sides of a spiral sheet (the same diagonals along y) settled by the
+/// sweep along x, not by splitting every diagonal.
+#[test]
+fn large_non_convex_faces_take_the_monotone_partition() {
+    let n = 2 * MONOTONE_MIN;
+    let spikes: Vec<DVec3> = (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64;
+            // spikes off-centre: star-shaped from the origin, not from the corners' mean
+            DVec3::new(a.cos(), a.sin(), 0.0) * if k % 2 == 0 { 1.0 } else { 1.5 } + if k < n / 4 { DVec3::X * 0.01 } else { DVec3::ZERO }
+        })
+        .collect();
+    for (name, outline) in [("spiral", spiral(n, 12.0)), ("spikes", spikes)] {
+        // a prism: the caps and n side quads
+        let mut pos = outline.clone();
+        pos.extend(outline.iter().map(|p| *p + DVec3::Z));
+        let nn = n as i64;
+        let mut sizes = vec![nn, nn];
+        let mut idx: Vec<i64> = (0..nn).rev().collect();
+        idx.extend(nn..2 * nn);
+        for i in 0..nn {
+            sizes.push(4);
+            idx.extend([i, (i + 1) % nn, nn + (i + 1) % nn, nn + i]);
+        }
+        let prism = Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap();
+        let t = prism.triangulate();
+        assert_closed(&prism, &t);
+        assert!(t.points.is_empty(), "{name}: {} points added to the prism", t.points.len());
+        let sheet = two_sided(outline);
+        let t = sheet.triangulate();
+        assert_closed(&sheet, &t);
+        // (every spike's base chord is forced on both sides: those need points)
+        if name == "spiral" {
+            assert!(t.points.len() < n / 20, "{name}: {} points added to the sheet", t.points.len());
+        }
+    }
+}
+
 #[test]
 fn star_clip_is_linear_and_right() {
     let p: Vec<DVec2> = star(1000, 0.3).iter().map(|q| q.truncate()).collect();
