@@ -159,27 +159,41 @@ pub(super) fn retry(
     // a large face's first choice came from the monotone partition, which
     // a face and its reverse (both sides of a sheet) make along the same
     // direction: the sweep along x, then earcut (bounded: it can be
-    // quadratic), may choose other diagonals
+    // quadratic), may choose other diagonals; failing that, the one with
+    // the fewest forbidden diagonals is split below
+    let mut fewest: Option<(usize, Vec<[u32; 3]>)> = None;
     if n > MONOTONE_MIN && shape == Shape::NonConvex {
-        let free = |t: &[[u32; 3]]| {
-            t.iter().all(|t| {
-                (0..3).all(|k| {
-                    let (i, j) = (t[k] as usize, t[(k + 1) % 3] as usize);
-                    j == (i + 1) % n || i == (j + 1) % n || !forbidden(i, j)
-                })
-            })
+        let taken = |t: &[[u32; 3]]| {
+            t.iter()
+                .flat_map(|t| (0..3).map(move |k| (t[k] as usize, t[(k + 1) % 3] as usize)))
+                .filter(|&(i, j)| i < j && j != i + 1 && !(i == 0 && j == n - 1) && forbidden(i, j))
+                .count()
         };
         let q: Vec<DVec2> = p.iter().map(|v| DVec2::new(-v.y, v.x)).collect();
-        if super::monotone::triangulate(&q, out) && is_disk_triangulation(n, out) && super::monotone::covers(&q, out) && free(out) {
-            return;
+        let mut candidates = Vec::new();
+        if super::monotone::triangulate(&q, out) && is_disk_triangulation(n, out) && super::monotone::covers(&q, out) {
+            candidates.push(out.clone());
         }
         if n <= EARCUT_RETRY_LIMIT {
             super::earcut_into(&mut earcut::Earcut::new(), &mut Vec::new(), p, out);
-            if is_disk_triangulation(n, out) && super::monotone::covers(p, out) && free(out) {
+            if is_disk_triangulation(n, out) && super::monotone::covers(p, out) {
+                candidates.push(out.clone());
+            }
+        }
+        let mut least = taken(first);
+        for c in candidates {
+            let k = taken(&c);
+            if k == 0 {
+                out.clone_from(&c);
                 return;
+            }
+            if k < least {
+                least = k;
+                fewest = Some((k, c));
             }
         }
     }
+    let first = fewest.as_ref().map_or(first, |(_, c)| &c[..]);
     // split each forbidden diagonal of the first choice where it meets the
     // two triangles beside it, at a point a little off its middle
     out.clear();
