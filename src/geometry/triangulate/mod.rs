@@ -19,7 +19,8 @@
 //! from their first corner; faces star-shaped from their corners' mean are
 //! ear-clipped in linear time ([`star_clip`]); other non-convex faces go to
 //! `earcut` (z-order hashed; near-linear on most polygons, quadratic on
-//! adversarial ones such as stars, hence the star clip). **Global pass**:
+//! stars, noisy outlines and spirals), or past [`MONOTONE_MIN`] corners
+//! are cut into monotone pieces ([`monotone`], O(n log n)). **Global pass**:
 //! every diagonal is tested against the mesh edges (walking the rotation of
 //! its endpoint of smaller valence) and against every other face's diagonals
 //! (one parallel sort). **Retry** of each face with a collision, in face
@@ -28,8 +29,10 @@
 //! else an exact O(n³) search over the face's triangulations for faces of up
 //! to [`EXACT_LIMIT`] corners; failing that, one point, the corners' mean,
 //! with the face fanned around it (when the face is small, or star-shaped
-//! from there); failing that (large faces star-shaped from no such point), each forbidden
-//! diagonal of the first choice is split at a point beside its middle. Total
+//! from there); failing that (large faces star-shaped from no such point), past
+//! [`MONOTONE_MIN`] corners the monotone sweep along x and earcut are tried,
+//! and each forbidden diagonal of the candidate with the fewest is split at a
+//! point beside its middle. Total
 //! work is near-linear in corners; the output depends only on the mesh
 //! (deterministic at any thread count).
 //!
