@@ -284,7 +284,7 @@ pub fn check_levels(call: &str, start: &Counts, levels: u64, step: Predictor) ->
 }
 
 /// The most work one call of a multi-level scheme may be asked for, in
-/// [`level_work`] units: about two minutes at this machine's 10–20 ns per
+/// `level_work` units: about two minutes at this machine's 10–20 ns per
 /// output half-edge. Only levels whose counts do not grow reach it (a
 /// growing scheme meets the memory budget first): a dual asked for 10¹²
 /// iterations would otherwise run for days, with no error to tell the typo.

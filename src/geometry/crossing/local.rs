@@ -12,7 +12,7 @@ use glam::DVec3;
 /// of `before` (same vertex cycle up to rotation, vertex ids kept): the
 /// check of a local operator (a handle, a pipe) that added or reshaped
 /// those faces, blind to crossings the input already had. Coplanar
-/// contacts count ([`super::triangles_meet`]).
+/// contacts count (`triangles_meet`).
 ///
 /// Only faces whose corners' box meets the new faces' box can hold a
 /// triangle in a tested pair; they are triangulated with every face around
