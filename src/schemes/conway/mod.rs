@@ -64,6 +64,7 @@ mod ambo;
 pub(crate) mod build;
 pub mod canonical;
 mod chiral;
+mod dual_ambo;
 mod dual_kis;
 mod inset;
 pub(crate) mod kis;
@@ -197,13 +198,13 @@ impl Op {
             Truncate(None) => dual_kis::dual_kis(&dual(m)?),
             Truncate(n) => dual(&kis(&dual(m)?, n)?),
             Kis(n) => kis(m, n),
-            Join => dual(&ambo(m)?),
+            Join => dual_ambo::join(m),
             Expand => ambo(&ambo(m)?),
-            Ortho => dual(&ambo(&ambo(m)?)?),
+            Ortho => dual_ambo::join(&ambo(m)?),
             Gyro => gyro(m),
             Snub => dual(&gyro(m)?),
-            Bevel => dual_kis::dual_kis(&dual(&ambo(m)?)?),
-            Meta => kis(&dual(&ambo(m)?)?, None),
+            Bevel => dual_kis::dual_kis(&dual_ambo::join(m)?),
+            Meta => kis(&dual_ambo::join(m)?, None),
             Needle(n) => kis(&dual(m)?, n),
             Zip(None) => dual_kis::dual_kis(m),
             Zip(n) => dual(&kis(m, n)?),
