@@ -41,50 +41,14 @@ pub(crate) fn join(m: &Mesh) -> Result<Mesh> {
     // ambo's own checks, then the dual's on ambo's counts
     reserve("ambo", m, ne, 2 * ne, nf + nv)?;
     check_output_size("dual", 2 * nh, nf + nv)?;
-    let (next, prev, vert, face) = (c.next, c.prev, c.vert, c.face);
-    let (pos_in, cidx) = (&m.pos, &c.fl.cidx);
-    // ambo's midpoint of the edge of h (`Ctx::mid`: the same bits)
-    let mid = |h: u32| {
-        let e = (h >> 1) as usize;
-        (pos_in[vert[2 * e] as usize] + pos_in[vert[2 * e + 1] as usize]) * 0.5
-    };
-    // the centroids of ambo's faces: the face faces, then the vertex faces
-    let mut pos = Vec::with_capacity(nf + nv);
-    for f in 0..nf {
-        crate::cancel::poll(f)?;
-        let s = m.f_start[f];
-        let (mut h, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
-        loop {
-            sum += mid(h);
-            k += 1;
-            h = next[h as usize];
-            if h == s {
-                break;
-            }
-        }
-        pos.push(sum / k as f64);
-    }
-    for v in 0..nv {
-        crate::cancel::poll(v)?;
-        let s = m.v_out[v];
-        let (mut g, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
-        loop {
-            sum += mid(g);
-            k += 1;
-            g = prev[g as usize] ^ 1;
-            if g == s {
-                break;
-            }
-        }
-        pos.push(sum / k as f64);
-    }
+    let (next, vert, face) = (c.next, c.vert, c.face);
+    let pos = centroids(&c)?;
     // keys: ambo's edges, named by the input half-edge g of C(g)
     let mut walk = DualWalk::new(pos, 4 * ne, ne, nh);
     let nf32 = nf as u32;
     for e in 0..ne {
         crate::cancel::poll(e)?;
-        let (a, b) = (2 * e as u32, 2 * e as u32 + 1);
-        let h0 = if cidx[a as usize] < cidx[b as usize] { a } else { b };
+        let h0 = first_side(&c, e);
         let t0 = h0 ^ 1;
         let mut last = NONE;
         walk.put(e, face[h0 as usize], h0 as usize, &mut last);
@@ -103,4 +67,54 @@ pub(crate) fn join(m: &Mesh) -> Result<Mesh> {
         fp::record(Some(Step { in_v: nv, in_f: nf, face, vertex }));
     }
     Mesh::from_columns(cols)
+}
+
+/// The side of edge e met first in face order: ambo's `v_out` of its
+/// midpoint is that side's face corner.
+#[inline]
+pub(super) fn first_side(c: &In<'_>, e: usize) -> u32 {
+    let (a, b) = (2 * e as u32, 2 * e as u32 + 1);
+    if c.fl.cidx[a as usize] < c.fl.cidx[b as usize] { a } else { b }
+}
+
+/// Join's vertices: the centroids of ambo's faces, the face faces then the
+/// vertex faces, each summed from its first corner as the dual sums it.
+pub(super) fn centroids(c: &In<'_>) -> Result<Vec<DVec3>> {
+    let (m, next, prev, vert) = (c.m, c.next, c.prev, c.vert);
+    let pos_in = &m.pos;
+    // ambo's midpoint of the edge of h (`Ctx::mid`: the same bits)
+    let mid = |h: u32| {
+        let e = (h >> 1) as usize;
+        (pos_in[vert[2 * e] as usize] + pos_in[vert[2 * e + 1] as usize]) * 0.5
+    };
+    let mut pos = Vec::with_capacity(c.nf + c.nv);
+    for f in 0..c.nf {
+        crate::cancel::poll(f)?;
+        let s = m.f_start[f];
+        let (mut h, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
+        loop {
+            sum += mid(h);
+            k += 1;
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
+        }
+        pos.push(sum / k as f64);
+    }
+    for v in 0..c.nv {
+        crate::cancel::poll(v)?;
+        let s = m.v_out[v];
+        let (mut g, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
+        loop {
+            sum += mid(g);
+            k += 1;
+            g = prev[g as usize] ^ 1;
+            if g == s {
+                break;
+            }
+        }
+        pos.push(sum / k as f64);
+    }
+    Ok(pos)
 }

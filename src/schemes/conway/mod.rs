@@ -61,6 +61,7 @@
 //! `n` on the N-valent vertices only; faces (vertices) of other sizes stay.
 
 mod ambo;
+mod bevel;
 pub(crate) mod build;
 pub mod canonical;
 mod chiral;
@@ -203,7 +204,7 @@ impl Op {
             Ortho => dual_ambo::join(&ambo(m)?),
             Gyro => gyro(m),
             Snub => dual(&gyro(m)?),
-            Bevel => dual_kis::dual_kis(&dual_ambo::join(m)?),
+            Bevel => bevel::bevel(m),
             Meta => kis(&dual_ambo::join(m)?, None),
             Needle(n) => kis(&dual(m)?, n),
             Zip(None) => dual_kis::dual_kis(m),
