@@ -58,47 +58,38 @@ pub(crate) fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
     // as pentagonalization keys it (segment at tail(g): g; middle of edge
     // e: H + e; spoke of corner g: H + E + g)
     let (kmid, kspoke) = (nh as u32, (nh + ne) as u32);
-    let corner = |x: u32| -> (u32, u32) {
-        let h = fh[(x / 5) as usize];
+    let corners = |h: u32| -> [(u32, u32); 5] {
         let (t, nx) = (h ^ 1, next[h as usize]);
-        match x % 5 {
-            0 => (pt + h, kmid + (h >> 1)),
-            1 => (pt + t, t),
-            2 => (vert[t as usize], nx),
-            3 => (pt + nx, kspoke + nx),
-            _ => (cf + face[h as usize], kspoke + h),
-        }
+        [(pt + h, kmid + (h >> 1)), (pt + t, t), (vert[t as usize], nx), (pt + nx, kspoke + nx), (cf + face[h as usize], kspoke + h)]
     };
     // the corner of its twin side, the other side of its key: the middle
     // third of edge(h) in the pentagon of twin h; the segment at head(h) in
     // the pentagons of prev(twin h) and next(h)'s twin; the spokes in those
-    // of next h and prev h
-    let mut tw = Vec::with_capacity(nhp);
+    // of next h and prev h. Stored at the corner after it: rot[x] is
+    // twin(prev x), the step of a rotation round x's vertex.
+    let mut rot = Vec::with_capacity(nhp);
     for &h in fh.iter() {
         let (t, nx, pr) = (h ^ 1, next[h as usize], prev[h as usize]);
-        tw.extend([
+        rot.extend([
+            5 * cidx[pr as usize] + 3,
             5 * cidx[t as usize],
             5 * cidx[prev[t as usize] as usize] + 2,
             5 * cidx[(nx ^ 1) as usize] + 1,
             5 * cidx[nx as usize] + 4,
-            5 * cidx[pr as usize] + 3,
         ]);
     }
-    let nxt = |x: u32| if x % 5 == 4 { x - 4 } else { x + 1 };
-    let prv = |x: u32| if x % 5 == 0 { x + 4 } else { x - 1 };
     // pentagonalization's v_out (each vertex's first corner in face order)
     // and centroids (summed from corner 0, as `dual_dual` sums them)
     let mut v_out = vec![NONE; nvp];
     let mut cen = Vec::with_capacity(nfp);
-    for j in 0..nfp as u32 {
-        crate::cancel::poll(j as usize)?;
+    for (j, &h) in fh.iter().enumerate() {
+        crate::cancel::poll(j)?;
         let mut s = DVec3::ZERO;
-        for x in 5 * j..5 * j + 5 {
-            let v = corner(x).0;
+        for (k, (v, _)) in corners(h).into_iter().enumerate() {
             s += ppos[v as usize];
             let o = &mut v_out[v as usize];
             if *o == NONE {
-                *o = x;
+                *o = (5 * j + k) as u32;
             }
         }
         cen.push(s / 5usize as f64);
@@ -116,7 +107,7 @@ pub(crate) fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
             if c0[f] == NONE {
                 c0[f] = x;
             }
-            x = tw[prv(x) as usize];
+            x = rot[x as usize];
             if x == s {
                 break;
             }
@@ -124,20 +115,17 @@ pub(crate) fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
         pos.push(sum / k as f64);
     }
     drop(cen);
+    drop(rot);
     crate::cancel::check()?;
     let mut walk = DualWalk::new(pos, nhp, nfp, 2 * nh + ne);
-    for (f, &s) in c0.iter().enumerate() {
-        crate::cancel::poll(f)?;
-        let (mut x, mut last) = (s, NONE);
-        loop {
-            let (v, k) = corner(x);
-            walk.put(f, v, k as usize, &mut last);
-            x = nxt(x);
-            if x == s {
-                break;
-            }
+    for (j, &s) in c0.iter().enumerate() {
+        crate::cancel::poll(j)?;
+        let cs = corners(fh[j]);
+        let (k0, mut last) = (s as usize - 5 * j, NONE);
+        for (v, k) in cs[k0..].iter().chain(&cs[..k0]) {
+            walk.put(j, *v, *k as usize, &mut last);
         }
-        walk.close(f, last);
+        walk.close(j, last);
     }
     Mesh::from_columns(walk.finish()?)
 }
