@@ -69,6 +69,7 @@ mod dual_ambo;
 mod dual_kis;
 mod inset;
 pub(crate) mod kis;
+mod ortho;
 pub mod seeds;
 #[cfg(test)]
 mod tests;
@@ -201,7 +202,7 @@ impl Op {
             Kis(n) => kis(m, n),
             Join => dual_ambo::join(m),
             Expand => ambo(&ambo(m)?),
-            Ortho => dual_ambo::join(&ambo(m)?),
+            Ortho => ortho::ortho(m),
             Gyro => gyro(m),
             Snub => dual(&gyro(m)?),
             Bevel => bevel::bevel(m),

@@ -440,8 +440,8 @@ fn canonical_form() {
     assert!(canonical::canonicalize(&cube_with_hole(), 10, 0.0).is_err());
 }
 
-/// The fused builds (`dual_ambo::join`, `dual_kis`, and the operators made
-/// of them) give what the compositions they replace give: the same mesh,
+/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, and
+/// the operators made of them) give what the compositions they replace give: the same mesh,
 /// face parents and errors, on the scheme corpus (non-convex faces,
 /// self-loops, two-gons, genus 3, point-spheres) and on open meshes (which
 /// take the composition and are refused).
@@ -461,6 +461,12 @@ fn fused_builds_are_their_compositions() {
     ];
     for (op, fused, composed) in &pairs {
         for (name, m) in &ms {
+            // untraced (ortho's one pass runs only then), then traced
+            match (fused(m), composed(m)) {
+                (Ok(a), Ok(b)) => assert!(a == b, "{op} on {name}: the fused build differs from the composition"),
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{op} on {name}"),
+                (a, b) => panic!("{op} on {name}: fused {:?}, composition {:?}", a.err(), b.err()),
+            }
             match (traced(m, || fused(m)), traced(m, || composed(m))) {
                 (Ok((a, pa)), Ok((b, pb))) => {
                     assert!(a == b, "{op} on {name}: the fused build differs from the composition");
