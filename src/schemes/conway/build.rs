@@ -88,11 +88,17 @@ impl<'a> Ctx<'a> {
 /// Refuses an output of `v`, `e`, `f` elements that would exceed the memory
 /// budget or 31-bit ids (`crate::budget`), before anything is allocated.
 pub(crate) fn reserve(name: &str, m: &Mesh, v: usize, e: usize, f: usize) -> Result<()> {
+    reserve_from(name, &crate::budget::Counts::of(m), v, e, f)
+}
+
+/// [`reserve`] from the input's counts (for a fused build whose input of
+/// this step is never built).
+pub(crate) fn reserve_from(name: &str, input: &crate::budget::Counts, v: usize, e: usize, f: usize) -> Result<()> {
     use crate::budget::{check, level_bytes, Counts};
     check_output_size(name, 2 * e, v)?;
     if f > crate::mesh::MAX_ELEMENTS {
         return Err(MeshError::InvalidArgument(format!("{name}: the output would have {f} faces, more than 31-bit ids allow")));
     }
     let out = Counts::plain(v as u64, e as u64, f as u64);
-    check(name, &format!("an output of {v} vertices, {e} edges and {f} faces"), level_bytes(&Counts::of(m), &out))
+    check(name, &format!("an output of {v} vertices, {e} edges and {f} faces"), level_bytes(input, &out))
 }

@@ -61,12 +61,15 @@
 //! `n` on the N-valent vertices only; faces (vertices) of other sizes stay.
 
 mod ambo;
+mod bevel;
 pub(crate) mod build;
 pub mod canonical;
 mod chiral;
+mod dual_ambo;
 mod dual_kis;
 mod inset;
 pub(crate) mod kis;
+mod ortho;
 pub mod seeds;
 #[cfg(test)]
 mod tests;
@@ -197,13 +200,13 @@ impl Op {
             Truncate(None) => dual_kis::dual_kis(&dual(m)?),
             Truncate(n) => dual(&kis(&dual(m)?, n)?),
             Kis(n) => kis(m, n),
-            Join => dual(&ambo(m)?),
+            Join => dual_ambo::join(m),
             Expand => ambo(&ambo(m)?),
-            Ortho => dual(&ambo(&ambo(m)?)?),
+            Ortho => ortho::ortho(m),
             Gyro => gyro(m),
             Snub => dual(&gyro(m)?),
-            Bevel => dual_kis::dual_kis(&dual(&ambo(m)?)?),
-            Meta => kis(&dual(&ambo(m)?)?, None),
+            Bevel => bevel::bevel(m),
+            Meta => kis(&dual_ambo::join(m)?, None),
             Needle(n) => kis(&dual(m)?, n),
             Zip(None) => dual_kis::dual_kis(m),
             Zip(n) => dual(&kis(m, n)?),

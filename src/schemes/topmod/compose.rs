@@ -37,7 +37,7 @@ pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
 /// dual, dual): pentagonalization's counts, positions the centroids of
 /// centroids.
 pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
-    dual_dual(&super::pentagonal::pentagonalize(m, offset)?)
+    super::cubic_pentagonal::cubic_pentagonalize(m, offset)
 }
 
 /// `dual(dual(p))` without the intermediate dual (issue 16: the two duals
@@ -50,7 +50,7 @@ pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
 /// walking p's vertices in order) and numbers edges by first crossing.
 /// Both are reproduced here bit for bit (`keyed::hashes`); with holes or
 /// point-spheres it is the two duals.
-fn dual_dual(p: &Mesh) -> Result<Mesh> {
+pub(super) fn dual_dual(p: &Mesh) -> Result<Mesh> {
     use crate::mesh::{NONE, POINT};
     use crate::schemes::dual::face_centroid;
     use glam::DVec3;
@@ -199,6 +199,28 @@ mod tests {
             *h.entry(3).or_insert(0) += 2 * e;
             h
         });
+    }
+
+    /// The one-pass cubic pentagonalization is the composition it fuses:
+    /// the same mesh or the same error, on the corpus (non-convex faces,
+    /// self-loops, two-gons, one-gons, genus 3, point-spheres) and on open
+    /// meshes and bad offsets (which take the composition).
+    #[test]
+    fn cubic_pentagonalize_is_its_composition() {
+        use crate::schemes::hosts::test_meshes::{one_gon_two_gon_cube, open_meshes};
+        let mut ms = super::super::tests::meshes();
+        ms.push(("one_gon_two_gon", one_gon_two_gon_cube()));
+        ms.extend(open_meshes());
+        for (name, m) in &ms {
+            for off in [0.0, 0.3, 1.0, 1.5] {
+                let composed = super::super::pentagonal::pentagonalize(m, off).and_then(|p| dual(&dual(&p)?));
+                match (cubic_pentagonalize(m, off), composed) {
+                    (Ok(a), Ok(b)) => assert!(a == b, "{name}, offset {off}: the fused build differs from the composition"),
+                    (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+                    (a, b) => panic!("{name}, offset {off}: fused {:?}, composition {:?}", a.err(), b.err()),
+                }
+            }
+        }
     }
 
     #[test]

@@ -45,6 +45,7 @@ pub mod checkerboard;
 mod checkerboard_dual;
 pub mod compose;
 pub mod corner_cutting;
+mod cubic_pentagonal;
 pub mod doo_sabin_bc_new;
 pub mod extrude;
 mod extrude_platonic;
