@@ -73,22 +73,29 @@ pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], fir
             // sweep along x over the bucket's boxes; two triangles of the
             // outer remeshing (all corners below `first_inner`) lie in the
             // input's faces and cannot cross
-            let mut boxes: Vec<(DVec3, DVec3, u32, bool)> = by_owner[start[k]..start[k + 1]]
+            let mut boxes: Vec<(DVec3, DVec3, u32, bool, [u32; 3])> = by_owner[start[k]..start[k + 1]]
                 .iter()
                 .map(|&t| {
                     let tv = tris[t as usize];
                     let q = tv.map(|v| p[v as usize]);
-                    (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]), t, tv.iter().all(|&v| v < first_inner))
+                    (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]), t, tv.iter().all(|&v| v < first_inner), owners_of(&tv))
                 })
                 .collect();
             boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
             for a in 0..boxes.len() {
-                let (la, ha, ta, oa) = boxes[a];
-                for &(lb, hb, tb, ob) in &boxes[a + 1..] {
+                let (la, ha, ta, oa, wa) = boxes[a];
+                for &(lb, hb, tb, ob, wb) in &boxes[a + 1..] {
                     if lb.x > ha.x {
                         break;
                     }
                     if (oa && ob) || la.cmpgt(hb).any() || lb.cmpgt(ha).any() {
+                        continue;
+                    }
+                    // a pair in the buckets of several common owners (a
+                    // sixth of the torus row's pairs) is tested in the
+                    // first checked one only: what it finds does not
+                    // depend on the bucket
+                    if wa.iter().any(|&o| o < k as u32 && wb.contains(&o) && only.map_or(true, |f| f[o as usize])) {
                         continue;
                     }
                     let (ta, tb) = (tris[ta as usize], tris[tb as usize]);

@@ -7,8 +7,9 @@ use super::remesh::{build_polygons, Built};
 use super::{MengerOptions, MengerReport, Reduction};
 use crate::error::Result;
 use crate::geometry::crossing::local_crossings;
-use crate::geometry::triangles_with_points;
+use crate::geometry::triangulate::Triangulation;
 use crate::mesh::{BuildOptions, Mesh};
+use glam::DVec3;
 
 /// Rounds of the crossing check (module docs): a vertex found crossing is
 /// rebuilt fully collapsed; a second round catches vertices whose
@@ -30,12 +31,13 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
     let mut coned = vec![false; m.n_vertices()];
     let mut round = 0;
     loop {
-        // (the previous round's build is dropped before this one is made)
+        // (the previous round's build and triangulation are dropped before
+        // this one is made)
         let cur = build_once(m, o, &full, red)?;
-        let (tris, tri_pos) = triangles_with_points(&cur.1);
+        // kept for the whole-output scan should this build be the last
+        let tri = Tris::of(&cur.1);
         let only = (round > 0).then_some(&recheck[..]);
-        let mut lc = local_crossings(&tri_pos, &tris, &cur.0.owner, cur.0.first_inner, only);
-        drop((tris, tri_pos));
+        let mut lc = local_crossings(&tri.p, &tri.t.tris, &cur.0.owner, cur.0.first_inner, only);
         crate::cancel::check()?;
         for (v, c) in crossing.iter_mut().enumerate() {
             if only.map_or(true, |r| r[v]) {
@@ -47,7 +49,7 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
         }
         // per-face corners (module docs) have no full collapse to fall back on
         if round == CROSSING_ROUNDS || o.offset == super::Offset::PerFace {
-            return release_full(m, o, red, cur, &full, &crossing, &coned);
+            return release_full(m, o, red, (cur, tri), &full, &crossing, &coned);
         }
         // a vertex face with no planar split would be coned from a new
         // vertex, a saddle-like point the next iteration cannot offset:
@@ -70,15 +72,41 @@ pub(super) fn build_valid(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>) 
             }
         }
         if !changed {
-            return release_full(m, o, red, cur, &full, &crossing, &coned);
+            return release_full(m, o, red, (cur, tri), &full, &crossing, &coned);
         }
         round += 1;
     }
 }
 
 /// A build of [`build_valid`]: the polygons and mesh, the input vertices
-/// still crossing, and the crossing pairs if they were scanned.
-pub(super) type Checked = ((Built, Mesh), usize, Option<Vec<(u32, u32)>>);
+/// still crossing, and the crossing pairs if they were scanned, else the
+/// triangulation the per-vertex check made of this mesh (for the scan).
+pub(super) type Checked = ((Built, Mesh), usize, Scan);
+
+/// The whole-output scan's pairs ([`output_crossings`]), or what it starts
+/// from.
+pub(super) enum Scan {
+    Pairs(Vec<(u32, u32)>),
+    Tris(Tris),
+}
+
+/// An output's triangulation and its points (the mesh's, then those the
+/// triangulation added), made once per build: the per-vertex check and
+/// the whole-output scan read the same triangles (a triangulation of the
+/// torus row's 1.6 M faces takes about as long as a tenth of the scan).
+pub(super) struct Tris {
+    t: Triangulation,
+    p: Vec<DVec3>,
+}
+
+impl Tris {
+    fn of(mesh: &Mesh) -> Tris {
+        let t = mesh.triangulate();
+        let mut p = mesh.positions().to_vec();
+        p.extend_from_slice(&t.points);
+        Tris { t, p }
+    }
+}
 
 /// The end of the crossing check (module docs, "Crossing check"): a vertex
 /// that still crosses once fully collapsed may cross less as first built.
@@ -88,30 +116,32 @@ pub(super) type Checked = ((Built, Mesh), usize, Option<Vec<(u32, u32)>>);
 /// then each keeps the state whose build has fewer crossing pairs with a
 /// corner it placed, and the build with the fewest pairs of the three is
 /// returned. A crossing-free output has no such vertex and is unchanged.
-fn release_full(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>, cur: (Built, Mesh), full: &[bool], crossing: &[bool], coned: &[bool]) -> Result<Checked> {
+fn release_full(m: &Mesh, o: &MengerOptions, red: Option<&Reduction>, (cur, tri): ((Built, Mesh), Tris), full: &[bool], crossing: &[bool], coned: &[bool]) -> Result<Checked> {
     let n = crossing.iter().filter(|&&c| c).count();
     let cand: Vec<usize> = (0..full.len()).filter(|&v| full[v] && crossing[v] && !coned[v]).collect();
     // (only before the reduction's rebuilds: each costs two builds and three scans)
     if !o.reduce_thickness || red.is_some() || cand.is_empty() {
-        return Ok((cur, n, None));
+        return Ok((cur, n, Scan::Tris(tri)));
     }
     let mut released = full.to_vec();
     cand.iter().for_each(|&v| released[v] = false);
+    let pc = output_crossings(&tri, cur.0.first_inner);
+    drop(tri);
     let alt = build_once(m, o, &released, red)?;
-    let (pc, pa) = (output_crossings(&cur.1, cur.0.first_inner), output_crossings(&alt.1, alt.0.first_inner));
+    let pa = output_crossings(&Tris::of(&alt.1), alt.0.first_inner);
     let (cc, ca) = (pairs_per_owner(&cur, &pc, full.len()), pairs_per_owner(&alt, &pa, full.len()));
     let mut mixed = full.to_vec();
     cand.iter().filter(|&&v| ca[v] < cc[v]).for_each(|&v| mixed[v] = false);
     let mut best = if pa.len() < pc.len() { (alt, pa) } else { (cur, pc) };
     if mixed != full && mixed != released {
         let mix = build_once(m, o, &mixed, red)?;
-        let pm = output_crossings(&mix.1, mix.0.first_inner);
+        let pm = output_crossings(&Tris::of(&mix.1), mix.0.first_inner);
         if pm.len() < best.1.len() {
             best = (mix, pm);
         }
     }
     crate::cancel::check()?;
-    Ok((best.0, n, Some(best.1)))
+    Ok((best.0, n, Scan::Pairs(best.1)))
 }
 
 /// Crossing pairs per input vertex: those with a corner its rules placed.
@@ -160,12 +190,10 @@ pub const REDUCTION_FLOOR: f64 = 1.0 / 32.0;
 /// Two triangles of the outer remeshing (every corner below `first_inner`)
 /// lie in the input's faces and cannot cross (as in the per-vertex check),
 /// so only pairs with another triangle are tested.
-pub(super) fn output_crossings(mesh: &Mesh, first_inner: u32) -> Vec<(u32, u32)> {
-    let t = mesh.triangulate();
-    let mut p = mesh.positions().to_vec();
-    p.extend_from_slice(&t.points);
+pub(super) fn output_crossings(tri: &Tris, first_inner: u32) -> Vec<(u32, u32)> {
+    let (t, p) = (&tri.t, &tri.p);
     let focus: Vec<bool> = t.tris.iter().map(|tv| tv.iter().any(|&v| v >= first_inner)).collect();
-    let pairs = crate::geometry::crossing::crossing_pairs(&p, &t.tris, Some(&focus), true);
+    let pairs = crate::geometry::crossing::crossing_pairs(p, &t.tris, Some(&focus), true);
     pairs.iter().map(|&(i, j)| (t.tri_face[i as usize], t.tri_face[j as usize])).collect()
 }
 
@@ -223,7 +251,10 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
             let report = MengerReport { face_factor, rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
             return Ok(((b, mesh), report));
         }
-        let pairs = scanned.unwrap_or_else(|| output_crossings(&mesh, b.first_inner));
+        let pairs = match scanned {
+            Scan::Pairs(p) => p,
+            Scan::Tris(t) => output_crossings(&t, b.first_inner),
+        };
         crate::cancel::check()?;
         if best.as_ref().is_some_and(|(_, r)| r.crossing_pairs.is_some_and(|n| n <= pairs.len())) {
             // this round did not lower the count: the best so far stands
