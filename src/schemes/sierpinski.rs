@@ -86,7 +86,6 @@
 use crate::error::{MeshError, Result};
 use crate::mesh::{Corner, FaceStart, HalfedgeId, Mesh, MAX_ELEMENTS};
 use glam::DVec3;
-use rayon::prelude::*;
 
 const NONE: u32 = u32::MAX;
 
@@ -99,29 +98,29 @@ struct Walk {
 }
 
 impl Walk {
-    fn of(m: &Mesh) -> Walk {
+    fn of(m: &Mesh) -> Result<Walk> {
         let (next, vert, _) = m.halfedge_columns();
         let nh = next.len();
         let is_loop = |h: usize| vert[h] == vert[h ^ 1];
-        let pairs: Vec<(u32, u32)> = (0..nh)
-            .into_par_iter()
-            .with_min_len(4096)
-            .map(|h| {
-                // cancelled: garbage, the caller's next poll reports it
-                if is_loop(h) || crate::cancel::requested() {
-                    return (NONE, 0);
-                }
-                let mut k = 0u32;
-                let mut x = next[h] as usize;
-                while is_loop(x) {
-                    k += 1;
-                    x = next[x] as usize;
-                }
-                (x as u32, k)
-            })
-            .collect();
-        let (nu, loops_after) = pairs.into_iter().unzip();
-        Walk { nu, loops_after }
+        // (ν(h), loops after h); written chunk by chunk, stopping once
+        // cancelled (`cancel::par_collect`: a collect, then an unzip, wrote
+        // 2 × 8 bytes per half-edge of fresh memory with no poll, up to a
+        // second of Ctrl-C latency on a 2M-face torus)
+        let walk = |h: usize| -> (u32, u32) {
+            if is_loop(h) {
+                return (NONE, 0);
+            }
+            let mut k = 0u32;
+            let mut x = next[h] as usize;
+            while is_loop(x) {
+                k += 1;
+                x = next[x] as usize;
+            }
+            (x as u32, k)
+        };
+        let nu = crate::cancel::par_collect(nh, |h| walk(h).0)?;
+        let loops_after = crate::cancel::par_collect(nh, |h| walk(h).1)?;
+        Ok(Walk { nu, loops_after })
     }
 
     #[inline]
@@ -174,7 +173,7 @@ pub fn sierpinski_level(m: &Mesh, req: &super::level::Request) -> Result<super::
     }
     let (nv, ne) = (m.n_vertices(), m.n_edges());
     let (_, vert, face) = m.halfedge_columns();
-    let w = Walk::of(m);
+    let w = Walk::of(m)?;
     let mids: Vec<u32> = (0..ne as u32).filter(|&e| w.is_nonloop(2 * e as usize)).collect();
     let stencils = if req.stencils {
         Some(super::stencil::Stencils::build(nv + mids.len(), nv, |i, row| {
@@ -240,16 +239,22 @@ fn build(m: &Mesh, want_origins: bool) -> Result<(Mesh, Vec<(u8, u32)>)> {
     let nv = m.n_vertices();
     let nh = m.n_halfedges();
     let (_, vert, _) = m.halfedge_columns();
-    let w = Walk::of(m);
+    let w = Walk::of(m)?;
 
-    // --- counts and the numbering of midpoints (non-loop edges in order)
-    let mut mid = vec![NONE; nh / 2];
+    // --- counts and the numbering of midpoints (non-loop edges in order);
+    // large buffers below are written by polled loops or `cancel::par_*`,
+    // never by `vec![x; n]`'s unpolled fill of fresh memory (Ctrl-C latency)
+    let mut mid = Vec::with_capacity(nh / 2);
+    let mut mid_edge = Vec::new();
     let mut n_mid = 0usize;
-    for (e, slot) in mid.iter_mut().enumerate() {
+    for e in 0..nh / 2 {
         crate::cancel::poll(e)?;
         if w.is_nonloop(2 * e) {
-            *slot = (nv + n_mid) as u32;
+            mid.push((nv + n_mid) as u32);
+            mid_edge.push(e as u32);
             n_mid += 1;
+        } else {
+            mid.push(NONE);
         }
     }
     let n_out_vertices = nv + n_mid;
@@ -265,19 +270,19 @@ fn build(m: &Mesh, want_origins: bool) -> Result<(Mesh, Vec<(u8, u32)>)> {
     }
 
     // --- positions: old vertices, then midpoints
-    let mut pos = Vec::with_capacity(n_out_vertices);
-    pos.extend_from_slice(m.positions());
     let old = m.positions();
-    let mids: Vec<DVec3> = (0..nh / 2)
-        .into_par_iter()
-        .with_min_len(4096)
-        .filter(|&e| w.is_nonloop(2 * e))
-        .map(|e| 0.5 * (old[vert[2 * e] as usize] + old[vert[2 * e + 1] as usize]))
-        .collect();
-    pos.extend(mids);
+    let pos: Vec<DVec3> = crate::cancel::par_collect(n_out_vertices, |i| {
+        if i < nv {
+            old[i]
+        } else {
+            let e = mid_edge[i - nv] as usize;
+            0.5 * (old[vert[2 * e] as usize] + old[vert[2 * e + 1] as usize])
+        }
+    })?;
+    drop(mid_edge);
 
     // --- layout: piece of h at base[h], back-face slots, kept faces last
-    let mut base = vec![NONE; nh];
+    let mut base = crate::cancel::par_filled(nh, NONE)?;
     let mut sizes: Vec<u32> = Vec::with_capacity(2 * n_mid + 2 * n_mid / 3 + 16);
     let mut n_corners = 0u32;
     for h in 0..nh {
@@ -291,7 +296,7 @@ fn build(m: &Mesh, want_origins: bool) -> Result<(Mesh, Vec<(u8, u32)>)> {
     }
     // cones: position of each non-loop half-edge in its back face
     let back0 = n_corners;
-    let mut cone_pos = vec![NONE; nh];
+    let mut cone_pos = crate::cancel::par_filled(nh, NONE)?;
     let mut next_pos = 0u32;
     for h in 0..nh {
         crate::cancel::poll(h)?;
@@ -329,7 +334,7 @@ fn build(m: &Mesh, want_origins: bool) -> Result<(Mesh, Vec<(u8, u32)>)> {
     let nc = n_corners as usize;
 
     // --- output slot of every input self-loop half-edge
-    let mut loop_slot = vec![NONE; nh];
+    let mut loop_slot = crate::cancel::par_filled(nh, NONE)?;
     for h in 0..nh {
         crate::cancel::poll(h)?;
         if w.is_nonloop(h) {
@@ -355,11 +360,11 @@ fn build(m: &Mesh, want_origins: bool) -> Result<(Mesh, Vec<(u8, u32)>)> {
 
     // --- corners and twins
     let mut cv = vec![0u32; nc];
-    let mut tw = vec![NONE; nc];
-    let mut co = if want_origins { vec![(EDGE, 0u32); nc] } else { Vec::new() };
+    let mut tw = crate::cancel::par_filled(nc, NONE)?;
+    let mut co = if want_origins { crate::cancel::par_filled(nc, (EDGE, 0u32))? } else { Vec::new() };
     // π(h), the inverse of ν: h's first half is corner k + 1 of the
     // triangle of π(h), the non-loop half-edge before h in its face
-    let mut pi = vec![NONE; nh];
+    let mut pi = crate::cancel::par_filled(nh, NONE)?;
     for h in 0..nh {
         crate::cancel::poll(h)?;
         if w.is_nonloop(h) {
@@ -467,7 +472,7 @@ pub fn sierpinski_iterated(m: &Mesh, iterations: usize) -> Result<Mesh> {
 /// as the readable statement of [`sierpinski`], which gives the same mesh up
 /// to the numbering of edges and faces (vertices are numbered alike).
 pub fn sierpinski_by_operators(m: &Mesh) -> Result<Mesh> {
-    let w = Walk::of(m);
+    let w = Walk::of(m)?;
     let nh = m.n_halfedges();
     let mut out = m.clone();
 
@@ -537,9 +542,9 @@ pub struct SierpinskiCounts {
 }
 
 impl SierpinskiCounts {
-    /// Measures `m`.
-    pub fn of(m: &Mesh) -> Self {
-        let w = Walk::of(m);
+    /// Measures `m` (cancellable, [`crate::cancel`]).
+    pub fn of(m: &Mesh) -> Result<Self> {
+        let w = Walk::of(m)?;
         let nh = m.n_halfedges();
         let mut seen = vec![false; nh];
         let (mut cones, mut lone) = (0u64, 0u64);
@@ -566,7 +571,7 @@ impl SierpinskiCounts {
             .faces()
             .filter(|&f| m.face_halfedges(f).all(|h| !w.is_nonloop(h.idx())))
             .count() as u64;
-        SierpinskiCounts {
+        Ok(SierpinskiCounts {
             vertices: m.n_vertices() as u64,
             edges: m.n_edges() as u64,
             faces: m.n_faces() as u64,
@@ -575,7 +580,7 @@ impl SierpinskiCounts {
             lone_cones: lone,
             loop_faces,
             components: m.n_components() as u64,
-        }
+        })
     }
 
     /// The counts after one more iteration (the recurrence of the module docs).

@@ -180,8 +180,7 @@ fn finish(
     // by first corner, a parallel scan), then the columns straight from them:
     // the twins are this module's own, so the general builder's pairing
     // checks and umbrella walk are skipped (the tests validate every output)
-    let (ids, _) = crate::mesh::build::number_halfedges(&tw);
-    crate::cancel::check()?; // a cancelled numbering is garbage
+    let (ids, _) = crate::mesh::build::number_halfedges(&tw)?;
     let mesh = Mesh::from_corner_ids(pos, &sizes, &cv, &ids, holes)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
