@@ -54,18 +54,7 @@ pub fn crossings_of_new_faces(before: &Mesh, after: &Mesh) -> usize {
         after.triangulate()
     } else {
         let meets: Vec<FaceId> = after.faces().filter(|f| near[f.idx()]).collect();
-        for f in meets {
-            for h in after.face_halfedges(f) {
-                let mut g = h;
-                loop {
-                    near[after.face(g).idx()] = true;
-                    g = after.rotate(g);
-                    if g == h {
-                        break;
-                    }
-                }
-            }
-        }
+        crate::geometry::triangulate::mark_faces_around(after, meets, &mut near);
         let listed: Vec<u32> = (0..after.n_faces() as u32).filter(|&f| near[f as usize] && !after.is_hole(FaceId(f))).collect();
         crate::geometry::triangulate::triangulate_faces(after, &listed)
     };

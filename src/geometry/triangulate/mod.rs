@@ -492,6 +492,24 @@ pub fn triangulate_faces(m: &Mesh, faces: &[u32]) -> Triangulation {
     triangulate_with(m, true, Some(faces))
 }
 
+/// Marks in `near` every face around a vertex of `faces`: what
+/// [`triangulate_faces`] is given besides a patch of faces so that it
+/// triangulates them as [`triangulate`] does.
+pub fn mark_faces_around(m: &Mesh, faces: impl IntoIterator<Item = FaceId>, near: &mut [bool]) {
+    for f in faces {
+        for h in m.face_halfedges(f) {
+            let mut g = h;
+            loop {
+                near[m.face(g).idx()] = true;
+                g = m.rotate(g);
+                if g == h {
+                    break;
+                }
+            }
+        }
+    }
+}
+
 /// [`triangulate`] (of the listed faces only, with `faces`), with the retry
 /// pass grouped (parallel) or sequential.
 fn triangulate_with(m: &Mesh, grouped: bool, faces: Option<&[u32]>) -> Triangulation {

@@ -380,19 +380,7 @@ mod tests {
     }
 
     fn spiral(n: usize, turns: f64) -> Vec<DVec2> {
-        let h = n / 2;
-        let arm = |r0: f64| -> Vec<DVec2> {
-            (0..h)
-                .map(|i| {
-                    let t = i as f64 / (h - 1) as f64;
-                    let a = t * turns * std::f64::consts::TAU;
-                    DVec2::new(a.cos(), a.sin()) * (r0 + t * turns)
-                })
-                .collect()
-        };
-        let mut p = arm(1.0);
-        p.extend(arm(0.5).into_iter().rev());
-        p
+        super::super::tests::spiral(n, turns).iter().map(|p| p.truncate()).collect()
     }
 
     #[test]

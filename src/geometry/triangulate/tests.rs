@@ -140,7 +140,7 @@ fn non_convex_stars() {
 }
 
 /// A spiral strip's outline (turns of width 0.5), `n` corners in the plane z = 0.
-fn spiral(n: usize, turns: f64) -> Vec<DVec3> {
+pub(super) fn spiral(n: usize, turns: f64) -> Vec<DVec3> {
     let h = n / 2;
     let arm = |r0: f64| -> Vec<DVec3> {
         (0..h)
@@ -394,18 +394,7 @@ fn listed_faces_triangulate_as_the_whole_mesh() {
         // the patch: every third face; listed: it and every face around its vertices
         let patch: Vec<u32> = all.iter().copied().filter(|f| f % 3 == 0).collect();
         let mut near = vec![false; m.n_faces()];
-        for &f in &patch {
-            for h in m.face_halfedges(FaceId(f)) {
-                let mut g = h;
-                loop {
-                    near[m.face(g).idx()] = true;
-                    g = m.rotate(g);
-                    if g == h {
-                        break;
-                    }
-                }
-            }
-        }
+        mark_faces_around(m, patch.iter().map(|&f| FaceId(f)), &mut near);
         let listed: Vec<u32> = all.iter().copied().filter(|&f| near[f as usize]).collect();
         let part = triangulate_faces(m, &listed);
         let as_points = |t: &Triangulation, f: u32| -> Vec<[[u64; 3]; 3]> {
