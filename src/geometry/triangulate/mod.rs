@@ -334,6 +334,12 @@ fn first_choice(s: &mut Scratch, shape: Shape) {
     if n > MONOTONE_MIN && monotone::triangulate(&s.p, &mut s.local) && is_disk_triangulation(n, &s.local) && monotone::covers(&s.p, &s.local) {
         return;
     }
+    // cancelled (the monotone sweep polls and gives up): not earcut, which
+    // can be quadratic here; the caller checks before using the result
+    if n > MONOTONE_MIN && crate::cancel::requested() {
+        fan(n, 0, &mut s.local);
+        return;
+    }
     earcut_into(&mut s.ear, &mut s.ear_out, &s.p, &mut s.local);
     // earcut drops collinear and coincident corners: such output is no disk
     if !is_disk_triangulation(n, &s.local) {

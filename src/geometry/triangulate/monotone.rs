@@ -106,7 +106,10 @@ pub(super) fn triangulate(p: &[DVec2], out: &mut Vec<[u32; 3]>) -> bool {
     }
     let Some(diagonals) = monotone_diagonals(p) else { return false };
     let Some(pieces) = pieces(p, &diagonals) else { return false };
-    for piece in &pieces {
+    for (k, piece) in pieces.iter().enumerate() {
+        if crate::cancel::poll(k).is_err() {
+            return false;
+        }
         triangulate_monotone(p, piece, out);
     }
     out.len() == n - 2
@@ -236,6 +239,7 @@ fn pieces(p: &[DVec2], diagonals: &[(u32, u32)]) -> Option<Vec<Vec<u32>>> {
     let mut used = vec![false; acc as usize];
     let mut out = Vec::with_capacity(diagonals.len() + 1);
     for first in 0..acc as usize {
+        crate::cancel::poll(first).ok()?;
         if used[first] {
             continue;
         }
