@@ -453,3 +453,63 @@ def test_wrong_object_is_a_named_error(call, bad):
     fn = {"from_trimesh": topomesh.Mesh.from_trimesh, "printable": lambda m: topomesh.printable(m, 0.1)}[call]
     with pytest.raises(MeshError, match=rf"{call}: expected a .*, got {type(bad).__name__}"):
         fn(bad)
+
+
+def _odd_meshes():
+    """Meshes a demanding user hands over: every special structure the core
+    holds, and geometry that breaks naive code (zero, flat, huge, tiny)."""
+    c = topomesh.cube()
+    v = c.vertices
+    flat = v.copy()
+    flat[:, 2] = 0
+    ico = topomesh.icosahedron()
+    return {
+        "two_gon": c.insert_edge(0, 0, 0, 1)[0],
+        "self_loop": c.insert_edge(0, 0, 0, 0)[0],
+        "point_sphere": c.create_vertex([5.0, 5.0, 5.0])[0],
+        "open": Mesh.from_polygons(v, c.face_indices.reshape(-1, 4)[1:]),
+        "triangle": Mesh.from_polygons(np.eye(3), [[0, 1, 2]]),
+        "all_zero": c.with_vertices(np.zeros_like(v)),
+        "flat": c.with_vertices(flat),
+        "huge": c.with_vertices(v * 1e300),
+        "tiny": c.with_vertices(v * 1e-300),
+        "jittered": ico.with_vertices(ico.vertices + np.random.default_rng(0).normal(0, 0.3, (12, 3))),
+        "genus2": topomesh.genus_surface(2),
+    }
+
+
+# display, files and peers' objects: their own tests cover them
+_NOT_SWEPT = {"save", "show", "plot", "to_pyvista", "to_manifold", "to_trimesh", "explore", "widget"}
+
+
+def test_every_method_with_its_defaults_on_odd_meshes():
+    # every public attribute of Mesh that runs without arguments, on each odd
+    # mesh: a valid result (meshes validate) or a MeshError, never another
+    # exception, a panic (pyo3's PanicException) or an invalid mesh
+    import warnings
+
+    calls, problems = 0, []
+    for mname, m in _odd_meshes().items():
+        for name in dir(Mesh):
+            if name.startswith("_") or name in _NOT_SWEPT:
+                continue
+            try:
+                attr = getattr(m, name)
+                if callable(attr):
+                    sig = inspect.signature(attr)
+                    if any(p.default is inspect.Parameter.empty and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)
+                           for p in sig.parameters.values()):
+                        continue
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore")  # warnings are answers too (crossings, dropped data)
+                        r = attr()
+                    calls += 1
+                    r = r[0] if isinstance(r, tuple) and r and isinstance(r[0], Mesh) else r
+                    if isinstance(r, Mesh):
+                        r.validate()
+            except MeshError:
+                pass
+            except BaseException as e:  # noqa: BLE001 (panics derive from BaseException)
+                problems.append(f"{mname}.{name}: {type(e).__name__}: {e}")
+    assert not problems, "\n".join(problems)
+    assert calls > 500, calls  # the sweep does call the methods
