@@ -111,21 +111,9 @@ pub(crate) fn bevel(m: &Mesh) -> Result<Mesh> {
     let mut walk = DualWalk::new(pos, 2 * (nej + nhj), nvj + nfj, 2 * nhj);
     for v in 0..nvj {
         crate::cancel::poll(v)?;
-        let s = first[v];
-        let (mut x, mut last) = (s, NONE);
-        loop {
-            let h = x >> 1;
-            if x & 1 == 0 {
-                walk.put(v, h, spoke(h), &mut last);
-                x = 2 * prv(h) + 1;
-            } else {
-                walk.put(v, h, edge(h), &mut last);
-                x = 2 * jt[h as usize];
-            }
-            if x == s {
-                break;
-            }
-        }
+        let last = super::dual_kis::vertex_ring(&mut walk, v, first[v], |h, head| {
+            if head { (h, edge(h), 2 * jt[h as usize]) } else { (h, spoke(h), 2 * prv(h) + 1) }
+        });
         walk.close(v, last);
     }
     for e in 0..nfj {

@@ -70,29 +70,20 @@ pub(crate) fn dual_kis(m: &Mesh) -> Result<Mesh> {
     // slot[key] (kis's keys: edge e, spoke ne + h): 0 before its first
     // crossing, else its output edge + 1
     let mut walk = DualWalk::new(pos, nho, nv + nf, ne + nh);
-    let mut put = |w: usize, g: u32, key: usize, last: &mut u32| walk.put(w, g, key, last);
     let mut lasts = vec![NONE; nv + nf];
     for v in 0..nv {
         crate::cancel::poll(v)?;
-        let s = first[v];
-        let (mut x, mut last) = (s, NONE);
-        loop {
-            let h = x >> 1;
-            if x & 1 == 0 {
-                // tail corner of T(h): crosses spoke h, then the head corner of T(prev h)
-                put(v, cidx[h as usize], ne + h as usize, &mut last);
-                x = 2 * prev[h as usize] + 1;
-            } else {
+        lasts[v] = vertex_ring(&mut walk, v, first[v], |h, head| {
+            if head {
                 // head corner of T(h): crosses edge(h), then the tail corner of T(twin h)
-                put(v, cidx[h as usize], (h >> 1) as usize, &mut last);
-                x = 2 * (h ^ 1);
+                (cidx[h as usize], (h >> 1) as usize, 2 * (h ^ 1))
+            } else {
+                // tail corner of T(h): crosses spoke h, then the head corner of T(prev h)
+                (cidx[h as usize], ne + h as usize, 2 * prev[h as usize] + 1)
             }
-            if x == s {
-                break;
-            }
-        }
-        lasts[v] = last;
+        });
     }
+    let mut put = |w: usize, g: u32, key: usize, last: &mut u32| walk.put(w, g, key, last);
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let s = fh[c.fl.off[f] as usize];
@@ -117,4 +108,22 @@ pub(crate) fn dual_kis(m: &Mesh) -> Result<Mesh> {
         fp::record(Some(Step { in_v: nv, in_f: nf, face, vertex }));
     }
     Mesh::from_columns(cols)
+}
+
+/// The dual face `w` of a kis vertex, walked from `s` over the corners of
+/// the kis triangles around it (`2h`: the tail corner of triangle `h`,
+/// `2h + 1`: its head corner): `cross(h, head)` gives that triangle's
+/// output vertex, the key of the side crossed and the next corner. Returns
+/// the last half-edge put, for [`DualWalk::close`]. Shared by kis's dual
+/// and bevel's (`bevel.rs`, over join's corners).
+pub(super) fn vertex_ring(walk: &mut DualWalk, w: usize, s: u32, cross: impl Fn(u32, bool) -> (u32, usize, u32)) -> u32 {
+    let (mut x, mut last) = (s, NONE);
+    loop {
+        let (g, key, next) = cross(x >> 1, x & 1 == 1);
+        walk.put(w, g, key, &mut last);
+        x = next;
+        if x == s {
+            return last;
+        }
+    }
 }
