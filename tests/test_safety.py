@@ -482,6 +482,17 @@ def _odd_meshes():
 _NOT_SWEPT = {"save", "show", "plot", "to_pyvista", "to_manifold", "to_trimesh", "explore", "widget"}
 
 
+def _invalid(m: Mesh) -> str | None:
+    """Why ``m`` is not a valid mesh with finite positions, or None."""
+    try:
+        m.validate()
+    except MeshError as e:
+        return str(e)
+    if not np.isfinite(m.vertices).all():
+        return "non-finite positions"
+    return None
+
+
 def test_every_method_with_its_defaults_on_odd_meshes():
     # every public attribute of Mesh that runs without arguments, on each odd
     # mesh: a valid result (meshes validate) or a MeshError, never another
@@ -506,10 +517,139 @@ def test_every_method_with_its_defaults_on_odd_meshes():
                     calls += 1
                     r = r[0] if isinstance(r, tuple) and r and isinstance(r[0], Mesh) else r
                     if isinstance(r, Mesh):
-                        r.validate()
+                        # outside the MeshError below: an answer that fails validation is a problem
+                        bad = _invalid(r)
+                        if bad:
+                            problems.append(f"{mname}.{name}: returned an invalid mesh: {bad}")
             except MeshError:
                 pass
             except BaseException as e:  # noqa: BLE001 (panics derive from BaseException)
                 problems.append(f"{mname}.{name}: {type(e).__name__}: {e}")
     assert not problems, "\n".join(problems)
     assert calls > 500, calls  # the sweep does call the methods
+
+
+# default parameters in absolute units (TopMod's), so not scale-free by design
+_ABSOLUTE_DEFAULTS = {"dome", "fractal", "modified_corner_cutting", "wireframe_columns"}
+
+
+@pytest.mark.parametrize("k", [2.0**600, 2.0**-600, 1e300, 1e-300])
+def test_every_method_is_scale_free_at_extreme_coordinates(k):
+    # coordinates near float64's ends are valid input: squared lengths and
+    # cross products overflow past ~1e154 and underflow below ~1e-154, which
+    # once gave NaN apices (kis and the seven operators built on it), lost
+    # normals and misleading errors. Every method with its defaults gives the
+    # scaled answer (canonicalize the same answer: it normalizes the size),
+    # or a MeshError that names the coordinates (menger), never NaN or a
+    # silently different shape.
+    import warnings
+
+    ico = topomesh.icosahedron()
+    meshes = {"cube": topomesh.cube(), "genus2": topomesh.genus_surface(2),
+              "jittered": ico.with_vertices(ico.vertices + np.random.default_rng(0).normal(0, 0.3, (12, 3)))}
+    problems, compared = [], 0
+    for mname, m in meshes.items():
+        big = m.with_vertices(m.vertices * k)
+        for name in dir(Mesh):
+            if name.startswith("_") or name in _NOT_SWEPT or name in _ABSOLUTE_DEFAULTS:
+                continue
+            attr = getattr(m, name)
+            if not callable(attr) or any(p.default is inspect.Parameter.empty and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)
+                                         for p in inspect.signature(attr).parameters.values()):
+                continue
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                try:
+                    want = attr()
+                except MeshError:
+                    continue
+                want = want[0] if isinstance(want, tuple) and want and isinstance(want[0], Mesh) else want
+                if not isinstance(want, Mesh):
+                    continue
+                try:
+                    got = getattr(big, name)()
+                except MeshError as e:
+                    if not (name == "menger" and "coordinates reach" in str(e)):
+                        problems.append(f"{mname}.{name} ×{k:g}: MeshError {e}")
+                    continue
+            got = got[0] if isinstance(got, tuple) else got
+            if got.n_vertices != want.n_vertices or not np.array_equal(got.face_indices, want.face_indices):
+                problems.append(f"{mname}.{name} ×{k:g}: different connectivity")
+                continue
+            g = got.vertices if name == "canonicalize" else got.vertices / k
+            err = np.abs(g - want.vertices).max() / max(np.abs(want.vertices).max(), 1e-300)
+            compared += 1
+            if not err < 1e-9:
+                problems.append(f"{mname}.{name} ×{k:g}: relative error {err:.3g}")
+    assert not problems, "\n".join(problems)
+    assert compared > 150, compared
+
+
+def _typical_arguments(m: Mesh) -> dict:
+    """Plausible arguments for the methods that need some, on ``m``."""
+    nf, ne = m.n_faces, m.n_edges
+    conway = "d a t k j e o g s b m n z c u w v p q l r dtk t5 k3".split()
+    return {
+        "add_handle": [dict(face_a=0, face_b=min(2, nf - 1))],
+        "collapse_edge": [dict(edge=0), dict(edge=ne - 1)],
+        "conway": [dict(notation=s) for s in conway],
+        "create_face_manifold": [dict(points=[[0, 0, 0], [1, 0, 0], [0, 1, 0]])],
+        "create_vertex": [dict(point=[1, 2, 3])],
+        "cut_edges": [dict(edges=[0])], "cut_faces": [dict(faces=[0])], "cut_vertices": [dict(vertices=[0])],
+        "delete_edge": [dict(edge=0)], "delete_edge_with_cleanup": [dict(edge=0)], "delete_vertex": [dict(vertex=0)],
+        "extrude": [dict(faces=[0]), dict(faces=list(range(nf)))],
+        "multi_face_handle": [dict(faces=list(range(min(3, nf))))],
+        "printable": [dict(min_thickness=0.1)],
+        "rind": [dict(thickness=0.1)], "rind_by_scaling": [dict(scale=0.5)],
+        "subdivide_edge": [dict(edge=0)], "subdivide_faces": [dict(faces=[0])],
+        "wireframe": [dict(thickness=0.1), dict(thickness=0.05, width=0.2)],
+    }
+
+
+def test_methods_with_required_arguments_on_odd_meshes():
+    # the methods the defaults sweep skips, with typical arguments: a valid
+    # mesh with finite positions or a MeshError, nothing else
+    import warnings
+
+    calls, problems = 0, []
+    for mname, m in _odd_meshes().items():
+        for name, kws in _typical_arguments(m).items():
+            for kw in kws:
+                try:
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore")
+                        r = getattr(m, name)(**kw)
+                except MeshError:
+                    continue
+                except BaseException as e:  # noqa: BLE001
+                    problems.append(f"{mname}.{name}({kw}): {type(e).__name__}: {e}")
+                    continue
+                calls += 1
+                for x in r if isinstance(r, tuple) else (r,):
+                    bad = _invalid(x) if isinstance(x, Mesh) else None
+                    if bad:
+                        problems.append(f"{mname}.{name}({kw}): returned an invalid mesh: {bad}")
+    assert not problems, "\n".join(problems)
+    assert calls > 150, calls
+
+
+@pytest.mark.parametrize("k", [1e300, 1e100, 1e-100, 1e-300])
+def test_convex_hull_at_extreme_coordinates(k):
+    # 50 random points times 1e100 used to panic (the predicates' products
+    # overflowed), times 1e-300 to be called collinear (they underflowed)
+    p = np.random.default_rng(1).normal(size=(50, 3))
+    want, got = topomesh.convex_hull(p), topomesh.convex_hull(p * k)
+    assert np.array_equal(got.face_indices, want.face_indices)
+    assert np.array_equal(got.vertices, want.vertices * k)  # the given points, exactly
+
+
+def test_convex_hull_of_far_clusters_is_an_error_not_a_panic():
+    # three clusters of unit size 1e17 apart: the coplanar merging folded the
+    # hull into too few polygons and an unwrap panicked; a handle extruded
+    # 1e10 from a unit cube's faces reached the same hull
+    p = np.array([[0, 0, 1e17], [1, 0, 1e17], [0, 1, 1e17], [1, 1, 1e17], [0, 0, -1e17], [1, 0, -1e17],
+                  [1e17, 0, 0], [1e17, 1, 0], [1e17, 1, 1]], float)
+    with pytest.raises(MeshError, match="too few to bound a volume"):
+        topomesh.convex_hull(p)
+    with pytest.raises(MeshError, match="multi_face_handle"):
+        topomesh.cube().multi_face_handle([0, 1, 2], extrude=1e10)

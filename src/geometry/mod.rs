@@ -12,6 +12,83 @@ pub use triangulate::Triangulation;
 use crate::mesh::Mesh;
 use glam::DVec3;
 
+/// The unit Newell normal of the polygon whose corners `corners()` gives
+/// (in cycle order),
+/// computed where the plain formula fails: coordinates past ~1e154 (the
+/// cross products or the squared length leave f64) or below ~1e-154 (they
+/// underflow to zero). The corners are taken relative to the first and
+/// divided by their largest coordinate, which leaves the direction
+/// unchanged. Zero for a degenerate polygon. Callers use it only when the
+/// plain normal came out zero or non-finite, so the bits of ordinary
+/// inputs do not change.
+#[cold]
+pub fn scaled_unit_normal<I: Iterator<Item = DVec3>>(corners: impl Fn() -> I) -> DVec3 {
+    let Some(o) = corners().next() else { return DVec3::ZERO };
+    let s = corners().map(|p| (p - o).abs().max_element()).fold(0.0, f64::max);
+    if !(s > 0.0 && s.is_finite()) {
+        return DVec3::ZERO;
+    }
+    let q: Vec<DVec3> = corners().map(|p| (p - o) / s).collect();
+    let n: DVec3 = (0..q.len()).map(|i| q[i].cross(q[(i + 1) % q.len()])).sum();
+    n.normalize_or_zero()
+}
+
+/// `n.normalize_or_zero()` for a Newell vector `n` of the polygon
+/// `corners`, falling back to [`scaled_unit_normal`] when that is zero or
+/// `n` is not finite while the polygon may still have an area.
+#[inline]
+pub fn unit_newell<I: Iterator<Item = DVec3>>(n: DVec3, corners: impl Fn() -> I) -> DVec3 {
+    let u = n.normalize_or_zero();
+    if u != DVec3::ZERO || (n == DVec3::ZERO && !tiny_or_huge(corners())) {
+        return u;
+    }
+    scaled_unit_normal(corners)
+}
+
+/// Whether some coordinate of `corners` is past the range where Newell's
+/// products stay normal f64 (their magnitudes square).
+#[inline]
+fn tiny_or_huge(corners: impl Iterator<Item = DVec3>) -> bool {
+    corners.into_iter().any(|p| {
+        let m = p.abs().max_element();
+        m > 1e150 || (m != 0.0 && m < 1e-150)
+    })
+}
+
+/// Coordinates whose largest magnitude lies outside `[2^-200, 2^200]`:
+/// there squared lengths and cross products leave f64 (overflow to
+/// infinity or underflow to zero). Returns the power of two `s` that
+/// brings the largest magnitude into `[1, 2)`, `None` for ordinary
+/// coordinates (and for all-zero or non-finite ones).
+pub fn extreme_scale(pos: &[DVec3]) -> Option<f64> {
+    use rayon::prelude::*;
+    let top = pos.par_iter().map(|p| p.abs().max_element()).reduce(|| 0.0, f64::max);
+    if top == 0.0 || !top.is_finite() || (2f64.powi(-200)..=2f64.powi(200)).contains(&top) {
+        return None;
+    }
+    // 2^k is exact for |k| <= 1000; a subnormal top stays far above underflow
+    Some(2f64.powi((top.log2().floor() as i32).clamp(-1000, 1000)))
+}
+
+/// Runs a similarity-equivariant `op` on `m` divided by [`extreme_scale`]'s
+/// power of two (exact: only exponents change) and multiplies its output
+/// back, so meshes at 1e±300 get the same answer as at unit size. `op`
+/// receives the factor the mesh was divided by (1 for ordinary meshes,
+/// which are passed through untouched), to divide its absolute lengths by.
+pub fn scale_free(m: &Mesh, op: impl FnOnce(&Mesh, f64) -> crate::Result<Mesh>) -> crate::Result<Mesh> {
+    let Some(s) = extreme_scale(m.positions()) else { return op(m, 1.0) };
+    let mut scaled = m.clone();
+    scaled.positions_mut().iter_mut().for_each(|p| *p /= s);
+    let mut out = op(&scaled, s)?;
+    out.positions_mut().iter_mut().for_each(|p| *p *= s);
+    if let Some(v) = out.positions().iter().position(|p| !p.is_finite()) {
+        return Err(crate::MeshError::Precondition(format!(
+            "output vertex {v} lies beyond float64's range at this mesh's scale; scale the mesh down first"
+        )));
+    }
+    Ok(out)
+}
+
 /// The mesh's triangulation and the positions its triangles index: the
 /// vertices, then the points the triangulation adds (owned by no vertex).
 pub fn triangles_with_points(m: &Mesh) -> (Vec<[u32; 3]>, Vec<DVec3>) {

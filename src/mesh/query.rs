@@ -111,8 +111,16 @@ impl Mesh {
     pub fn face_normals(&self) -> Vec<DVec3> {
         (0..self.n_faces() as u32)
             .into_par_iter()
-            .map(|f| self.face_newell(super::FaceId(f)).normalize_or_zero())
+            .map(|f| self.face_unit_normal(super::FaceId(f)))
             .collect()
+    }
+
+    /// Unit Newell normal of face `f` (zero for a degenerate face), also
+    /// for coordinates whose products overflow or underflow f64
+    /// ([`crate::geometry::unit_newell`]).
+    pub fn face_unit_normal(&self, f: super::FaceId) -> DVec3 {
+        let n = self.face_newell(f);
+        crate::geometry::unit_newell(n, || self.face_halfedges(f).map(|h| self.pos[self.vertex(h).idx()]))
     }
 
     /// Area-weighted vertex normals: the sum of the Newell vectors of the

@@ -227,7 +227,7 @@ impl Mesh {
             )));
         }
         let (p1, p2) = (self.face_centroids_of(f1), self.face_centroids_of(f2));
-        let (n1, n2) = (self.face_newell(f1).normalize_or_zero(), self.face_newell(f2).normalize_or_zero());
+        let (n1, n2) = (self.face_unit_normal(f1), self.face_unit_normal(f2));
         for (f, n) in [(f1, n1), (f2, n2)] {
             if n == DVec3::ZERO {
                 return Err(MeshError::Precondition(format!("add_handle: face {} has no normal (zero area)", f.0)));
@@ -301,7 +301,7 @@ impl Mesh {
         super::check_halfedge(self, c2)?;
         let (f1, f2) = (self.face(c1), self.face(c2));
         let (p1, p2) = (self.face_centroids_of(f1), self.face_centroids_of(f2));
-        let (n1, n2) = (self.face_newell(f1).normalize_or_zero(), self.face_newell(f2).normalize_or_zero());
+        let (n1, n2) = (self.face_unit_normal(f1), self.face_unit_normal(f2));
         if n1 == DVec3::ZERO || n2 == DVec3::ZERO || (p2 - p1).length() <= 1e-12 * (1.0 + p1.length()) {
             return Ok(c2);
         }

@@ -41,6 +41,7 @@ pub(crate) fn warn_dropped(data: &MeshData, op: &str) -> PyResult<()> {
 /// parents (a step of the chain does not record them) everything is
 /// dropped with the warning, as before issue 15.
 pub(crate) fn inherited(py: Python<'_>, data: &MeshData, op: &str, input: &crate::Mesh, out: crate::Mesh, parents: Option<Vec<u32>>) -> PyResult<PyMesh> {
+    finite_output(op, input, &out)?;
     if data.is_empty() {
         return Ok(PyMesh::wrap(out));
     }
@@ -59,6 +60,19 @@ pub(crate) fn inherited(py: Python<'_>, data: &MeshData, op: &str, input: &crate
         d.face.push((name.clone(), arr.unbind()));
     }
     Ok(PyMesh::with_data(out, d))
+}
+
+/// A `MeshError` naming `op` when its output has a non-finite position
+/// (an operator's arithmetic overflowing f64 on coordinates near its
+/// limit), instead of handing over a mesh that fails validation.
+pub(crate) fn finite_output(op: &str, input: &crate::Mesh, out: &crate::Mesh) -> PyResult<()> {
+    use rayon::prelude::*;
+    let Some(v) = out.positions().par_iter().position_first(|p| !p.is_finite()) else { return Ok(()) };
+    let top = input.positions().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
+    Err(super::err(crate::MeshError::Precondition(format!(
+        "{op}: output vertex {v} has a non-finite position: the arithmetic overflows float64 on this mesh's coordinates \
+         (largest magnitude {top:e}); scale the mesh down first"
+    ))))
 }
 
 /// Runs `build` from `input`, recording face parents when `want` (the

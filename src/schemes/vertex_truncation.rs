@@ -220,7 +220,7 @@ mod tests {
             if ps.len() < 4 {
                 continue;
             }
-            let n = m.face_newell(f).normalize_or_zero();
+            let n = m.face_unit_normal(f);
             let c = ps.iter().sum::<DVec3>() / ps.len() as f64;
             let (lo, hi) = ps.iter().fold((ps[0], ps[0]), |(a, b), &p| (a.min(p), b.max(p)));
             let size = (hi - lo).length();

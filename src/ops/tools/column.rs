@@ -71,6 +71,12 @@ impl Mesh {
         if !(3..=100).contains(&segments) {
             return Err(MeshError::InvalidArgument(format!("wireframe_columns: segments = {segments} must be in [3, 100]")));
         }
+        // meshes at 1e±300 are modelled at unit size, the radius with them
+        crate::geometry::scale_free(self, |m, s| m.columns_unscaled(thickness / s, segments))
+    }
+
+    fn columns_unscaled(&self, thickness: f64, segments: usize) -> Result<Mesh> {
+        let t = thickness;
         if let Some(f) = self.faces().find(|&f| self.face_halfedge(f).is_none()) {
             return Err(MeshError::Precondition(format!("wireframe_columns: face {} is a point-sphere (a vertex without edges has no column)", f.0)));
         }
@@ -94,7 +100,7 @@ impl Mesh {
             let mut nrm = DVec3::ZERO;
             for s in [h, h.twin()] {
                 if !self.is_hole(self.face(s)) {
-                    nrm += self.face_newell(self.face(s)).normalize_or_zero();
+                    nrm += self.face_unit_normal(self.face(s));
                 }
             }
             let u = (nrm - nrm.dot(a) * a).normalize_or_zero();

@@ -88,6 +88,20 @@ pub fn convex_hull(points: &[DVec3]) -> Result<(Mesh, Vec<usize>)> {
     if let Some(i) = points.iter().position(|p| !p.is_finite()) {
         return Err(MeshError::NonFinite { vertex: i });
     }
+    // coordinates past 2^±200: the predicates' products overflow or
+    // underflow, so the hull is found on the points divided by a power of
+    // two (exact: the same decisions as at unit size) and the output takes
+    // the given points back
+    let Some(s) = crate::geometry::extreme_scale(points) else { return hull_of(points) };
+    let q: Vec<DVec3> = points.iter().map(|p| *p / s).collect();
+    let (mut m, source) = hull_of(&q)?;
+    for (p, &i) in m.positions_mut().iter_mut().zip(&source) {
+        *p = points[i];
+    }
+    Ok((m, source))
+}
+
+fn hull_of(points: &[DVec3]) -> Result<(Mesh, Vec<usize>)> {
     // exact duplicates out
     let mut order: Vec<u32> = (0..points.len() as u32).collect();
     let key = |i: u32| points[i as usize].to_array().map(f64::to_bits);
@@ -259,6 +273,17 @@ pub fn convex_hull(points: &[DVec3]) -> Result<(Mesh, Vec<usize>)> {
     }
     groups.sort_unstable();
     groups.dedup();
+    // near-degenerate points (clusters far apart, a sliver): the merging
+    // tolerance can fold the whole hull into two or three polygons, which
+    // bound no volume
+    if groups.len() < 4 {
+        return Err(MeshError::Precondition(format!(
+            "convex_hull: merging coplanar triangles (within {tol:e}, 1e-9 of the points' extent) leaves {} polygons, \
+             too few to bound a volume: the points are nearly coplanar, or form clusters far smaller than their spread, \
+             beyond the hull's precision",
+            groups.len()
+        )));
+    }
     let mut first_side: rustc_hash::FxHashMap<usize, u32> = Default::default();
     for (&(r, u), _) in &group_sides {
         first_side.entry(r).and_modify(|x| *x = (*x).min(u)).or_insert(u);
@@ -269,7 +294,9 @@ pub fn convex_hull(points: &[DVec3]) -> Result<(Mesh, Vec<usize>)> {
     let mut sizes = Vec::new();
     let mut idx = Vec::new();
     for r in groups {
-        let s = first_side[&r];
+        let Some(&s) = first_side.get(&r) else {
+            return Err(MeshError::Precondition("convex_hull: a merged face has no sides (the points are too nearly coplanar for the hull's precision)".into()));
+        };
         let mut u = s;
         let mut size = 0i64;
         loop {

@@ -116,13 +116,18 @@ impl Mesh {
                 "multi_face_handle: scale = {scale} must be finite and positive, extrude = {extrude} finite"
             )));
         }
+        // meshes at 1e±300 are joined at unit size, the extrusion with them
+        crate::geometry::scale_free(self, |m, s| m.multi_face_handle_unscaled(faces, scale, extrude / s))
+    }
+
+    fn multi_face_handle_unscaled(&self, faces: &[usize], scale: f64, extrude: f64) -> Result<Mesh> {
         // moved copies: point k of face i is its k-th corner from the first
         let mut pts = Vec::new();
         let mut owner = Vec::new();
         let mut corners: Vec<Vec<HalfedgeId>> = Vec::new();
         for (i, &f) in faces.iter().enumerate() {
             let fid = FaceId::new(f);
-            let n = self.face_newell(fid).normalize_or_zero();
+            let n = self.face_unit_normal(fid);
             if n == DVec3::ZERO {
                 return Err(MeshError::Precondition(format!("multi_face_handle: face {f} has no normal (zero area)")));
             }
@@ -267,7 +272,7 @@ impl Mesh {
         }
         // TopMod's edgeCleanup of the new edges, highest id first (deletion
         // moves the last edge into the freed id)
-        let normal = |m: &Mesh, f: FaceId| m.face_newell(f).normalize_or_zero();
+        let normal = |m: &Mesh, f: FaceId| m.face_unit_normal(f);
         let doomed: Vec<usize> = (first_new..m.n_edges())
             .filter(|&e| {
                 let h = HalfedgeId::new(2 * e);

@@ -38,6 +38,11 @@ impl Mesh {
                 return Err(MeshError::InvalidArgument(format!("wireframe: {name} = {x} must be finite and positive")));
             }
         }
+        // meshes at 1e±300 are framed at unit size, their lengths with them
+        crate::geometry::scale_free(self, |m, s| m.wireframe_unscaled(thickness / s, width / s))
+    }
+
+    fn wireframe_unscaled(&self, thickness: f64, width: f64) -> Result<Mesh> {
         self.refuse_open("wireframe", "a wireframe needs every edge between two faces")?;
         if let Some(f) = self.faces().find(|&f| self.face_halfedge(f).is_none()) {
             return Err(MeshError::Precondition(format!("wireframe: face {} is a point-sphere (no edges to frame)", f.0)));

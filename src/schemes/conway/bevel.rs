@@ -79,12 +79,7 @@ pub(crate) fn bevel(m: &Mesh) -> Result<Mesh> {
         let cs = [4 * e as u32, 4 * e as u32 + 1, 4 * e as u32 + 2, 4 * e as u32 + 3];
         let s: DVec3 = cs.iter().map(|&x| p(x)).sum();
         let cen = s / cs.len() as f64;
-        let mut n = DVec3::ZERO;
-        for &x in &cs {
-            n += p(x).cross(p(nxt(x)));
-        }
-        let r = cs.iter().map(|&x| p(x).distance(cen)).sum::<f64>() / cs.len() as f64;
-        let a = cen + n.normalize_or_zero() * (0.1 * r);
+        let a = super::kis::apex_of(cen, || cs.iter().map(|&x| p(x)));
         for &x in &cs {
             let mut s = DVec3::ZERO;
             s += p(x);

@@ -73,16 +73,6 @@ impl<'a> Ctx<'a> {
     pub fn mid(&self, e: usize) -> DVec3 {
         (self.p(self.vert[2 * e]) + self.p(self.vert[2 * e + 1])) * 0.5
     }
-    /// Unit normal of face `f` by Newell's method; zero for a degenerate
-    /// face (two-gons, one-gons, zero area), so offsets along it vanish
-    /// instead of turning into NaN.
-    pub fn normal(&self, f: usize) -> DVec3 {
-        let mut n = DVec3::ZERO;
-        for h in self.corners(f) {
-            n += self.p(self.tail(h)).cross(self.p(self.head(h)));
-        }
-        n.normalize_or_zero()
-    }
 }
 
 /// Refuses an output of `v`, `e`, `f` elements that would exceed the memory

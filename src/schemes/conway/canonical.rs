@@ -147,6 +147,11 @@ pub fn canonicalize(m: &Mesh, iterations: usize, tol: f64) -> Result<(Mesh, f64)
     let topo = Topology::of(m);
     let mut out = m.clone();
     let p = out.positions_mut();
+    if let Some(s) = crate::geometry::extreme_scale(p) {
+        // 1e±300: tangent points overflow or underflow; the scaling below
+        // makes the result size-free anyway (exact powers of two)
+        p.iter_mut().for_each(|q| *q /= s);
+    }
     topo.recenter(p);
     if !topo.edges.is_empty() {
         let mean = topo.edges.iter().map(|&(a, b)| tangent_point(p[a as usize], p[b as usize]).length()).sum::<f64>() / topo.edges.len() as f64;

@@ -47,8 +47,42 @@ fn step(m: &Mesh, n: Option<usize>) -> Result<Mesh> {
 /// [`super::dual_kis`], which must give the same bits.
 #[inline]
 pub(crate) fn apex(c: &Ctx<'_>, f: usize) -> DVec3 {
-    let r = c.corners(f).map(|h| c.p(c.tail(h)).distance(c.cen[f])).sum::<f64>() / c.fl.degree(f) as f64;
-    c.cen[f] + c.normal(f) * (0.1 * r)
+    apex_of(c.cen[f], || c.corners(f).map(|h| c.p(c.tail(h))))
+}
+
+/// Kis's apex over a polygon with centroid `cen` and the corners
+/// `corners()` gives in cycle order: along the unit Newell normal at 0.1 of
+/// the mean centroid–corner distance (also bevel's, over join's faces).
+pub(crate) fn apex_of<I: Iterator<Item = DVec3>>(cen: DVec3, corners: impl Fn() -> I) -> DVec3 {
+    let (mut n, mut first, mut last, mut k) = (DVec3::ZERO, None, DVec3::ZERO, 0usize);
+    for q in corners() {
+        if first.is_some() {
+            n += last.cross(q);
+        } else {
+            first = Some(q);
+        }
+        last = q;
+        k += 1;
+    }
+    if let Some(q) = first {
+        n += last.cross(q);
+    }
+    let r = corners().map(|q| q.distance(cen)).sum::<f64>() / k as f64;
+    let u = crate::geometry::unit_newell(n, &corners);
+    let a = cen + u * (0.1 * r);
+    if (a.is_finite() && (r > 0.0 || u == DVec3::ZERO)) || !cen.is_finite() {
+        return a;
+    }
+    // coordinates past ~1e154 (r overflows, the apex is NaN) or below
+    // ~1e-154 (r underflows to 0): the mean distance of the corners
+    // divided by their largest coordinate, times it; ordinary inputs never
+    // come here, so their bits are unchanged
+    let s = corners().map(|q| (q - cen).abs().max_element()).fold(0.0, f64::max);
+    if !(s > 0.0 && s.is_finite()) {
+        return cen;
+    }
+    let r = corners().map(|q| ((q - cen) / s).length()).sum::<f64>() / k as f64;
+    cen + u * (0.1 * r * s)
 }
 
 /// The centroid fan written once, for Conway's kis and TopMod's stellate:

@@ -420,7 +420,7 @@ impl<'a> In<'a> {
     }
     /// Unit normal of every face (Newell's; zero for a degenerate face).
     pub fn normals(&self) -> Vec<DVec3> {
-        (0..self.nf).map(|f| self.m.face_newell(crate::FaceId(f as u32)).normalize_or_zero()).collect()
+        (0..self.nf).map(|f| self.m.face_unit_normal(crate::FaceId(f as u32))).collect()
     }
     /// The input's positions, for outputs that keep its vertices first.
     pub fn positions(&self, extra: usize) -> Vec<DVec3> {

@@ -552,6 +552,13 @@ pub(crate) fn checked_build(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh
          a pipe to its inward offset copy, and has no rule for the rim such a wall would need at a boundary; treating \
          the holes as faces would fill them, so open meshes are refused; close the holes with faces first",
     )?;
+    if crate::geometry::extreme_scale(m.positions()).is_some() {
+        let top = m.positions().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        return Err(MeshError::Precondition(format!(
+            "menger: coordinates reach {top:e}, outside [2^-200, 2^200] where the offsets' lengths and normals stay \
+             within float64; scale the mesh first"
+        )));
+    }
     let ((built, mesh), crossing) = check::build_reduced(m, o, o.reduce_thickness)?;
     // a thickness under the face-width bound can still exceed what the body
     // allows (a thin slab of wide faces): an outward input must stay outward

@@ -77,21 +77,36 @@ pub(crate) fn positions(i: &In<'_>, thickness: f64) -> Vec<glam::DVec3> {
             let h = h as usize;
             let x = i.p(h);
             let (pv, nv) = (i.p(i.prev[h] as usize) - x, i.q(h) - x);
-            let s = pv + nv;
-            let scale = pv.length().max(nv.length());
-            let off = if s.length() > 1e-9 * scale {
-                if nv.cross(pv).dot(n) < 0.0 {
-                    -thickness * s
-                } else {
-                    thickness * s
-                }
+            // sides past ~1e150 or below ~1e-150 overflow or underflow
+            // the lengths: the same offset from the sides divided by their
+            // largest coordinate (ordinary sides keep their bits)
+            let k = pv.abs().max_element().max(nv.abs().max_element());
+            let off = if k > 1e150 || (k > 0.0 && k < 1e-150) {
+                inset_offset(pv / k, nv / k, n, thickness) * k
             } else {
-                thickness * nv.length() * n.cross(nv).normalize_or_zero()
+                inset_offset(pv, nv, n, thickness)
             };
             pos[v + nh + h] = x + off;
         }
     }
     pos
+}
+
+/// The inset point's offset from a corner whose sides run along `pv`
+/// (to the previous corner) and `nv` (to the next), in a face of normal `n`.
+#[inline]
+fn inset_offset(pv: glam::DVec3, nv: glam::DVec3, n: glam::DVec3, thickness: f64) -> glam::DVec3 {
+    let s = pv + nv;
+    let scale = pv.length().max(nv.length());
+    if s.length() > 1e-9 * scale {
+        if nv.cross(pv).dot(n) < 0.0 {
+            -thickness * s
+        } else {
+            thickness * s
+        }
+    } else {
+        thickness * nv.length() * n.cross(nv).normalize_or_zero()
+    }
 }
 
 #[cfg(test)]

@@ -58,7 +58,7 @@ pub fn double_stellate(m: &Mesh, offset: f64) -> Result<Mesh> {
         let real: Vec<usize> = (0..m.n_faces()).filter(|&f| m.face_halfedge(crate::FaceId(f as u32)).is_some()).collect();
         let nv = m.n_vertices() - (m.n_faces() - real.len());
         for (k, &f) in real.iter().enumerate() {
-            let n = m.face_newell(crate::FaceId(f as u32)).normalize_or_zero();
+            let n = m.face_unit_normal(crate::FaceId(f as u32));
             twice.pos[nv + k] += offset * n;
         }
     }
