@@ -653,3 +653,12 @@ def test_convex_hull_of_far_clusters_is_an_error_not_a_panic():
         topomesh.convex_hull(p)
     with pytest.raises(MeshError, match="multi_face_handle"):
         topomesh.cube().multi_face_handle([0, 1, 2], extrude=1e10)
+
+
+@pytest.mark.parametrize("bad", [[], [0, 0], "abc", [1, 2, 3, 4]])
+def test_points_of_the_wrong_length_name_the_parameter(bad):
+    # pyo3's own conversion said "expected a sequence of length 3" as a ValueError
+    with pytest.raises(MeshError, match="create_vertex: point must be three real numbers"):
+        topomesh.cube().create_vertex(bad)
+    with pytest.raises(MeshError, match="spherize: center must be three real numbers"):
+        topomesh.cube().spherize(center=bad)

@@ -122,3 +122,15 @@ pub(crate) fn u32_rows<'py, const K: usize>(py: Python<'py>, v: &[[u32; K]]) -> 
     let flat: Vec<i64> = v.iter().flat_map(|r| r.iter().map(|&x| x as i64)).collect();
     Array2::from_shape_vec((v.len(), K), flat).expect("shape").into_pyarray(py)
 }
+
+/// A point given as three real numbers (any sequence or array of length
+/// 3) for parameter `name` of `call`: anything else is a `MeshError` that
+/// names them and shows what was given, instead of pyo3's conversion error.
+pub(crate) fn point3(obj: &Bound<'_, PyAny>, call: &str, name: &str) -> PyResult<[f64; 3]> {
+    let bad = || {
+        let got = obj.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+        arg_err(format!("{call}: {name} must be three real numbers, got {got}"))
+    };
+    let v: Vec<f64> = obj.extract().map_err(|_| bad())?;
+    <[f64; 3]>::try_from(v).map_err(|_| bad())
+}

@@ -111,6 +111,10 @@ fn build_twins(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], twin
     Ok(PyMesh::wrap(m))
 }
 
+fn vertex_point(obj: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
+    super::convert::point3(obj, "create_vertex", "point")
+}
+
 fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
     let c = crate::budget::Counts::plain(pos.len() as u64, idx.len() as u64 / 2, sizes.len() as u64);
@@ -471,7 +475,7 @@ impl PyMesh {
     /// CreateVertex(p) (dissertation ch. II.5): a new mesh with an added
     /// point-sphere at ``p``. Returns ``(mesh, vertex, face)``.
     /// V+1, F+1, components+1, genus unchanged.
-    fn create_vertex(&self, point: [f64; 3]) -> PyResult<(PyMesh, usize, usize)> {
+    fn create_vertex(&self, #[pyo3(from_py_with = vertex_point)] point: [f64; 3]) -> PyResult<(PyMesh, usize, usize)> {
         super::data::warn_dropped(&self.data, "create_vertex")?;
         let mut m = self.inner.clone();
         let (v, f) = m.create_vertex(DVec3::from_array(point)).map_err(err)?;

@@ -37,6 +37,13 @@ fn point(call: &str, name: &str, p: Option<(f64, f64, f64)>) -> PyResult<Option<
     }
 }
 
+fn sphere_center(obj: &Bound<'_, PyAny>) -> PyResult<Option<(f64, f64, f64)>> {
+    if obj.is_none() {
+        return Ok(None);
+    }
+    super::convert::point3(obj, "spherize", "center").map(|[x, y, z]| Some((x, y, z)))
+}
+
 /// Largest length or scale factor the tools accept (a bound that names the
 /// parameter instead of building a mesh of 1e21-sized coordinates).
 const MAX_LENGTH: f64 = 1e15;
@@ -83,7 +90,7 @@ impl PyMesh {
     /// MeshError
     ///     A radius that is not positive, a vertex at the centre.
     #[pyo3(signature = (radius = None, center = None))]
-    fn spherize(&self, py: Python<'_>, radius: Option<f64>, center: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
+    fn spherize(&self, py: Python<'_>, radius: Option<f64>, #[pyo3(from_py_with = sphere_center)] center: Option<(f64, f64, f64)>) -> PyResult<PyMesh> {
         let c = point("spherize", "center", center)?;
         if let Some(r) = radius {
             super::finite_in("spherize", "radius", r, f64::MIN_POSITIVE, MAX_LENGTH)?;
