@@ -8,12 +8,18 @@
 //! page fault per 4 KiB page it touches: half the time of a Loop step on an
 //! 82k-triangle sphere, measured.
 //!
-//! * **Huge pages** (always): blocks of at least [`HUGE_MIN`] bytes are
+//! * **Huge pages**: blocks of [`HUGE_MIN`] to [`HUGE_MAX`] bytes are
 //!   advised `MADV_HUGEPAGE`, so the kernel (where transparent huge pages are
 //!   in `madvise` or `always` mode) maps their 2 MiB-aligned interior with 2
-//!   MiB pages: one fault instead of 512. This helps every call, the first
-//!   one included, and keeps nothing resident after a call.
-//!   `TOPOMESH_HUGE_PAGES=0` in the environment turns the advice off.
+//!   MiB pages: one fault instead of 512, and nothing kept resident after a
+//!   call. Larger blocks are not advised: on the VMs measured (issue 19,
+//!   `benches/README.md`), the first call in a process of a level whose
+//!   blocks reach 100–400 MiB (Catmull-Clark level 3 on a 100k-quad torus)
+//!   took 1.7–6.4 s with them advised against 1.1–1.5 s without, while the
+//!   warm level-1 and level-2 calls, whose blocks stay under 64 MiB, keep
+//!   the advice's gain. `TOPOMESH_HUGE_PAGES=0` in the environment turns
+//!   the advice off, `TOPOMESH_HUGE_PAGES_MAX` (bytes, or a size such as
+//!   `1G`) moves the upper bound.
 //! * **Block cache** (off by default): keeps up to a set number of bytes of
 //!   large freed blocks for the next request of a similar size, which also
 //!   saves the zeroing of fresh pages when operations repeat (iterations,
@@ -64,6 +70,16 @@ static GLOBAL: BlockCache =
 /// turns it off, for comparisons).
 static HUGE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
 
+/// Largest block advised by default (module docs).
+const HUGE_MAX: usize = 64 << 20;
+
+/// Largest block advised now (`TOPOMESH_HUGE_PAGES_MAX`, bytes).
+static HUGE_MAX_NOW: AtomicUsize = AtomicUsize::new(HUGE_MAX);
+
+pub(crate) fn set_huge_pages_max(bytes: usize) {
+    HUGE_MAX_NOW.store(bytes, Ordering::Relaxed);
+}
+
 pub(crate) fn set_huge_pages(on: bool) {
     HUGE.store(on, Ordering::Relaxed);
 }
@@ -85,7 +101,7 @@ pub(crate) fn block_cache() -> (usize, usize) {
 /// Advises the kernel to back the 2 MiB-aligned interior of a fresh block
 /// with huge pages. Advice only: a refusal changes nothing.
 fn advise_huge(p: *mut u8, size: usize) {
-    if p.is_null() || size < HUGE_MIN || !HUGE.load(Ordering::Relaxed) {
+    if p.is_null() || size < HUGE_MIN || size > HUGE_MAX_NOW.load(Ordering::Relaxed) || !HUGE.load(Ordering::Relaxed) {
         return;
     }
     let start = (p as usize).next_multiple_of(HUGE_PAGE);

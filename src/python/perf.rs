@@ -47,6 +47,9 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| v.trim() == "0") {
         super::alloc::set_huge_pages(false);
     }
+    if let Some(b) = std::env::var("TOPOMESH_HUGE_PAGES_MAX").ok().and_then(|s| crate::budget::parse_size(&s)) {
+        super::alloc::set_huge_pages_max(b as usize);
+    }
     if let Ok(s) = std::env::var("TOPOMESH_BLOCK_CACHE") {
         let b = crate::budget::parse_size(&s).ok_or_else(|| {
             arg_err(format!("TOPOMESH_BLOCK_CACHE = {s:?} must be a size in bytes, such as 268435456 or 256M"))
