@@ -67,7 +67,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
 }
 
 /// The closed-surface masks computed directly (no hole, no crease).
-pub(crate) fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
+fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, ne) = (m.n_vertices(), m.n_edges());
     let (_, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;

@@ -77,40 +77,44 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
         loc[h1 as usize] = 1;
         loc[h2 as usize] = 2;
     }
-    // Loop's points, then the centroids of its triangles
-    let lp = l::smooth_positions(t)?;
-    let (vp, ep) = lp.split_at(nv);
-    let mut pos = Vec::with_capacity(4 * nf);
+    // Loop's edge points (its masks, `loop_subdivision`)
+    let p = &t.pos;
+    let mut ep = Vec::with_capacity(ne);
+    for e in 0..ne {
+        crate::cancel::poll(e)?;
+        let (a, b) = (2 * e, 2 * e + 1);
+        let ab = p[vert[a] as usize] + p[vert[b] as usize];
+        let cd = p[vert[prev[a] as usize] as usize] + p[vert[prev[b] as usize] as usize];
+        ep.push(ab * 0.375 + cd * 0.125);
+    }
+    // the centroids of Loop's middle triangles; those of the corner
+    // triangles are placed by the walk round their vertex point
+    let mut pos = crate::mesh::zeroed_points(4 * nf);
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let h0 = t.f_start[f] as usize;
         let h1 = next[h0] as usize;
         let h2 = next[h1] as usize;
-        let (e0, e1, e2) = (ep[h0 >> 1], ep[h1 >> 1], ep[h2 >> 1]);
-        for (h, eh, ep_) in [(h0, e0, e2), (h1, e1, e0), (h2, e2, e1)] {
-            let mut s = DVec3::ZERO;
-            s += vp[vert[h] as usize];
-            s += eh;
-            s += ep_;
-            pos.push(s / 3.0);
-        }
         let mut s = DVec3::ZERO;
-        s += e0;
-        s += e1;
-        s += e2;
-        pos.push(s / 3.0);
+        s += ep[h0 >> 1];
+        s += ep[h1 >> 1];
+        s += ep[h2 >> 1];
+        pos[4 * f + 3] = s / 3.0;
     }
-    drop(lp);
     // Loop's triangle at corner h, and its middle triangle of face(h)
     let tri = |h: usize| 4 * face[h] + loc[h] as u32;
     let mid = |h: usize| 4 * face[h] + 3;
+    let betas: Vec<f64> = (0..64).map(l::loop_beta).collect();
     let mut walk = DualWalk::new(pos, 4 * nh, nv + ne, 2 * nh);
     for v in 0..nv {
         crate::cancel::poll(v)?;
         let s = t.v_out[v] as usize;
-        // the outgoing half-edge first in face order
-        let (mut h, mut g, mut best) = (s, s, u32::MAX);
+        // Loop's vertex point (its neighbours summed from v_out, as Loop
+        // sums), and the outgoing half-edge first in face order
+        let (mut h, mut g, mut best, mut sum, mut n) = (s, s, u32::MAX, DVec3::ZERO, 0usize);
         loop {
+            sum += p[vert[h ^ 1] as usize];
+            n += 1;
             let c = 3 * face[h] + loc[h] as u32;
             if c < best {
                 (best, g) = (c, h);
@@ -120,11 +124,19 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
                 break;
             }
         }
+        let beta = if n < betas.len() { betas[n] } else { l::loop_beta(n) };
+        let vp = p[v] * (1.0 - n as f64 * beta) + sum * beta;
         let (mut h, mut last) = (g, crate::mesh::NONE);
         loop {
-            let p = (prev[h] ^ 1) as usize;
-            walk.put(v, tri(h), p, &mut last);
-            h = p;
+            let q = prev[h] as usize;
+            let x = tri(h);
+            let mut c = DVec3::ZERO;
+            c += vp;
+            c += ep[h >> 1];
+            c += ep[q >> 1];
+            walk.positions_mut()[x as usize] = c / 3.0;
+            walk.put(v, x, q ^ 1, &mut last);
+            h = q ^ 1;
             if h == g {
                 break;
             }
