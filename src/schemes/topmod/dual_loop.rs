@@ -31,11 +31,11 @@
 //! [`loop_subdivision`]: crate::schemes::loop_subdivision
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, POINT};
+use crate::mesh::{Mesh, NONE, POINT};
 use crate::schemes::dual::dual;
 use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::face_parents::via_origins;
-use crate::schemes::hosts::{check_output_size, fan_triangulate};
+use crate::schemes::hosts::{check_output_size, FaceLayout};
 use crate::schemes::loop_subdivision as l;
 use glam::DVec3;
 
@@ -53,8 +53,227 @@ pub(crate) fn dual_loop(m: &Mesh) -> Result<Mesh> {
     }
     let d = dual(m)?;
     crate::cancel::check()?;
-    let fan = fan_triangulate(&d)?;
-    dual_of_loop(fan.as_ref().unwrap_or(&d))
+    let fl = FaceLayout::new(&d)?;
+    if (0..d.n_faces()).all(|f| fl.degree(f) == 3) {
+        return dual_of_loop(&d);
+    }
+    dual_of_fanned_loop(&d, &fl)
+}
+
+/// Per corner of the fanned dual T, kept as its position P = 3 face + k in
+/// T's corner layout (fan: per face of `d` in order, a kept triangle's
+/// corners, or per corner of a fanned face its triangle `[side, spoke 1,
+/// spoke 2]`): T's face and corner index are P / 3 and P % 3.
+#[inline]
+fn face_loc(p: usize) -> (u32, u32) {
+    ((p / 3) as u32, (p % 3) as u32)
+}
+
+/// `dual_of_loop(&fan_triangulate(d)?.unwrap())` without the fan's mesh: its
+/// corners are named by their position P ([`face_loc`]), its edges walked
+/// in its order (by first corner) and its vertices (`d`'s, then the
+/// centroids of the fanned faces) in theirs, by index arithmetic on `d`.
+/// Loop's edge points are held per edge of `d` (the sides) and per corner
+/// g of a fanned face (the spoke from head g).
+fn dual_of_fanned_loop(d: &Mesh, fl: &FaceLayout) -> Result<Mesh> {
+    let (nvd, ned, nfd, nhd) = (d.n_vertices(), d.n_edges(), d.n_faces(), d.n_halfedges());
+    check_output_size("loop", 3 * nhd, nvd + nfd)?;
+    let (_, vert, face) = d.halfedge_columns();
+    let (prev, dp) = (&d.he_prev, &d.pos);
+    // per face of d: its first corner in T (3 × its first face in T), and
+    // its centroid's index among the centroids (KEPT for a triangle)
+    const KEPT: u32 = u32::MAX;
+    let mut base = Vec::with_capacity(nfd);
+    let mut cent = Vec::with_capacity(nfd);
+    let mut cpos = Vec::new();
+    let mut b = 0usize;
+    for f in 0..nfd {
+        crate::cancel::poll(f)?;
+        let hs = fl.corners(f);
+        base.push(b as u32);
+        if hs.len() == 3 {
+            cent.push(KEPT);
+            b += 3;
+        } else {
+            cent.push(cpos.len() as u32);
+            let s: DVec3 = hs.iter().map(|&h| dp[vert[h as usize] as usize]).sum();
+            cpos.push(s / hs.len() as f64);
+            b += 3 * hs.len();
+        }
+    }
+    let (nh, nc) = (b, cpos.len());
+    let (nv, ne, nf) = (nvd + nc, nh / 2, nh / 3);
+    check_output_size("loop", 4 * nh, nv + ne)?;
+    check_output_size("dual", 4 * nh, 4 * nf)?;
+    // the side of corner g: its position
+    let mut side = vec![0u32; nhd];
+    for f in 0..nfd {
+        crate::cancel::poll(f)?;
+        let step = if cent[f] == KEPT { 1 } else { 3 };
+        for (k, &g) in fl.corners(f).iter().enumerate() {
+            side[g as usize] = base[f] + step * k as u32;
+        }
+    }
+    // Loop's edge points: sides (edges of d), then spokes (per corner g of
+    // a fanned face, from head g to the centroid); the opposite corners of
+    // a side are the centroid of a fanned face or the third corner of a
+    // kept triangle
+    let mut ep = crate::mesh::zeroed_points(ned + nhd);
+    let opp = |g: usize| {
+        let f = face[g] as usize;
+        if cent[f] == KEPT { dp[vert[prev[g] as usize] as usize] } else { cpos[cent[f] as usize] }
+    };
+    for e in 0..ned {
+        crate::cancel::poll(e)?;
+        let (a, b) = (2 * e, 2 * e + 1);
+        let ab = dp[vert[a] as usize] + dp[vert[b] as usize];
+        let cd = opp(a) + opp(b);
+        ep[e] = ab * 0.375 + cd * 0.125;
+    }
+    for f in 0..nfd {
+        crate::cancel::poll(f)?;
+        if cent[f] == KEPT {
+            continue;
+        }
+        let (hs, c) = (fl.corners(f), cpos[cent[f] as usize]);
+        for (k, &g) in hs.iter().enumerate() {
+            let g1 = hs[(k + 1) % hs.len()];
+            let ab = dp[vert[g as usize ^ 1] as usize] + c;
+            let cd = dp[vert[g as usize] as usize] + dp[vert[g1 as usize ^ 1] as usize];
+            ep[ned + g as usize] = ab * 0.375 + cd * 0.125;
+        }
+    }
+    // the centroids of Loop's middle triangles (from its edge points at
+    // the corners side, spoke 1, spoke 2 of T's triangle); those of the
+    // corner triangles are placed by the walk round their vertex point
+    let mut pos = crate::mesh::zeroed_points(4 * nf);
+    for f in 0..nfd {
+        crate::cancel::poll(f)?;
+        let (hs, t0) = (fl.corners(f), base[f] as usize / 3);
+        let mean = |a: usize, b: usize, c: usize| {
+            let mut s = DVec3::ZERO;
+            s += ep[a];
+            s += ep[b];
+            s += ep[c];
+            s / 3.0
+        };
+        if cent[f] == KEPT {
+            pos[4 * t0 + 3] = mean(hs[0] as usize >> 1, hs[1] as usize >> 1, hs[2] as usize >> 1);
+        } else {
+            let n = hs.len();
+            for (k, &g) in hs.iter().enumerate() {
+                let gp = hs[(k + n - 1) % n] as usize;
+                pos[4 * (t0 + k) + 3] = mean(g as usize >> 1, ned + g as usize, ned + gp);
+            }
+        }
+    }
+    let betas: Vec<f64> = (0..64).map(l::loop_beta).collect();
+    let beta = |n: usize| if n < betas.len() { betas[n] } else { l::loop_beta(n) };
+    let tri = |p: u32| 4 * (p / 3) + p % 3;
+    let mut walk = DualWalk::new(pos, 4 * nh, nv + ne, 2 * nh);
+    // the faces of Loop's vertex points: per outgoing corner x of T, in
+    // T's rotation from the lowest (T's v_out and Loop's first corner):
+    // (x, its edge point, that of prev x, the head of x)
+    let mut ring: Vec<(u32, u32, u32, DVec3)> = Vec::new();
+    let corner_face = |walk: &mut DualWalk, w: usize, vp: DVec3, ring: &[(u32, u32, u32, DVec3)], i0: usize| {
+        let (n, mut last) = (ring.len(), NONE);
+        for j in 0..n {
+            let (x, e, ep_, _) = ring[(i0 + j) % n];
+            let c = tri(x) as usize;
+            let mut s = DVec3::ZERO;
+            s += vp;
+            s += ep[e as usize];
+            s += ep[ep_ as usize];
+            walk.positions_mut()[c] = s / 3.0;
+            walk.put(w, c as u32, ring[(i0 + j + 1) % n].0 as usize, &mut last);
+        }
+        walk.close(w, last);
+    };
+    for v in 0..nvd {
+        crate::cancel::poll(v)?;
+        // T's rotation at v: per outgoing g of d, the side of g, then in a
+        // fanned face spoke 1 of prev g (from v to the centroid)
+        ring.clear();
+        let s = d.v_out[v] as usize;
+        let mut g = s;
+        loop {
+            let f = face[g] as usize;
+            let gp = prev[g] as usize;
+            let head = dp[vert[g ^ 1] as usize];
+            if cent[f] == KEPT {
+                ring.push((side[g], (g >> 1) as u32, (gp >> 1) as u32, head));
+            } else {
+                ring.push((side[g], (g >> 1) as u32, (ned + gp) as u32, head));
+                ring.push((side[gp] + 1, (ned + gp) as u32, (gp >> 1) as u32, cpos[cent[f] as usize]));
+            }
+            g = gp ^ 1;
+            if g == s {
+                break;
+            }
+        }
+        let i0 = (0..ring.len()).min_by_key(|&i| ring[i].0).unwrap_or(0);
+        let n = ring.len();
+        let mut sum = DVec3::ZERO;
+        for j in 0..n {
+            sum += ring[(i0 + j) % n].3;
+        }
+        let bt = beta(n);
+        let vp = dp[v] * (1.0 - n as f64 * bt) + sum * bt;
+        corner_face(&mut walk, v, vp, &ring, i0);
+    }
+    for f in 0..nfd {
+        crate::cancel::poll(f)?;
+        if cent[f] == KEPT {
+            continue;
+        }
+        // a centroid: spoke 2 of each corner k (to tail h_k), from k = 0
+        let (hs, b) = (fl.corners(f), base[f]);
+        let n = hs.len();
+        ring.clear();
+        let mut sum = DVec3::ZERO;
+        for (k, &g) in hs.iter().enumerate() {
+            let gp = hs[(k + n - 1) % n] as usize;
+            let t = dp[vert[g as usize] as usize];
+            sum += t;
+            ring.push((b + 3 * k as u32 + 2, (ned + gp) as u32, (ned + g as usize) as u32, t));
+        }
+        let bt = beta(n);
+        let vp = cpos[cent[f] as usize] * (1.0 - n as f64 * bt) + sum * bt;
+        corner_face(&mut walk, nvd + cent[f] as usize, vp, &ring, 0);
+    }
+    // the faces of Loop's edge points, in T's edge order (by first
+    // corner): per face of d and corner k, the side when its twin's comes
+    // later, spoke 1 unless it is the last of n ≥ 2 (its twin is spoke 2
+    // of k + 1), and at k = 0 spoke 2 (the twin of spoke 1 of n − 1)
+    let mut w = nv;
+    let mut edge = |walk: &mut DualWalk, h: u32, t: u32| {
+        put_edge_face(walk, w, h as usize, t as usize, nh, face_loc, |x| 3 * (x / 3) + (x % 3 + 1) % 3);
+        w += 1;
+    };
+    for f in 0..nfd {
+        crate::cancel::poll(f)?;
+        let (hs, b) = (fl.corners(f), base[f]);
+        let n = hs.len() as u32;
+        for (k, &g) in hs.iter().enumerate() {
+            let k = k as u32;
+            if fl.cidx[g as usize ^ 1] > fl.cidx[g as usize] {
+                edge(&mut walk, side[g as usize], side[g as usize ^ 1]);
+            }
+            if cent[f] != KEPT {
+                if k + 1 < n || n == 1 {
+                    edge(&mut walk, b + 3 * k + 1, b + 3 * ((k + 1) % n) + 2);
+                }
+                if k == 0 && n > 1 {
+                    edge(&mut walk, b + 3 * (n - 1) + 1, b + 2);
+                }
+            }
+        }
+    }
+    drop(edge);
+    if w != nv + ne {
+        return Err(MeshError::Invariant(format!("dual loop: the fan has {nh} corners but {} edges", w - nv)));
+    }
+    Mesh::from_columns(walk.finish()?)
 }
 
 /// `dual(loop_subdivision(t))` for a closed mesh `t` of triangles.
@@ -101,9 +320,8 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
         s += ep[h2 >> 1];
         pos[4 * f + 3] = s / 3.0;
     }
-    // Loop's triangle at corner h, and its middle triangle of face(h)
+    // Loop's triangle at corner h
     let tri = |h: usize| 4 * face[h] + loc[h] as u32;
-    let mid = |h: usize| 4 * face[h] + 3;
     let betas: Vec<f64> = (0..64).map(l::loop_beta).collect();
     let mut walk = DualWalk::new(pos, 4 * nh, nv + ne, 2 * nh);
     for v in 0..nv {
@@ -126,7 +344,7 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
         }
         let beta = if n < betas.len() { betas[n] } else { l::loop_beta(n) };
         let vp = p[v] * (1.0 - n as f64 * beta) + sum * beta;
-        let (mut h, mut last) = (g, crate::mesh::NONE);
+        let (mut h, mut last) = (g, NONE);
         loop {
             let q = prev[h] as usize;
             let x = tri(h);
@@ -145,25 +363,39 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
     }
     for e in 0..ne {
         crate::cancel::poll(e)?;
-        let (h, tw) = (2 * e, 2 * e + 1);
-        let (nh_, nt) = (next[h] as usize, next[tw] as usize);
-        let ring = [(tri(h), h), (tri(nt), nh + nt), (mid(tw), nh + tw), (tri(tw), tw), (tri(nh_), nh + nh_), (mid(h), nh + h)];
-        // Loop's first corner of the edge point: per side x, slot 1 of x
-        // at corner 0 or 1, else b(next x); ring index and corner position
-        let cand = |x: usize, at_slot1: usize, at_b: usize| {
-            let k = loc[x] as u32;
-            if k < 2 { (12 * face[x] + 3 * k + 1, at_slot1) } else { (12 * face[x] + 2, at_b) }
-        };
-        let (a, b) = (cand(h, 0, 4), cand(tw, 3, 1));
-        let j0 = if a.0 < b.0 { a.1 } else { b.1 };
-        let mut last = crate::mesh::NONE;
-        for j in 0..6 {
-            let (f, key) = ring[(j0 + j) % 6];
-            walk.put(nv + e, f, key, &mut last);
-        }
-        walk.close(nv + e, last);
+        put_edge_face(&mut walk, nv + e, 2 * e, 2 * e + 1, nh, |x| (face[x], loc[x] as u32), |x| next[x] as usize);
     }
     Mesh::from_columns(walk.finish()?)
+}
+
+/// The face of Loop's edge point of the fanned dual's edge with halves
+/// `h`, `t` (corners of the fanned dual: `fl(x)` its face and corner index,
+/// `next(x)`), as face `w` of the last dual: the ring slot1(h), b(next t),
+/// mid(t), slot1(t), b(next h), mid(h) from Loop's first corner of the edge
+/// point (per side x, slot 1 of x at corner 0 or 1, else b(next x), the
+/// lower of the two), crossing the children (key x) and the inner edges
+/// (key H + x) that Loop's step lays there.
+#[inline]
+fn put_edge_face(walk: &mut DualWalk, w: usize, h: usize, t: usize, nh: usize, fl: impl Fn(usize) -> (u32, u32), next: impl Fn(usize) -> usize) {
+    let (nh_, nt) = (next(h), next(t));
+    let tri = |x: usize| {
+        let (f, k) = fl(x);
+        4 * f + k
+    };
+    let mid = |x: usize| 4 * fl(x).0 + 3;
+    let ring = [(tri(h), h), (tri(nt), nh + nt), (mid(t), nh + t), (tri(t), t), (tri(nh_), nh + nh_), (mid(h), nh + h)];
+    let cand = |x: usize, at_slot1: usize, at_b: usize| {
+        let (f, k) = fl(x);
+        if k < 2 { (12 * f + 3 * k + 1, at_slot1) } else { (12 * f + 2, at_b) }
+    };
+    let (a, b) = (cand(h, 0, 4), cand(t, 3, 1));
+    let j0 = if a.0 < b.0 { a.1 } else { b.1 };
+    let mut last = NONE;
+    for j in 0..6 {
+        let (f, key) = ring[(j0 + j) % 6];
+        walk.put(w, f, key, &mut last);
+    }
+    walk.close(w, last);
 }
 
 #[cfg(test)]
