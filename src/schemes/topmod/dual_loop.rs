@@ -21,12 +21,25 @@
 //!   step lays there: the child of edge x at tail x (key x) and the inner
 //!   edge of corner x (slot 1 of x, key H_T + x).
 //!
-//! So V' = 4F_T (every vertex 3-valent), E' = 2E_T + 3F_T, F' = V_T + E_T.
-//! Positions are Loop's (the same masks, [`loop_subdivision`]) and the
-//! centroids of its triangles summed from their first corner, as the dual
-//! sums; edges are numbered by first crossing ([`DualWalk`]), so the output
-//! is the composition's bit for bit (`keyed::hashes`). Holes, point-spheres
-//! and traced builds (face parents) take the composition.
+//! So V' = 4F_T (every vertex 3-valent), E' = 2E_T + 3F_T, F' = V_T + E_T;
+//! with V₃ input vertices of valence 3 and S the valence sum over the
+//! others, V_T = F + V − V₃, E_T = E + S, F_T = V₃ + S.
+//!
+//! T itself is not built either when the dual has faces to fan
+//! ([`dual_of_fanned_loop`]): the fan ([`super::super::fan_columns`]) lays
+//! T's corners per face of the dual in order (a kept triangle's three, or
+//! per corner of a fanned face its triangle `[side, spoke 1, spoke 2]`), so
+//! a corner's position P in that layout gives its face P / 3 and its index
+//! P % 3, its edges are numbered by first corner and its vertices are the
+//! dual's then the centroids, all by index arithmetic on the dual.
+//!
+//! Positions are Loop's (the same masks and sums, [`loop_subdivision`];
+//! a vertex point sums its neighbours from T's `v_out`, its lowest corner)
+//! and the centroids of its triangles summed from their first corner, as
+//! the dual sums; edges are numbered by first crossing ([`DualWalk`]), so
+//! the output is the composition's bit for bit (`keyed::hashes`, and the
+//! test below on every column). Holes, point-spheres and traced builds
+//! (face parents) take the composition.
 //!
 //! [`loop_subdivision`]: crate::schemes::loop_subdivision
 
@@ -434,13 +447,20 @@ mod tests {
         }
         ms.push(("jittered_torus", jt));
         ms.extend(open_meshes());
-        let mut fused_runs = 0;
+        // one-pass runs: over a dual of triangles only, over a fanned dual
+        // with kept triangles (input vertices of valence 3 and others)
+        let (mut fused_runs, mut tri_only, mut mixed) = (0, 0, 0);
         for (name, m) in &ms {
             match (dual_loop(m), composed(m)) {
                 (Ok(a), Ok(b)) => {
                     a.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
                     assert!(same(&a, &b), "{name}: the fused build differs from the composition");
-                    fused_runs += (m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & POINT != 0)) as usize;
+                    if m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & POINT != 0) {
+                        fused_runs += 1;
+                        let vh = m.valence_histogram();
+                        tri_only += (vh.keys().all(|&k| k == 3)) as usize;
+                        mixed += (vh.contains_key(&3) && vh.keys().any(|&k| k != 3)) as usize;
+                    }
                 }
                 (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
                 (a, b) => panic!("{name}: fused {:?}, composition {:?}", a.err(), b.err()),
@@ -454,7 +474,7 @@ mod tests {
                 (a, b) => panic!("{name}: traced, fused {:?}, composition {:?}", a.err(), b.err()),
             }
         }
-        assert!(fused_runs >= 12, "{fused_runs} meshes took the one pass");
+        assert!(fused_runs >= 12 && tri_only >= 2 && mixed >= 2, "one pass: {fused_runs} meshes, {tri_only} with triangle duals, {mixed} mixed");
     }
 
     /// The comparison sees a change: one Loop point moved by one ulp
