@@ -4,7 +4,7 @@
 //!
 //! Loop fans the dual's non-triangles first; call the fanned dual T (all
 //! triangles, V_T vertices, E_T edges, F_T faces, H_T = 3F_T corners).
-//! Loop's step ([`super::super::primal_columns`], no face points) lays, per
+//! Loop's step (`schemes::primal_columns`, no face points) lays, per
 //! face f of T and corner k (half-edge h = corner k from `f_start`), the
 //! triangle 4f + k `[tail h, e(h), e(prev h)]` (corners a(h), slot 1, b(h))
 //! and then the middle 4f + 3 `[e(h₀), e(h₁), e(h₂)]`; its vertices are
@@ -26,9 +26,9 @@
 //! others, V_T = F + V − V₃, E_T = E + S, F_T = V₃ + S.
 //!
 //! Neither T nor the first dual is built when the dual has faces to fan
-//! ([`dual_of_fanned_loop`]): the dual's faces, corners and twins follow
+//! (`dual_of_fanned_loop`): the dual's faces, corners and twins follow
 //! from the input's rotations as [`dual`] walks them, and the fan
-//! ([`super::super::fan_columns`]) lays T's corners per face of the dual in
+//! (`schemes::fan_columns`) lays T's corners per face of the dual in
 //! order (a kept triangle's three, or per corner of a fanned face its
 //! triangle `[side, spoke 1, spoke 2]`), so a corner's position P in that
 //! layout gives its face P / 3 and its index P % 3, its edges are numbered
@@ -39,10 +39,11 @@
 //! Positions are Loop's (the same masks and sums, [`loop_subdivision`];
 //! a vertex point sums its neighbours from T's `v_out`, its lowest corner)
 //! and the centroids of its triangles summed from their first corner, as
-//! the dual sums; edges are numbered by first crossing ([`DualWalk`]), so
-//! the output is the composition's bit for bit (`keyed::hashes`, and the
-//! test below on every column). Holes, point-spheres and traced builds
-//! (face parents) take the composition.
+//! the dual sums; edges are numbered by first crossing (`DualWalk`), so
+//! the output is the composition's bit for bit (the test below compares
+//! every column; `keyed::hashes` hashes traced builds, which take the
+//! composition). Holes, point-spheres and traced builds (face parents)
+//! take the composition.
 //!
 //! [`loop_subdivision`]: crate::schemes::loop_subdivision
 
@@ -61,7 +62,7 @@ pub(crate) fn composed(m: &Mesh) -> Result<Mesh> {
     dual(&via_origins(&d, |r| l::loop_level(&d, r), || l::loop_subdivision(&d))?)
 }
 
-/// [`composed`], the same output and errors, in one pass over the input
+/// `composed`, the same output and errors, in one pass over the input
 /// (or over its dual when that has triangles only).
 pub(crate) fn dual_loop(m: &Mesh) -> Result<Mesh> {
     if m.n_faces() == 0 || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & POINT != 0) || crate::schemes::face_parents::recording() {
@@ -86,7 +87,7 @@ fn face_loc(p: usize) -> (u32, u32) {
 /// tail g = face g, prev g = next(twin g), twin g = next(twin prev g), and
 /// g crosses the edge of prev g; D's vertex f turns round face f in `next`
 /// order. The fan T of D is then named by its corners' positions P
-/// ([`face_loc`]), its edges walked in its order (by first corner) and its
+/// (`face_loc`), its edges walked in its order (by first corner) and its
 /// vertices (D's, then the centroids of the fanned faces) in theirs. Loop's
 /// edge points are held per edge of m (the sides) and per corner g of a
 /// fanned face (the spoke from head g).
