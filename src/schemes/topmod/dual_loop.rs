@@ -101,6 +101,10 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
     let mut fh = Vec::with_capacity(nhd);
     let mut off = Vec::with_capacity(nfd + 1);
     let mut cidx = vec![0u32; nhd];
+    // per corner (in layout order): whether its side comes before its
+    // twin's, whose face of D is the tail of prev g (2: the same face,
+    // decided by cidx once all are known)
+    let mut first = Vec::with_capacity(nhd);
     off.push(0u32);
     for v in 0..nfd {
         crate::cancel::poll(v)?;
@@ -109,7 +113,10 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
         loop {
             cidx[h as usize] = fh.len() as u32;
             fh.push(h);
-            h = prev[h as usize] ^ 1;
+            let p = prev[h as usize];
+            let u = vert[p as usize] as usize;
+            first.push(if u == v { 2u8 } else { (u > v) as u8 });
+            h = p ^ 1;
             if h == s {
                 break;
             }
@@ -226,18 +233,18 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
     // the faces of Loop's vertex points: per outgoing corner x of T, in
     // T's rotation from the lowest (T's v_out and Loop's first corner):
     // (x, its edge point, that of prev x, the head of x)
-    let mut ring: Vec<(u32, u32, u32, DVec3)> = Vec::new();
-    let corner_face = |walk: &mut DualWalk, w: usize, vp: DVec3, ring: &[(u32, u32, u32, DVec3)], i0: usize| {
+    let (mut ring, mut nbs): (Vec<[u32; 3]>, Vec<DVec3>) = (Vec::new(), Vec::new());
+    let corner_face = |walk: &mut DualWalk, w: usize, vp: DVec3, ring: &[[u32; 3]], i0: usize| {
         let (n, mut last) = (ring.len(), NONE);
         for j in 0..n {
-            let (x, e, ep_, _) = ring[(i0 + j) % n];
+            let [x, e, ep_] = ring[(i0 + j) % n];
             let c = tri(x) as usize;
             let mut s = DVec3::ZERO;
             s += vp;
             s += ep[e as usize];
             s += ep[ep_ as usize];
             walk.positions_mut()[c] = s / 3.0;
-            walk.put(w, c as u32, ring[(i0 + j + 1) % n].0 as usize, &mut last);
+            walk.put(w, c as u32, ring[(i0 + j + 1) % n][0] as usize, &mut last);
         }
         walk.close(w, last);
     };
@@ -247,28 +254,32 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
         // of m), the side of g, then in a fanned face spoke 1 of prev g
         // (from f to the centroid; prev g = next(twin g), whose edge is g's)
         ring.clear();
+        nbs.clear();
         let s = m.f_start[f] as usize;
         let mut g = s;
         loop {
             let v = vert[g] as usize;
             let hd = dp[head(g)];
             if cent[v] == KEPT {
-                ring.push((side[g], edge(g) as u32, (g >> 1) as u32, hd));
+                ring.push([side[g], edge(g) as u32, (g >> 1) as u32]);
+                nbs.push(hd);
             } else {
                 let gp = next[g ^ 1] as usize;
-                ring.push((side[g], edge(g) as u32, (ned + gp) as u32, hd));
-                ring.push((side[gp] + 1, (ned + gp) as u32, (g >> 1) as u32, cpos[cent[v] as usize]));
+                ring.push([side[g], edge(g) as u32, (ned + gp) as u32]);
+                ring.push([side[gp] + 1, (ned + gp) as u32, (g >> 1) as u32]);
+                nbs.push(hd);
+                nbs.push(cpos[cent[v] as usize]);
             }
             g = next[g] as usize;
             if g == s {
                 break;
             }
         }
-        let i0 = (0..ring.len()).min_by_key(|&i| ring[i].0).unwrap_or(0);
+        let i0 = (0..ring.len()).min_by_key(|&i| ring[i][0]).unwrap_or(0);
         let n = ring.len();
         let mut sum = DVec3::ZERO;
         for j in 0..n {
-            sum += ring[(i0 + j) % n].3;
+            sum += nbs[(i0 + j) % n];
         }
         let bt = beta(n);
         let vp = dp[f] * (1.0 - n as f64 * bt) + sum * bt;
@@ -288,7 +299,7 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
             let gp = hs[(k + n - 1) % n] as usize;
             let t = dp[face[g as usize] as usize];
             sum += t;
-            ring.push((b + 3 * k as u32 + 2, (ned + gp) as u32, (ned + g as usize) as u32, t));
+            ring.push([b + 3 * k as u32 + 2, (ned + gp) as u32, (ned + g as usize) as u32]);
         }
         let bt = beta(n);
         let vp = cpos[cent[v] as usize] * (1.0 - n as f64 * bt) + sum * bt;
@@ -308,10 +319,13 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
         let (hs, b) = (corners(v), base[v]);
         let n = hs.len() as u32;
         for (k, &g) in hs.iter().enumerate() {
+            let fst = first[off[v] as usize + k];
             let k = k as u32;
-            let tw = next[(prev[g as usize] ^ 1) as usize] as usize;
-            if cidx[tw] > cidx[g as usize] {
-                edge_face(&mut walk, side[g as usize], side[tw]);
+            if fst != 0 {
+                let tw = next[(prev[g as usize] ^ 1) as usize] as usize;
+                if fst == 1 || cidx[tw] > cidx[g as usize] {
+                    edge_face(&mut walk, side[g as usize], side[tw]);
+                }
             }
             if cent[v] != KEPT {
                 if k + 1 < n || n == 1 {
