@@ -27,7 +27,7 @@ pub fn root3(m: &Mesh) -> Result<Mesh> {
 /// V₃ vertices of valence 3 and S = Σ valence over the others:
 /// F_t = V₃ + S, E_t = E + S, V_t = F + V − V₃ (the fanned dual), then
 /// V' = 4F_t, E' = 2E_t + 3F_t, F' = V_t + E_t; every vertex 3-valent.
-/// Built in one pass after the first dual, without Loop's mesh (see
+/// Built in one pass without the intermediate meshes (see
 /// `topmod::dual_loop`), the composition's output bit for bit.
 pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
     super::dual_loop::dual_loop(m)
