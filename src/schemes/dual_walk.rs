@@ -26,6 +26,11 @@ impl DualWalk {
         DualWalk { cols, slot: vec![0; n_keys], n_out: 0 }
     }
 
+    /// The output vertices' positions, for walks that place them as they go.
+    pub(crate) fn positions_mut(&mut self) -> &mut [DVec3] {
+        &mut self.cols.pos
+    }
+
     /// The next corner of face `w`: at output vertex `v`, its side crossing
     /// `key`; `last` is the face's previous corner (`NONE` before its first)
     /// and becomes this one.

@@ -27,10 +27,10 @@ pub fn root3(m: &Mesh) -> Result<Mesh> {
 /// V₃ vertices of valence 3 and S = Σ valence over the others:
 /// F_t = V₃ + S, E_t = E + S, V_t = F + V − V₃ (the fanned dual), then
 /// V' = 4F_t, E' = 2E_t + 3F_t, F' = V_t + E_t; every vertex 3-valent.
+/// Built in one pass without the intermediate meshes (see
+/// `topmod::dual_loop`), the composition's output bit for bit.
 pub fn dual_loop(m: &Mesh) -> Result<Mesh> {
-    use crate::schemes::loop_subdivision as l;
-    let d = dual(m)?;
-    dual(&via_origins(&d, |r| l::loop_level(&d, r), || l::loop_subdivision(&d))?)
+    super::dual_loop::dual_loop(m)
 }
 
 /// Cubic pentagonalization (`subdivideCubicPentagonal`: pentagonalization,

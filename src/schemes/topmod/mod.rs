@@ -47,6 +47,7 @@ pub mod compose;
 pub mod corner_cutting;
 mod cubic_pentagonal;
 pub mod doo_sabin_bc_new;
+mod dual_loop;
 pub mod extrude;
 mod extrude_platonic;
 pub mod linear;
