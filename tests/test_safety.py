@@ -472,9 +472,11 @@ def _odd_meshes():
         "all_zero": c.with_vertices(np.zeros_like(v)),
         "flat": c.with_vertices(flat),
         "huge": c.with_vertices(v * 1e300),
+        "near_max": c.with_vertices(v * 1.5e308),  # centroids overflow: a MeshError, not an invalid mesh
         "tiny": c.with_vertices(v * 1e-300),
         "jittered": ico.with_vertices(ico.vertices + np.random.default_rng(0).normal(0, 0.3, (12, 3))),
         "genus2": topomesh.genus_surface(2),
+        "genus2_near_max": topomesh.genus_surface(2).with_vertices(topomesh.genus_surface(2).vertices * 5e307),
     }
 
 

@@ -76,17 +76,22 @@ pub fn extreme_scale(pos: &[DVec3]) -> Option<f64> {
 /// receives the factor the mesh was divided by (1 for ordinary meshes,
 /// which are passed through untouched), to divide its absolute lengths by.
 pub fn scale_free(m: &Mesh, op: impl FnOnce(&Mesh, f64) -> crate::Result<Mesh>) -> crate::Result<Mesh> {
+    Ok(scale_free_with(m, |m, s| Ok((op(m, s)?, ())))?.0)
+}
+
+/// [`scale_free`] for an operation that returns more than the mesh.
+pub fn scale_free_with<T>(m: &Mesh, op: impl FnOnce(&Mesh, f64) -> crate::Result<(Mesh, T)>) -> crate::Result<(Mesh, T)> {
     let Some(s) = extreme_scale(m.positions()) else { return op(m, 1.0) };
     let mut scaled = m.clone();
     scaled.positions_mut().iter_mut().for_each(|p| *p /= s);
-    let mut out = op(&scaled, s)?;
+    let (mut out, extra) = op(&scaled, s)?;
     out.positions_mut().iter_mut().for_each(|p| *p *= s);
     if let Some(v) = out.positions().iter().position(|p| !p.is_finite()) {
         return Err(crate::MeshError::Precondition(format!(
             "output vertex {v} lies beyond float64's range at this mesh's scale; scale the mesh down first"
         )));
     }
-    Ok(out)
+    Ok((out, extra))
 }
 
 /// The mesh's triangulation and the positions its triangles index: the

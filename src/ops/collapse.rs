@@ -56,7 +56,11 @@ impl Mesh {
             h = h.twin();
         }
         let (v1, v2) = (self.vertex(h), self.head(h));
-        let mid = (self.position(v1) + self.position(v2)) * 0.5;
+        let (a, b) = (self.position(v1), self.position(v2));
+        let mut mid = (a + b) * 0.5;
+        if !mid.is_finite() {
+            mid = a * 0.5 + b * 0.5; // the sum overflowed (coordinates near f64's limit)
+        }
         // v2's corners clockwise from the one after e: x, next(twin(x)), ...
         let mut targets = Vec::new();
         let mut x = self.next(h);

@@ -263,6 +263,9 @@ pub(crate) fn iterate_with<S: Send>(
     if let Some(b) = &bar {
         b.call_method0("close")?;
     }
+    if let Ok((Some(m), _)) = &out {
+        data::finite_output(name, mesh, m)?;
+    }
     out
 }
 

@@ -56,6 +56,11 @@ impl Mesh {
     /// default 0.25). Returns the mesh and the number of cuts made.
     pub fn cut_vertices(&self, vertices: &[usize], offset: f64) -> Result<(Mesh, usize)> {
         check_offset("cut_vertices", offset)?;
+        // meshes near f64's ends are cut at unit size (offset is relative)
+        crate::geometry::scale_free_with(self, |m, _| m.cut_vertices_unscaled(vertices, offset))
+    }
+
+    fn cut_vertices_unscaled(&self, vertices: &[usize], offset: f64) -> Result<(Mesh, usize)> {
         self.refuse_for_cut("cut_vertices")?;
         let normals = self.vertex_normals();
         let mut cuts = Vec::new();
@@ -80,6 +85,11 @@ impl Mesh {
     /// the number of cuts made.
     pub fn cut_edges(&self, edges: &[usize], offset: f64) -> Result<(Mesh, usize)> {
         check_offset("cut_edges", offset)?;
+        // meshes near f64's ends are cut at unit size (offset is relative)
+        crate::geometry::scale_free_with(self, |m, _| m.cut_edges_unscaled(edges, offset))
+    }
+
+    fn cut_edges_unscaled(&self, edges: &[usize], offset: f64) -> Result<(Mesh, usize)> {
         self.refuse_for_cut("cut_edges")?;
         let fnorm = self.face_normals();
         let mut cuts = Vec::new();
@@ -116,6 +126,11 @@ impl Mesh {
     /// the mesh and the number of cuts made.
     pub fn cut_faces(&self, faces: &[usize], offset: f64) -> Result<(Mesh, usize)> {
         check_offset("cut_faces", offset)?;
+        // meshes near f64's ends are cut at unit size (offset is relative)
+        crate::geometry::scale_free_with(self, |m, _| m.cut_faces_unscaled(faces, offset))
+    }
+
+    fn cut_faces_unscaled(&self, faces: &[usize], offset: f64) -> Result<(Mesh, usize)> {
         self.refuse_for_cut("cut_faces")?;
         let fnorm = self.face_normals();
         let mut cuts = Vec::new();
