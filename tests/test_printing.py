@@ -148,6 +148,24 @@ def test_failed_stl_write_leaves_the_old_file(tmp_path, monkeypatch):
 # ------------------------------------------------------------------ 3MF
 
 
+def test_stl_refuses_coordinates_beyond_float32_and_keeps_the_old_file(tmp_path):
+    topomesh = T
+    # float32 turned 1e300 into inf: the file was written, then could not be read back
+    p = tmp_path / "big.stl"
+    topomesh.save(topomesh.cube(), p)
+    before = p.read_bytes()
+    c = topomesh.cube()
+    with pytest.raises(MeshError, match=r"beyond float32's range .* save it as \.ply"):
+        topomesh.save(c.with_vertices(c.vertices * 1e39), p)
+    assert p.read_bytes() == before
+    huge = c.with_vertices(c.vertices * 1e300)
+    for ext in (".ply", ".npz", ".obj", ".3mf"):  # the formats it points to keep them
+        q = tmp_path / f"big{ext}"
+        topomesh.save(huge, q)
+        got = topomesh.load(q).vertices
+        assert np.array_equal(np.unique(got, axis=0), np.unique(huge.vertices, axis=0)), ext  # 3MF: triangles, own order
+
+
 @pytest.mark.parametrize("name", list(SHAPES))
 def test_3mf_round_trip_and_peer(tmp_path, name):
     m = SHAPES[name]

@@ -307,6 +307,15 @@ def save(mesh: Mesh, path: PathLike) -> None:
         write3 = _threemf_exporter(name) if kind == ".3mf" else None
         verts, tris, (sides, pinched) = mesh._print_triangles()
         if kind == ".stl":
+            # checked before writing: float32 turns them into inf, a file no reader takes back
+            big = np.flatnonzero(np.abs(verts).max(axis=1, initial=0.0) > np.finfo(np.float32).max) if len(verts) else []
+            if len(big):
+                v = int(big[0])
+                raise MeshError(
+                    f"{name}: STL stores float32 coordinates, and vertex {v} at {tuple(float(x) for x in verts[v])} lies "
+                    f"beyond float32's range (±{float(np.finfo(np.float32).max):.4g}; {len(big)} such vertices); "
+                    "save it as .ply, .npz or .obj (float64), or scale the mesh down"
+                )
             _atomic_write(path, lambda tmp: _write_stl(tmp, verts, tris))
         else:
             _atomic_write(path, lambda tmp: _write_3mf(tmp, write3, verts, tris))
