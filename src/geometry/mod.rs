@@ -45,14 +45,27 @@ pub fn unit_newell<I: Iterator<Item = DVec3>>(n: DVec3, corners: impl Fn() -> I)
     scaled_unit_normal(corners)
 }
 
-/// Whether some coordinate of `corners` is past the range where Newell's
-/// products stay normal f64 (their magnitudes square).
+/// Whether a magnitude `m` is past the range where its square (a squared
+/// length, a cross product) stays a normal f64.
 #[inline]
-fn tiny_or_huge(corners: impl Iterator<Item = DVec3>) -> bool {
-    corners.into_iter().any(|p| {
-        let m = p.abs().max_element();
-        m > 1e150 || (m != 0.0 && m < 1e-150)
-    })
+pub fn squares_leave_f64(m: f64) -> bool {
+    m > 1e150 || (m != 0.0 && m < 1e-150)
+}
+
+/// Whether some coordinate of `corners` is past that range.
+#[inline]
+fn tiny_or_huge(mut corners: impl Iterator<Item = DVec3>) -> bool {
+    corners.any(|p| squares_leave_f64(p.abs().max_element()))
+}
+
+/// The smallest nonzero and the largest magnitude of the coordinates'
+/// largest components (`(inf, 0)` for none): one parallel pass.
+pub fn coordinate_range(pos: &[DVec3]) -> (f64, f64) {
+    use rayon::prelude::*;
+    pos.par_iter()
+        .map(|p| p.abs().max_element())
+        .fold(|| (f64::INFINITY, 0.0f64), |(lo, hi), m| (if m > 0.0 { lo.min(m) } else { lo }, hi.max(m)))
+        .reduce(|| (f64::INFINITY, 0.0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
 }
 
 /// Coordinates whose largest magnitude lies outside `[2^-200, 2^200]`:
@@ -61,8 +74,7 @@ fn tiny_or_huge(corners: impl Iterator<Item = DVec3>) -> bool {
 /// brings the largest magnitude into `[1, 2)`, `None` for ordinary
 /// coordinates (and for all-zero or non-finite ones).
 pub fn extreme_scale(pos: &[DVec3]) -> Option<f64> {
-    use rayon::prelude::*;
-    let top = pos.par_iter().map(|p| p.abs().max_element()).reduce(|| 0.0, f64::max);
+    let top = coordinate_range(pos).1;
     if top == 0.0 || !top.is_finite() || (2f64.powi(-200)..=2f64.powi(200)).contains(&top) {
         return None;
     }

@@ -71,8 +71,7 @@ pub(crate) fn finite_output(op: &str, input: &crate::Mesh, out: &crate::Mesh) ->
     use rayon::prelude::*;
     // overflow and underflow need coordinates far from 1: only then is the
     // output scanned (a pass over its positions is ~4 % of a fast operator)
-    let top = input.positions().par_iter().map(|p| p.abs().max_element()).reduce(|| 0.0, f64::max);
-    let low = input.positions().par_iter().map(|p| p.abs().max_element()).filter(|&m| m > 0.0).reduce(|| f64::INFINITY, f64::min);
+    let (low, top) = crate::geometry::coordinate_range(input.positions());
     if top <= 2f64.powi(100) && low >= 2f64.powi(-100) {
         return Ok(());
     }

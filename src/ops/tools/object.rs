@@ -155,7 +155,7 @@ impl Mesh {
         if nv == 0 {
             return Ok(());
         }
-        if let Some(s) = crate::geometry::extreme_scale(&self.pos) {
+        if crate::geometry::extreme_scale(&self.pos).is_some() {
             // coordinates at 1e±300: lengths and the mean overflow or
             // underflow; spherized at unit size (exact powers of two)
             if let Some(c) = center.filter(|c| !c.is_finite()) {
@@ -164,14 +164,12 @@ impl Mesh {
             if let Some(r) = radius.filter(|r| !(r.is_finite() && *r > 0.0)) {
                 return Err(MeshError::InvalidArgument(format!("spherize: radius = {r} must be finite and positive")));
             }
-            let mut m = self.clone();
-            m.pos.iter_mut().for_each(|p| *p /= s);
-            m.spherize(center.map(|c| c / s), radius.map(|r| r / s))?;
-            m.pos.iter_mut().for_each(|p| *p *= s);
-            if m.pos.iter().any(|p| !p.is_finite()) {
-                return Err(MeshError::Precondition("spherize: the sphere reaches beyond float64's range; scale the mesh down first".into()));
-            }
-            self.pos = m.pos;
+            let out = crate::geometry::scale_free(self, |m, s| {
+                let mut m = m.clone();
+                m.spherize(center.map(|c| c / s), radius.map(|r| r / s))?;
+                Ok(m)
+            })?;
+            self.pos = out.pos;
             return Ok(());
         }
         let c = center.unwrap_or_else(|| self.pos.iter().sum::<DVec3>() / nv as f64);

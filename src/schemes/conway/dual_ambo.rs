@@ -87,34 +87,28 @@ pub(super) fn centroids(c: &In<'_>) -> Result<Vec<DVec3>> {
         let e = (h >> 1) as usize;
         (pos_in[vert[2 * e] as usize] + pos_in[vert[2 * e + 1] as usize]) * 0.5
     };
-    let mut pos = Vec::with_capacity(c.nf + c.nv);
-    for f in 0..c.nf {
-        crate::cancel::poll(f)?;
-        let s = m.f_start[f];
+    // the mean of the midpoints round a cycle from `s` (a face by `next`,
+    // a vertex's rotation by `twin ∘ prev`), summed in cycle order
+    let ring_mean = |s: u32, step: &dyn Fn(u32) -> u32| {
         let (mut h, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
         loop {
             sum += mid(h);
             k += 1;
-            h = next[h as usize];
+            h = step(h);
             if h == s {
                 break;
             }
         }
-        pos.push(sum / k as f64);
+        sum / k as f64
+    };
+    let mut pos = Vec::with_capacity(c.nf + c.nv);
+    for f in 0..c.nf {
+        crate::cancel::poll(f)?;
+        pos.push(ring_mean(m.f_start[f], &|h| next[h as usize]));
     }
     for v in 0..c.nv {
         crate::cancel::poll(v)?;
-        let s = m.v_out[v];
-        let (mut g, mut sum, mut k) = (s, DVec3::ZERO, 0usize);
-        loop {
-            sum += mid(g);
-            k += 1;
-            g = prev[g as usize] ^ 1;
-            if g == s {
-                break;
-            }
-        }
-        pos.push(sum / k as f64);
+        pos.push(ring_mean(m.v_out[v], &|g| prev[g as usize] ^ 1));
     }
     Ok(pos)
 }

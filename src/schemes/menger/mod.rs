@@ -553,7 +553,7 @@ pub(crate) fn checked_build(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh
          the holes as faces would fill them, so open meshes are refused; close the holes with faces first",
     )?;
     if crate::geometry::extreme_scale(m.positions()).is_some() {
-        let top = m.positions().iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        let top = crate::geometry::coordinate_range(m.positions()).1;
         return Err(MeshError::Precondition(format!(
             "menger: coordinates reach {top:e}, outside [2^-200, 2^200] where the offsets' lengths and normals stay \
              within float64; scale the mesh first"

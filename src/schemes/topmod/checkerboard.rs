@@ -81,7 +81,7 @@ pub(crate) fn positions(i: &In<'_>, thickness: f64) -> Vec<glam::DVec3> {
             // the lengths: the same offset from the sides divided by their
             // largest coordinate (ordinary sides keep their bits)
             let k = pv.abs().max_element().max(nv.abs().max_element());
-            let off = if k > 1e150 || (k > 0.0 && k < 1e-150) {
+            let off = if crate::geometry::squares_leave_f64(k) {
                 inset_offset(pv / k, nv / k, n, thickness) * k
             } else {
                 inset_offset(pv, nv, n, thickness)
