@@ -28,10 +28,11 @@ unsafe impl GlobalAlloc for Huge {
     }
 }
 
-/// MADV_HUGEPAGE (14) on the 2 MiB-aligned interior of blocks of 4 MiB or more.
+/// MADV_HUGEPAGE (14) on the 2 MiB-aligned interior of blocks of 4 to 64
+/// MiB, the extension allocator's default bounds (`src/python/alloc.rs`).
 fn advise(p: *mut u8, size: usize) -> *mut u8 {
     const HP: usize = 2 << 20;
-    if !p.is_null() && size >= 4 << 20 && HUGE_ON.load(std::sync::atomic::Ordering::Relaxed) {
+    if !p.is_null() && (4 << 20..=64 << 20).contains(&size) && HUGE_ON.load(std::sync::atomic::Ordering::Relaxed) {
         let (start, end) = ((p as usize).next_multiple_of(HP), (p as usize + size) & !(HP - 1));
         if end > start {
             // SAFETY: advice on a block just allocated; contents unchanged.
