@@ -1,5 +1,6 @@
 //! One warm subdivision step at a chosen level on the 81,920-triangle
-//! icosphere (issue 19), for profilers and A/B runs, one thread:
+//! icosphere (issue 19; `TOPOMESH_PROF_INPUT=torus`: the 100k-quad torus),
+//! for profilers and A/B runs, one thread:
 //! `RAYON_NUM_THREADS=1 cargo run --release --example prof_levels -- catmull_clark 3 [REPS]`.
 //! Level L times one step on the output of L − 1 steps; `iter` as a 4th
 //! argument times `L` steps from the sphere instead (what `iterations=L` does),
@@ -18,9 +19,14 @@ fn main() {
     let iter = a.get(4).is_some_and(|s| s == "iter");
     let counts = a.get(4).is_some_and(|s| s == "counts");
     let step: fn(&Mesh) -> topomesh::Result<Mesh> = if scheme == "loop" { loop_subdivision } else { catmull_clark };
+    // TOPOMESH_PROF_INPUT=torus: the 400×250 torus (100k quads) instead
     let mut sphere = primitives::icosahedron();
-    for _ in 0..6 {
-        sphere = loop_subdivision(&sphere).unwrap();
+    if std::env::var("TOPOMESH_PROF_INPUT").is_ok_and(|s| s == "torus") {
+        sphere = primitives::torus(400, 250, 3.0, 1.0).unwrap();
+    } else {
+        for _ in 0..6 {
+            sphere = loop_subdivision(&sphere).unwrap();
+        }
     }
     let mut input = sphere.clone();
     if !iter {
