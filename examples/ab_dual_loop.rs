@@ -2,9 +2,9 @@
 //! against the one-pass build, alternating in one process (issue 16):
 //! `RAYON_NUM_THREADS=1 cargo run --release --example ab_dual_loop [N]`
 //! prints the best and median of N calls each (ms, M output faces/s).
-//! Large blocks are advised huge pages as the Python extension's allocator
-//! does (`src/python/alloc.rs`), so page faults weigh as they do there;
-//! `TOPOMESH_HUGE_PAGES=0` turns that off.
+//! `TOPOMESH_HUGE_PAGES=1` advises blocks of 4–64 MiB to use huge pages, as
+//! the Python extension's allocator then does (`src/python/alloc.rs`; off
+//! by default there and here).
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::time::Instant;
 use topomesh::schemes::{dual::dual, loop_subdivision::loop_subdivision, topmod::compose};
@@ -14,7 +14,7 @@ struct Huge;
 extern "C" {
     fn madvise(addr: *mut u8, len: usize, advice: i32) -> i32;
 }
-static HUGE_ON: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+static HUGE_ON: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 unsafe impl GlobalAlloc for Huge {
     unsafe fn alloc(&self, l: Layout) -> *mut u8 {
@@ -29,7 +29,7 @@ unsafe impl GlobalAlloc for Huge {
 }
 
 /// MADV_HUGEPAGE (14) on the 2 MiB-aligned interior of blocks of 4 to 64
-/// MiB, the extension allocator's default bounds (`src/python/alloc.rs`).
+/// MiB, the extension allocator's bounds (`src/python/alloc.rs`).
 fn advise(p: *mut u8, size: usize) -> *mut u8 {
     const HP: usize = 2 << 20;
     if !p.is_null() && (4 << 20..=64 << 20).contains(&size) && HUGE_ON.load(std::sync::atomic::Ordering::Relaxed) {
@@ -46,8 +46,8 @@ fn advise(p: *mut u8, size: usize) -> *mut u8 {
 static GLOBAL: Huge = Huge;
 
 fn main() {
-    if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| v == "0") {
-        HUGE_ON.store(false, std::sync::atomic::Ordering::Relaxed);
+    if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| !matches!(v.trim(), "" | "0")) {
+        HUGE_ON.store(true, std::sync::atomic::Ordering::Relaxed);
     }
     let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
     let t = primitives::torus(400, 250, 3.0, 1.0).unwrap();

@@ -1,6 +1,6 @@
-//! The extension module's global allocator: the system allocator, with
-//! transparent huge pages asked for on large blocks, plus an opt-in cache of
-//! large freed blocks.
+//! The extension module's global allocator: the system allocator, with an
+//! opt-in huge-page advice on large blocks and an opt-in cache of large
+//! freed blocks.
 //!
 //! Every scheme and every construction allocates its output columns and
 //! temporaries fresh. glibc serves blocks above its mmap threshold with a
@@ -8,18 +8,20 @@
 //! page fault per 4 KiB page it touches: half the time of a Loop step on an
 //! 82k-triangle sphere, measured.
 //!
-//! * **Huge pages**: blocks of [`HUGE_MIN`] to [`HUGE_MAX`] bytes are
-//!   advised `MADV_HUGEPAGE`, so the kernel (where transparent huge pages are
-//!   in `madvise` or `always` mode) maps their 2 MiB-aligned interior with 2
+//! * **Huge pages** (off by default): with `TOPOMESH_HUGE_PAGES=1` in the
+//!   environment, blocks of [`HUGE_MIN`] to [`HUGE_MAX`] bytes are advised
+//!   `MADV_HUGEPAGE`, so the kernel (where transparent huge pages are in
+//!   `madvise` or `always` mode) maps their 2 MiB-aligned interior with 2
 //!   MiB pages: one fault instead of 512, and nothing kept resident after a
-//!   call. Larger blocks are not advised: on the VMs measured (issue 19,
-//!   `benches/README.md`), the first call in a process of a level whose
-//!   blocks reach 100–400 MiB (Catmull-Clark level 3 on a 100k-quad torus)
-//!   took 1.7–6.4 s with them advised against 1.1–1.5 s without, while the
-//!   warm level-1 and level-2 calls, whose blocks stay under 64 MiB, keep
-//!   the advice's gain. `TOPOMESH_HUGE_PAGES=0` in the environment turns
-//!   the advice off, `TOPOMESH_HUGE_PAGES_MAX` (bytes, or a size such as
-//!   `1G`) moves the upper bound.
+//!   call. It is off because on the VMs measured (issue 19,
+//!   `benches/README.md`, "The advice off by default") the advice made the
+//!   first large call in a process 2–5× slower (midpoint, Loop and
+//!   Catmull-Clark level 3 on the 82k-triangle sphere: 0.8–3.6 s against
+//!   0.6–1.0 s), the kernel stalling to find 2 MiB pages, while warm level-1
+//!   and level-2 calls showed no gain beyond the noise; a repeated large
+//!   call gains up to 1.5×. Advising every block above 64 MiB too had
+//!   been worse still (first calls up to 6.4 s). `TOPOMESH_HUGE_PAGES_MAX`
+//!   (bytes, or a size such as `1G`) moves the upper bound.
 //! * **Block cache** (off by default): keeps up to a set number of bytes of
 //!   large freed blocks for the next request of a similar size, which also
 //!   saves the zeroing of fresh pages when operations repeat (iterations,
@@ -66,11 +68,11 @@ pub(crate) struct BlockCache {
 static GLOBAL: BlockCache =
     BlockCache { cache: Mutex::new(Cache { blocks: [(0, 0); SLOTS], total: 0 }), limit: AtomicUsize::new(0) };
 
-/// Whether large blocks get the huge-page advice (`TOPOMESH_HUGE_PAGES=0`
-/// turns it off, for comparisons).
-static HUGE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+/// Whether large blocks get the huge-page advice (`TOPOMESH_HUGE_PAGES=1`
+/// turns it on; module docs).
+static HUGE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
-/// Largest block advised by default (module docs).
+/// Largest block advised when the advice is on (module docs).
 const HUGE_MAX: usize = 64 << 20;
 
 /// Largest block advised now (`TOPOMESH_HUGE_PAGES_MAX`, bytes).

@@ -6,11 +6,9 @@ use pyo3::prelude::*;
 /// Sets how many bytes of large freed blocks topomesh's allocator may keep
 /// for reuse (the block cache; off by default).
 ///
-/// Large blocks are always asked to use transparent huge pages, which
-/// removes most page faults of a first call. The cache only helps calls
-/// that repeat the same sizes (warm benchmarks, iterations over one mesh):
-/// it saves zeroing fresh pages, at the price of keeping up to ``nbytes``
-/// resident between calls. The environment variable
+/// The cache only helps calls that repeat the same sizes (warm benchmarks,
+/// iterations over one mesh): it saves zeroing fresh pages, at the price of
+/// keeping up to ``nbytes`` resident between calls. The environment variable
 /// ``TOPOMESH_BLOCK_CACHE`` (bytes or a size such as ``"256M"``) sets it
 /// when the module loads.
 ///
@@ -44,8 +42,9 @@ fn block_cache() -> (usize, usize) {
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| v.trim() == "0") {
-        super::alloc::set_huge_pages(false);
+    // opt-in (src/python/alloc.rs); "0" was the spelling for off when the advice was on by default
+    if let Ok(v) = std::env::var("TOPOMESH_HUGE_PAGES") {
+        super::alloc::set_huge_pages(!matches!(v.trim(), "" | "0"));
     }
     if let Some(b) = std::env::var("TOPOMESH_HUGE_PAGES_MAX").ok().and_then(|s| crate::budget::parse_size(&s)) {
         super::alloc::set_huge_pages_max(b as usize);
