@@ -1,4 +1,5 @@
-//! `dual(kis(m))` (zip, and the last two steps of truncate and bevel)
+//! `dual(kis(m))` (zip, and the last two steps of bevel; truncate's one
+//! pass, `truncate.rs`, runs the same walk over the dual it never builds)
 //! without building kis's output (issue 16: kis's 2E triangles were built
 //! only to be walked by the dual, half of zip's time).
 //!

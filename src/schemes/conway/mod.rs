@@ -73,6 +73,7 @@ mod ortho;
 pub mod seeds;
 #[cfg(test)]
 mod tests;
+mod truncate;
 
 pub use ambo::{ambo, quinto, subdivide};
 pub use chiral::{gyro, propellor, whirl};
@@ -197,7 +198,7 @@ impl Op {
         match self {
             Dual => dual(m),
             Ambo => ambo(m),
-            Truncate(None) => dual_kis::dual_kis(&dual(m)?),
+            Truncate(None) => truncate::truncate(m),
             Truncate(n) => dual(&kis(&dual(m)?, n)?),
             Kis(n) => kis(m, n),
             Join => dual_ambo::join(m),
