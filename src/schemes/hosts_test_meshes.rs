@@ -457,3 +457,18 @@ fn open_levels_keep_point_spheres() {
 pub fn full_request() -> crate::schemes::level::Request<'static> {
     crate::schemes::level::Request { stencils: true, origins: true, ..Default::default() }
 }
+
+/// Every column of the two meshes equal, and the positions bit for bit (so
+/// -0.0 is not 0.0 and one ulp counts): what the fused builds' tests
+/// compare with their compositions.
+pub fn same_bits(a: &Mesh, b: &Mesh) -> bool {
+    let bits = |m: &Mesh| m.pos.iter().flat_map(|p| p.to_array()).map(f64::to_bits).collect::<Vec<_>>();
+    bits(a) == bits(b)
+        && a.v_out == b.v_out
+        && a.he_next == b.he_next
+        && a.he_prev == b.he_prev
+        && a.he_vert == b.he_vert
+        && a.he_face == b.he_face
+        && a.f_start == b.f_start
+        && a.f_hole == b.f_hole
+}

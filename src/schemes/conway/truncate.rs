@@ -182,21 +182,7 @@ pub(crate) fn truncate(m: &Mesh) -> Result<Mesh> {
 mod tests {
     use super::*;
     use crate::schemes::face_parents::traced;
-    use crate::schemes::hosts::test_meshes::*;
-
-    /// Every column, and the positions' bits (so -0.0 is not 0.0 and one
-    /// ulp counts).
-    fn same(a: &Mesh, b: &Mesh) -> bool {
-        let bits = |m: &Mesh| m.pos.iter().flat_map(|p| p.to_array()).map(f64::to_bits).collect::<Vec<_>>();
-        bits(a) == bits(b)
-            && a.v_out == b.v_out
-            && a.he_next == b.he_next
-            && a.he_prev == b.he_prev
-            && a.he_vert == b.he_vert
-            && a.he_face == b.he_face
-            && a.f_start == b.f_start
-            && a.f_hole == b.f_hole
-    }
+    use crate::schemes::hosts::test_meshes::{same_bits as same, *};
 
     fn composed(m: &Mesh) -> Result<Mesh> {
         dual_kis(&dual(m)?)

@@ -468,20 +468,7 @@ fn put_edge_face(walk: &mut DualWalk, w: usize, h: usize, t: usize, nh: usize, f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schemes::hosts::test_meshes::{one_gon_two_gon_cube, open_meshes};
-
-    /// Every column, positions bit for bit.
-    fn same(a: &Mesh, b: &Mesh) -> bool {
-        let bits = |m: &Mesh| m.pos.iter().flat_map(|p| p.to_array()).map(f64::to_bits).collect::<Vec<_>>();
-        bits(a) == bits(b)
-            && a.v_out == b.v_out
-            && a.he_next == b.he_next
-            && a.he_prev == b.he_prev
-            && a.he_vert == b.he_vert
-            && a.he_face == b.he_face
-            && a.f_start == b.f_start
-            && a.f_hole == b.f_hole
-    }
+    use crate::schemes::hosts::test_meshes::{one_gon_two_gon_cube, open_meshes, same_bits as same};
 
     /// The one-pass build is the composition: the same columns and bits or
     /// the same error, on the corpus (non-convex faces, self-loops,
