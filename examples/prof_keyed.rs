@@ -2,28 +2,12 @@
 //! torus, best of N, plus an FNV hash of every output (positions, faces,
 //! corner twins) to compare builds before and after a builder change:
 //! `RAYON_NUM_THREADS=1 cargo run --release --example prof_keyed [N]`.
+mod common;
+
+use common::hash;
 use std::time::Instant;
 use topomesh::schemes::{conway, topmod};
 use topomesh::{primitives, Mesh, Result};
-
-fn hash(m: &Mesh) -> u64 {
-    let mut h = 0xcbf29ce484222325u64;
-    let mut eat = |x: u64| {
-        for b in x.to_le_bytes() {
-            h = (h ^ b as u64).wrapping_mul(0x100000001b3);
-        }
-    };
-    for p in m.positions() {
-        eat(p.x.to_bits());
-        eat(p.y.to_bits());
-        eat(p.z.to_bits());
-    }
-    let p = m.to_polygons();
-    p.sizes.iter().for_each(|&s| eat(s as u64));
-    p.indices.iter().for_each(|&s| eat(s as u64));
-    m.corner_twins().iter().for_each(|&s| eat(s as u64));
-    h
-}
 
 fn main() {
     let reps: usize = std::env::args().nth(1).map_or(5, |s| s.parse().unwrap());
