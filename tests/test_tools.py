@@ -1,6 +1,8 @@
 """TopMod tools of issue 16: object tools, wireframe, multi-face handle,
 rind by scaling, pinch, conical cuts and convex hulls."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -118,6 +120,25 @@ def test_wireframe_errors_and_input_untouched():
     with pytest.raises(MeshError, match="width"):
         m.wireframe(0.1, width=-1.0)
     assert np.array_equal(m.vertices, before)
+
+
+def test_wireframe_tools_check_crossings_keyword():
+    # the crossing report warns by default; check_crossings=False skips it and
+    # changes nothing else (the report is most of the call on large inputs)
+    cube, torus = topomesh.cube(), topomesh.torus(6, 4)
+    for run, n_pairs in [
+        (lambda **kw: cube.wireframe(1.5, **kw), 732),  # tubes deeper than the cube is wide
+        (lambda **kw: torus.wireframe_columns(0.05, 4, **kw), 36),  # joints at the torus' vertices
+    ]:
+        with pytest.warns(topomesh.GeometryWarning, match=f" {n_pairs} crossing triangle pairs"):
+            a = run()
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            b = run(check_crossings=False)
+        assert len(b.self_intersections()) == n_pairs
+        assert np.array_equal(a.vertices, b.vertices)
+        assert np.array_equal(a.face_indices, b.face_indices)
+        assert np.array_equal(a.face_sizes, b.face_sizes)
 
 
 def test_object_tools_counts():

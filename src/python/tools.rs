@@ -151,6 +151,22 @@ impl PyMesh {
     /// V' = 4E, E' = 10E, F' = 2V + 4E; a connected closed mesh of genus g
     /// gives genus E − V + 1 = 2g + F − 1.
     ///
+    /// Parameters
+    /// ----------
+    /// thickness : float
+    ///     Depth of the tubes (> 0).
+    /// width : float or None, default None
+    ///     Width of the strips inside each face (> 0); None uses the
+    ///     thickness.
+    /// check_crossings : bool, default True
+    ///     Test the output for self-crossings and warn when there are any.
+    ///     The test is exact and linear in the output, but it is most of the
+    ///     call (on a 100k-quad torus, one thread: 2.1 s with it, 0.12 s
+    ///     without; `benches/CATALOG.md`). False skips it, for inputs and
+    ///     parameters already known to give a
+    ///     crossing-free result (:meth:`self_intersections` and
+    ///     :func:`topomesh.printing.printable` test it when asked).
+    ///
     /// Raises
     /// ------
     /// MeshError
@@ -159,16 +175,19 @@ impl PyMesh {
     /// Warns
     /// -----
     /// GeometryWarning
-    ///     When the tubes cross each other (strips too wide for the faces).
-    #[pyo3(signature = (thickness, width = None))]
-    fn wireframe(&self, py: Python<'_>, thickness: f64, width: Option<f64>) -> PyResult<PyMesh> {
+    ///     When the tubes cross each other (strips too wide for the faces),
+    ///     unless ``check_crossings`` is False.
+    #[pyo3(signature = (thickness, width = None, check_crossings = true))]
+    fn wireframe(&self, py: Python<'_>, thickness: f64, width: Option<f64>, check_crossings: bool) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "wireframe")?;
         super::finite_in("wireframe", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
         if let Some(w) = width {
             super::finite_in("wireframe", "width", w, f64::MIN_POSITIVE, MAX_LENGTH)?;
         }
         let m = py.detach(|| self.inner.wireframe(thickness, width)).map_err(err)?;
-        super::ops::warn_new_crossings(py, "wireframe", &Mesh::new(), &m)?;
+        if check_crossings {
+            super::ops::warn_new_crossings(py, "wireframe", &Mesh::new(), &m)?;
+        }
         Ok(PyMesh::wrap(m))
     }
 
@@ -250,6 +269,10 @@ impl PyMesh {
     ///     The columns' radius (> 0; TopMod's UI: (0, 1]).
     /// segments : int, default 4
     ///     Sides of each column, in [3, 100] (TopMod's UI: [4, 100]).
+    /// check_crossings : bool, default True
+    ///     Test the output for self-crossings and warn when there are any;
+    ///     False skips the test, most of the call on large inputs (see
+    ///     :meth:`wireframe`).
     ///
     /// Returns
     /// -------
@@ -265,9 +288,10 @@ impl PyMesh {
     /// Warns
     /// -----
     /// GeometryWarning
-    ///     When the columns or joints cross each other.
-    #[pyo3(signature = (thickness = 0.25, segments = 4))]
-    fn wireframe_columns(&self, py: Python<'_>, thickness: f64, #[pyo3(from_py_with = super::big_int)] segments: i128) -> PyResult<PyMesh> {
+    ///     When the columns or joints cross each other, unless
+    ///     ``check_crossings`` is False.
+    #[pyo3(signature = (thickness = 0.25, segments = 4, check_crossings = true))]
+    fn wireframe_columns(&self, py: Python<'_>, thickness: f64, #[pyo3(from_py_with = super::big_int)] segments: i128, check_crossings: bool) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "wireframe_columns")?;
         super::finite_in("wireframe_columns", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
         let n = super::usize_in("wireframe_columns", "segments", segments, 3, 100)?;
@@ -275,7 +299,9 @@ impl PyMesh {
         let need = crate::budget::level_bytes(&Counts::of(&self.inner), &out);
         py.detach(|| crate::budget::check("wireframe_columns", "the output", need)).map_err(err)?;
         let m = py.detach(|| self.inner.wireframe_columns(thickness, n)).map_err(err)?;
-        super::ops::warn_new_crossings(py, "wireframe_columns", &Mesh::new(), &m)?;
+        if check_crossings {
+            super::ops::warn_new_crossings(py, "wireframe_columns", &Mesh::new(), &m)?;
+        }
         Ok(PyMesh::wrap(m))
     }
 
