@@ -84,14 +84,10 @@ const PARALLEL_FROM: usize = 8;
 /// [`step_parallel`] and of `from_corner_twins` (edges by first corner, a
 /// centroid's first corner as its `v_out`); tests compare the two.
 fn step_one_pass(m: &Mesh) -> Result<Mesh> {
-    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
-    let (next, _, face) = m.halfedge_columns();
+    let (nv, ne, nh) = (m.n_vertices(), m.n_edges(), m.n_halfedges());
+    let face = &m.he_face;
     let prev = &m.he_prev;
-    let mut pos = Vec::with_capacity(nf);
-    for f in 0..nf {
-        crate::cancel::poll(f)?;
-        pos.push(face_centroid(m, next, f));
-    }
+    let pos = centroids(m)?;
     // keys: the input's edges
     let mut walk = DualWalk::new(pos, nh, nv, ne);
     for v in 0..nv {
@@ -110,6 +106,19 @@ fn step_one_pass(m: &Mesh) -> Result<Mesh> {
         walk.close(v, last);
     }
     Mesh::from_columns(walk.finish()?)
+}
+
+/// [`face_centroid`] of every face in face order: the dual's positions,
+/// which the fused builds that start with a dual (`compose::dual_dual`,
+/// `dual_loop`, `conway::truncate`) read without building it.
+pub(crate) fn centroids(m: &Mesh) -> Result<Vec<DVec3>> {
+    let next = &m.he_next;
+    let mut pos = Vec::with_capacity(m.n_faces());
+    for f in 0..m.n_faces() {
+        crate::cancel::poll(f)?;
+        pos.push(face_centroid(m, next, f));
+    }
+    Ok(pos)
 }
 
 /// Corner mean of face `f`, summed from its first corner (the same bits as

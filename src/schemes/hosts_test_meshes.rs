@@ -472,3 +472,43 @@ pub fn same_bits(a: &Mesh, b: &Mesh) -> bool {
         && a.f_start == b.f_start
         && a.f_hole == b.f_hole
 }
+
+/// A 9×7 torus with every vertex moved off its grid (non-planar quads).
+pub fn jittered_torus() -> Mesh {
+    let mut t = crate::primitives::torus(9, 7, 2.0, 0.7).unwrap();
+    for (i, p) in t.pos.iter_mut().enumerate() {
+        *p += glam::DVec3::new((i as f64 * 1.7).sin(), (i as f64 * 2.3).cos(), (i as f64 * 0.9).sin()) * 0.05;
+    }
+    t
+}
+
+/// A fused build against the composition it replaces, on `m`: the same
+/// mesh ([`same_bits`], and one ulp of difference is seen) or the same
+/// error, untraced and traced (face parents too). Returns whether the
+/// fused build's own pass gave the mesh (closed, no point-spheres).
+pub fn check_fused(name: &str, m: &Mesh, fused: &dyn Fn(&Mesh) -> crate::error::Result<Mesh>, composed: &dyn Fn(&Mesh) -> crate::error::Result<Mesh>) -> bool {
+    use crate::schemes::face_parents::traced;
+    let mut one_pass = false;
+    match (fused(m), composed(m)) {
+        (Ok(a), Ok(b)) => {
+            a.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(same_bits(&a, &b), "{name}: the fused build differs from the composition");
+            let mut c = a.clone();
+            let i = c.pos.len() / 2;
+            c.pos[i].y = f64::from_bits(c.pos[i].y.to_bits() ^ 1);
+            assert!(!same_bits(&c, &b), "{name}: one ulp unseen");
+            one_pass = m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0);
+        }
+        (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+        (a, b) => panic!("{name}: fused {:?}, composition {:?}", a.err(), b.err()),
+    }
+    match (traced(m, || fused(m)), traced(m, || composed(m))) {
+        (Ok((a, pa)), Ok((b, pb))) => {
+            assert!(same_bits(&a, &b), "{name}: traced, the builds differ");
+            assert_eq!(pa, pb, "{name}: face parents");
+        }
+        (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+        (a, b) => panic!("{name}: traced, fused {:?}, composition {:?}", a.err(), b.err()),
+    }
+    one_pass
+}

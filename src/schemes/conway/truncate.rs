@@ -41,7 +41,7 @@ use super::dual_kis::{dual_kis, vertex_ring};
 use crate::budget::Counts;
 use crate::error::Result;
 use crate::mesh::{Mesh, NONE, POINT};
-use crate::schemes::dual::{dual, face_centroid};
+use crate::schemes::dual::{centroids, dual};
 use crate::schemes::dual_walk::DualWalk;
 use crate::schemes::face_parents::{self as fp, Step, VERT};
 use crate::schemes::hosts::check_output_size;
@@ -90,11 +90,7 @@ pub(crate) fn truncate(m: &Mesh) -> Result<Mesh> {
     reserve_from("kis", &dc, nf + nv, ne + nh, nh)?;
     check_output_size("dual", 2 * (ne + nh), nh)?;
     // D's positions, as the dual sums them
-    let mut dp = Vec::with_capacity(nf);
-    for f in 0..nf {
-        crate::cancel::poll(f)?;
-        dp.push(face_centroid(m, next, f));
-    }
+    let dp = centroids(m)?;
     // per face v of D: its ring of centroids (corner order), its centroid
     // and kis's apex over it, then the triangle centroids in corner order
     // (`dual_kis`: tail, head, apex, from zero); and the first kis corner
@@ -181,8 +177,7 @@ pub(crate) fn truncate(m: &Mesh) -> Result<Mesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schemes::face_parents::traced;
-    use crate::schemes::hosts::test_meshes::{same_bits as same, *};
+    use crate::schemes::hosts::test_meshes::*;
 
     fn composed(m: &Mesh) -> Result<Mesh> {
         dual_kis(&dual(m)?)
@@ -199,40 +194,11 @@ mod tests {
         ms.push(("one_gon_two_gon", one_gon_two_gon_cube()));
         ms.push(("sierpinski_cube", crate::schemes::sierpinski::sierpinski_iterated(&crate::primitives::cube(), 2).unwrap()));
         ms.push(("loop_cube", crate::schemes::loop_subdivision::loop_subdivision(&crate::primitives::cube()).unwrap()));
-        let mut jt = crate::primitives::torus(9, 7, 2.0, 0.7).unwrap();
-        for (i, p) in jt.pos.iter_mut().enumerate() {
-            *p += DVec3::new((i as f64 * 1.7).sin(), (i as f64 * 2.3).cos(), (i as f64 * 0.9).sin()) * 0.05;
-        }
-        ms.push(("jittered_torus", jt));
+        ms.push(("jittered_torus", jittered_torus()));
         ms.push(("genus2", crate::primitives::genus_surface(2).unwrap()));
         ms.push(("genus3", crate::primitives::genus_surface(3).unwrap()));
         ms.extend(open_meshes());
-        let mut fused_runs = 0;
-        for (name, m) in &ms {
-            match (truncate(m), composed(m)) {
-                (Ok(a), Ok(b)) => {
-                    a.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
-                    assert!(same(&a, &b), "{name}: the fused build differs from the composition");
-                    let mut c = a.clone();
-                    let i = c.pos.len() / 2;
-                    c.pos[i].y = f64::from_bits(c.pos[i].y.to_bits() ^ 1);
-                    assert!(!same(&c, &b), "{name}: one ulp unseen");
-                    if m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & POINT != 0) {
-                        fused_runs += 1;
-                    }
-                }
-                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
-                (a, b) => panic!("{name}: fused {:?}, composition {:?}", a.err(), b.err()),
-            }
-            match (traced(m, || truncate(m)), traced(m, || composed(m))) {
-                (Ok((a, pa)), Ok((b, pb))) => {
-                    assert!(same(&a, &b), "{name}: traced, the builds differ");
-                    assert_eq!(pa, pb, "{name}: face parents");
-                }
-                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
-                (a, b) => panic!("{name}: traced, fused {:?}, composition {:?}", a.err(), b.err()),
-            }
-        }
+        let fused_runs = ms.iter().filter(|(name, m)| check_fused(name, m, &truncate, &composed)).count();
         assert!(fused_runs >= 12, "one pass on {fused_runs} meshes");
     }
 }

@@ -52,7 +52,6 @@ pub fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
 /// point-spheres it is the two duals.
 pub(super) fn dual_dual(p: &Mesh) -> Result<Mesh> {
     use crate::mesh::{NONE, POINT};
-    use crate::schemes::dual::face_centroid;
     use glam::DVec3;
     if p.n_holes() > 0 || p.v_out.iter().any(|&o| o & POINT != 0) {
         return dual(&dual(p)?);
@@ -61,11 +60,7 @@ pub(super) fn dual_dual(p: &Mesh) -> Result<Mesh> {
     crate::schemes::hosts::check_output_size("dual", nh, nf)?;
     crate::schemes::hosts::check_output_size("dual", nh, nv)?;
     let (next, vert, face) = p.halfedge_columns();
-    let mut cen = Vec::with_capacity(nf);
-    for f in 0..nf {
-        crate::cancel::poll(f)?;
-        cen.push(face_centroid(p, next, f));
-    }
+    let cen = crate::schemes::dual::centroids(p)?;
     // the dual's faces: positions, and the corner c0[f] of each centroid's
     // first appearance
     let mut pos = Vec::with_capacity(nv);

@@ -92,7 +92,6 @@ fn face_loc(p: usize) -> (u32, u32) {
 /// edge points are held per edge of m (the sides) and per corner g of a
 /// fanned face (the spoke from head g).
 fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
-    use crate::schemes::dual::face_centroid;
     let (nfd, ned, nvd, nhd) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     check_output_size("dual", nhd, nvd)?;
     let (next, vert, face) = m.halfedge_columns();
@@ -130,11 +129,7 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
     let corners = |v: usize| &fh[off[v] as usize..off[v + 1] as usize];
     // D's positions (the centroids of m's faces, as the dual sums them),
     // and per corner g: its head (a vertex of D), its edge (one of m's)
-    let mut dp = Vec::with_capacity(nvd);
-    for f in 0..nvd {
-        crate::cancel::poll(f)?;
-        dp.push(face_centroid(m, next, f));
-    }
+    let dp = crate::schemes::dual::centroids(m)?;
     let head = |g: usize| face[(prev[g] ^ 1) as usize] as usize;
     let edge = |g: usize| (prev[g] >> 1) as usize;
     check_output_size("loop", 3 * nhd, nvd + nfd)?;
@@ -468,7 +463,7 @@ fn put_edge_face(walk: &mut DualWalk, w: usize, h: usize, t: usize, nh: usize, f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::schemes::hosts::test_meshes::{one_gon_two_gon_cube, open_meshes, same_bits as same};
+    use crate::schemes::hosts::test_meshes::{check_fused, jittered_torus, one_gon_two_gon_cube, open_meshes, same_bits as same};
 
     /// The one-pass build is the composition: the same columns and bits or
     /// the same error, on the corpus (non-convex faces, self-loops,
@@ -480,15 +475,10 @@ mod tests {
     /// not see the one pass: this test does).
     #[test]
     fn dual_loop_is_its_composition() {
-        use crate::schemes::face_parents::traced;
         let mut ms = super::super::tests::meshes();
         ms.push(("one_gon_two_gon", one_gon_two_gon_cube()));
         ms.push(("loop_cube", l::loop_subdivision(&crate::primitives::cube()).unwrap()));
-        let mut jt = crate::primitives::torus(9, 7, 2.0, 0.7).unwrap();
-        for (i, p) in jt.pos.iter_mut().enumerate() {
-            *p += DVec3::new((i as f64 * 1.7).sin(), (i as f64 * 2.3).cos(), (i as f64 * 0.9).sin()) * 0.05;
-        }
-        ms.push(("jittered_torus", jt));
+        ms.push(("jittered_torus", jittered_torus()));
         ms.push(("torus_40x25", crate::primitives::torus(40, 25, 3.0, 1.0).unwrap()));
         ms.push(("genus2", crate::primitives::genus_surface(2).unwrap()));
         ms.extend(open_meshes());
@@ -496,27 +486,11 @@ mod tests {
         // with kept triangles (input vertices of valence 3 and others)
         let (mut fused_runs, mut tri_only, mut mixed) = (0, 0, 0);
         for (name, m) in &ms {
-            match (dual_loop(m), composed(m)) {
-                (Ok(a), Ok(b)) => {
-                    a.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
-                    assert!(same(&a, &b), "{name}: the fused build differs from the composition");
-                    if m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & POINT != 0) {
-                        fused_runs += 1;
-                        let vh = m.valence_histogram();
-                        tri_only += (vh.keys().all(|&k| k == 3)) as usize;
-                        mixed += (vh.contains_key(&3) && vh.keys().any(|&k| k != 3)) as usize;
-                    }
-                }
-                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
-                (a, b) => panic!("{name}: fused {:?}, composition {:?}", a.err(), b.err()),
-            }
-            match (traced(m, || dual_loop(m)), traced(m, || composed(m))) {
-                (Ok((a, pa)), Ok((b, pb))) => {
-                    assert!(same(&a, &b), "{name}: traced, the builds differ");
-                    assert_eq!(pa, pb, "{name}: face parents");
-                }
-                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
-                (a, b) => panic!("{name}: traced, fused {:?}, composition {:?}", a.err(), b.err()),
+            if check_fused(name, m, &dual_loop, &composed) {
+                fused_runs += 1;
+                let vh = m.valence_histogram();
+                tri_only += (vh.keys().all(|&k| k == 3)) as usize;
+                mixed += (vh.contains_key(&3) && vh.keys().any(|&k| k != 3)) as usize;
             }
         }
         assert!(fused_runs >= 12 && tri_only >= 2 && mixed >= 2, "one pass: {fused_runs} meshes, {tri_only} with triangle duals, {mixed} mixed");
