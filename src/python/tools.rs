@@ -163,9 +163,9 @@ impl PyMesh {
     ///     The test is exact and linear in the output, but it is most of the
     ///     call (on a 100k-quad torus, one thread: 2.1 s with it, 0.12 s
     ///     without; `benches/CATALOG.md`). False skips it, for inputs and
-    ///     parameters already known to give a
-    ///     crossing-free result (:meth:`self_intersections` and
-    ///     :func:`topomesh.printing.printable` test it when asked).
+    ///     parameters already known to give a crossing-free result
+    ///     (:meth:`self_intersections` and :func:`topomesh.printing.printable`
+    ///     test it when asked).
     ///
     /// Raises
     /// ------
