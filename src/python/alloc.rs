@@ -86,6 +86,11 @@ pub(crate) fn set_huge_pages(on: bool) {
     HUGE.store(on, Ordering::Relaxed);
 }
 
+/// Whether the advice is on, and the largest block it covers.
+pub(crate) fn huge_pages() -> (bool, usize) {
+    (HUGE.load(Ordering::Relaxed), HUGE_MAX_NOW.load(Ordering::Relaxed))
+}
+
 /// Sets the block cache limit in bytes (0 turns it off and frees what it
 /// holds); returns the previous limit.
 pub(crate) fn set_block_cache(bytes: usize) -> usize {

@@ -41,13 +41,29 @@ fn block_cache() -> (usize, usize) {
     super::alloc::block_cache()
 }
 
+/// The allocator's huge-page advice as the environment set it at import:
+/// ``(on, largest advised block in bytes)`` (tests; `src/python/alloc.rs`).
+#[pyfunction]
+fn _huge_page_advice() -> (bool, usize) {
+    super::alloc::huge_pages()
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    // opt-in (src/python/alloc.rs); "0" was the spelling for off when the advice was on by default
+    // opt-in (src/python/alloc.rs); "0" was the spelling for off when the
+    // advice was on by default, and still is
     if let Ok(v) = std::env::var("TOPOMESH_HUGE_PAGES") {
-        super::alloc::set_huge_pages(!matches!(v.trim(), "" | "0"));
+        let on = match v.trim().to_ascii_lowercase().as_str() {
+            "1" | "true" | "yes" | "on" => true,
+            "" | "0" | "false" | "no" | "off" => false,
+            _ => return Err(arg_err(format!("TOPOMESH_HUGE_PAGES = {v:?} must be 1 (advise huge pages) or 0 (the default)"))),
+        };
+        super::alloc::set_huge_pages(on);
     }
-    if let Some(b) = std::env::var("TOPOMESH_HUGE_PAGES_MAX").ok().and_then(|s| crate::budget::parse_size(&s)) {
-        super::alloc::set_huge_pages_max(b as usize);
+    if let Ok(s) = std::env::var("TOPOMESH_HUGE_PAGES_MAX") {
+        let b = crate::budget::parse_size(&s).ok_or_else(|| {
+            arg_err(format!("TOPOMESH_HUGE_PAGES_MAX = {s:?} must be a size in bytes, such as 67108864 or 64M"))
+        })?;
+        super::alloc::set_huge_pages_max(usize::try_from(b).unwrap_or(usize::MAX));
     }
     if let Ok(s) = std::env::var("TOPOMESH_BLOCK_CACHE") {
         let b = crate::budget::parse_size(&s).ok_or_else(|| {
@@ -57,5 +73,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     }
     m.add_function(wrap_pyfunction!(set_block_cache, m)?)?;
     m.add_function(wrap_pyfunction!(block_cache, m)?)?;
+    m.add_function(wrap_pyfunction!(_huge_page_advice, m)?)?;
     Ok(())
 }
