@@ -43,11 +43,17 @@ fn advise(p: *mut u8, size: usize) -> *mut u8 {
     p
 }
 
-/// Reads `TOPOMESH_HUGE_PAGES` as the extension does (anything but empty or
-/// "0" turns the advice on).
+/// Reads `TOPOMESH_HUGE_PAGES` as the extension does (`src/python/perf.rs`:
+/// 1/true/yes/on turn the advice on, 0/false/no/off or empty leave it off,
+/// anything else is refused).
 pub fn huge_pages_from_env() {
-    if std::env::var("TOPOMESH_HUGE_PAGES").is_ok_and(|v| !matches!(v.trim(), "" | "0")) {
-        HUGE_ON.store(true, Ordering::Relaxed);
+    if let Ok(v) = std::env::var("TOPOMESH_HUGE_PAGES") {
+        let on = match v.trim().to_ascii_lowercase().as_str() {
+            "1" | "true" | "yes" | "on" => true,
+            "" | "0" | "false" | "no" | "off" => false,
+            _ => panic!("TOPOMESH_HUGE_PAGES = {v:?} must be 1 (advise huge pages) or 0 (the default)"),
+        };
+        HUGE_ON.store(on, Ordering::Relaxed);
     }
 }
 
