@@ -201,16 +201,22 @@ impl Counts {
             })
             .count() as u64;
         let loops = m.n_self_loops() as u64;
-        let (v, e) = (m.n_vertices() as u64, m.n_edges() as u64);
-        // one cone per vertex without self-loops; at most one per non-loop half-edge
-        let cones = if loops == 0 { v } else { 2 * (e - loops) };
         let (holes, boundary) = if m.n_holes() == 0 {
             (0, 0)
         } else {
             let b = (0..m.n_halfedges()).filter(|&h| m.f_hole[m.he_face[h] as usize]).count();
             (m.n_holes() as u64, b as u64)
         };
-        Counts { v, e, f: m.n_faces() as u64, f3, loops, cones, holes, boundary }
+        Counts { holes, boundary, ..Counts::closed(m.n_vertices() as u64, m.n_edges() as u64, m.n_faces() as u64, f3, loops) }
+    }
+
+    /// Counts of a closed mesh of `v` vertices, `e` edges (`loops` of them
+    /// self-loops) and `f` faces (`f3` triangles): what [`Counts::of`] gives
+    /// for it, for a fused build whose intermediate mesh is never built.
+    pub fn closed(v: u64, e: u64, f: u64, f3: u64, loops: u64) -> Counts {
+        // one cone per vertex without self-loops; at most one per non-loop half-edge
+        let cones = if loops == 0 { v } else { 2 * (e - loops) };
+        Counts { v, e, f, f3, loops, cones, holes: 0, boundary: 0 }
     }
 
     /// Counts of a mesh of `v` vertices, `e` edges and `f` faces, nothing

@@ -40,7 +40,7 @@ pub(crate) fn bevel(m: &Mesh) -> Result<Mesh> {
     // join's counts: quads only, and every edge joins a face centroid to
     // a vertex face's, so no self-loops (`Counts::of` of join's mesh)
     let (nvj, nej, nfj, nhj) = (nf + nv, nh, ne, 2 * nh);
-    let jc = Counts { v: nvj as u64, e: nej as u64, f: nfj as u64, f3: 0, loops: 0, cones: nvj as u64, holes: 0, boundary: 0 };
+    let jc = Counts::closed(nvj as u64, nej as u64, nfj as u64, 0, 0);
     // then kis's checks on join, and the last dual's on kis's counts
     reserve_from("kis", &jc, nvj + nfj, nej + nhj, nhj)?;
     check_output_size("dual", 2 * (nej + nhj), nhj)?;

@@ -55,8 +55,7 @@ pub(crate) fn ortho(m: &Mesh) -> Result<Mesh> {
     };
     let f3 = (0..nf).filter(|&f| c.fl.degree(f) == 3).count() + (0..nv).filter(|&v| rotation(v).take(4).count() == 3).count();
     let loops = (0..nh).filter(|&g| prev[g] >> 1 == (g >> 1) as u32).count() as u64;
-    let cones = if loops == 0 { nva as u64 } else { 2 * (nea as u64 - loops) };
-    let ca = Counts { v: nva as u64, e: nea as u64, f: nfa as u64, f3: f3 as u64, loops, cones, holes: 0, boundary: 0 };
+    let ca = Counts::closed(nva as u64, nea as u64, nfa as u64, f3 as u64, loops);
     reserve_from("ambo", &ca, nea, 2 * nea, nfa + nva)?;
     check_output_size("dual", 4 * nh, nfa + nva)?;
     // A's vertex e (`Ctx::mid`), and the midpoint of A's edge C(g), as

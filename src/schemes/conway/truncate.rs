@@ -84,9 +84,7 @@ pub(crate) fn truncate(m: &Mesh) -> Result<Mesh> {
     // kis's checks on D's counts (`Counts::of(D)`: D's self-loops cross
     // edges with one face on both sides), then the last dual's
     let loops = (0..ne).filter(|&e| face[2 * e] == face[2 * e + 1]).count() as u64;
-    let (dv, de) = (nf as u64, ne as u64);
-    let cones = if loops == 0 { dv } else { 2 * (de - loops) };
-    let dc = Counts { v: dv, e: de, f: nv as u64, f3, loops, cones, holes: 0, boundary: 0 };
+    let dc = Counts::closed(nf as u64, ne as u64, nv as u64, f3, loops);
     reserve_from("kis", &dc, nf + nv, ne + nh, nh)?;
     check_output_size("dual", 2 * (ne + nh), nh)?;
     // D's positions, as the dual sums them
