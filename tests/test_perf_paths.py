@@ -103,16 +103,20 @@ def test_huge_page_advice_is_opt_in():
     # off by default (first calls stalled 2-5x with it, benches/README.md); the
     # environment turns it on or off, and a value it cannot read is an error naming it
     code = "import topomesh; print(*topomesh._core._huge_page_advice())"
-    env = {k: v for k, v in os.environ.items() if not k.startswith("TOPOMESH_HUGE")}
-    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    clean = {k: v for k, v in os.environ.items() if not k.startswith("TOPOMESH_HUGE")}
+
+    def run(**env):
+        return subprocess.run([sys.executable, "-c", code], env={**clean, **env}, capture_output=True, text=True, timeout=120)
+
+    r = run()
     assert r.stdout.split() == ["False", str(64 << 20)], r.stderr
     for value, on in [("1", "True"), ("on", "True"), ("YES", "True"), ("0", "False"), ("off", "False"), ("", "False")]:
-        r = subprocess.run([sys.executable, "-c", code], env={**env, "TOPOMESH_HUGE_PAGES": value}, capture_output=True, text=True, timeout=120)
+        r = run(TOPOMESH_HUGE_PAGES=value)
         assert r.stdout.split()[0] == on, (value, r.stderr)
-    r = subprocess.run([sys.executable, "-c", code], env={**env, "TOPOMESH_HUGE_PAGES_MAX": "1G"}, capture_output=True, text=True, timeout=120)
+    r = run(TOPOMESH_HUGE_PAGES_MAX="1G")
     assert r.stdout.split()[1] == str(1 << 30), r.stderr
     for var, bad in [("TOPOMESH_HUGE_PAGES", "maybe"), ("TOPOMESH_HUGE_PAGES_MAX", "lots")]:
-        r = subprocess.run([sys.executable, "-c", code], env={**env, var: bad}, capture_output=True, text=True, timeout=120)
+        r = run(**{var: bad})
         assert r.returncode != 0 and f'{var} = "{bad}"' in r.stderr, r.stderr
 
 
