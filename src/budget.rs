@@ -438,11 +438,14 @@ pub mod predict {
     }
     /// Generalized Menger (schemes::menger, "Counts"): V' = V + 4E + G + 2E_m
     /// with G ≤ 2E, E_m ≤ E; F' = 6E + S + 2E_m + W + splits; at least the
-    /// 6E quads (24E corners, so E' ≥ 12E); at most 38E corners (strip or
-    /// miter quads per edge, vertex faces with 2E corners, splits).
+    /// 6E quads (24E corners, so E' ≥ 12E); at most 44E corners (strip or
+    /// miter quads per edge, vertex faces with 2E corners, cones of up to
+    /// 4E triangles from one apex per vertex, splits).
     pub fn menger(c: &Counts) -> (Counts, Counts) {
         let lo = Counts::plain(add(c.v, mul(4, c.e)), mul(12, c.e), mul(6, c.e)).no_loops();
-        let hi = Counts::plain(add(c.v, mul(8, c.e)), mul(19, c.e), add(mul(10, c.e), c.v)).no_loops();
+        // (per-face corners, `Offset::PerFace`: a cone apex per vertex and
+        // up to 4E cone triangles, 44E corners)
+        let hi = Counts::plain(add(mul(2, c.v), mul(8, c.e)), mul(22, c.e), add(mul(12, c.e), c.v)).no_loops();
         (lo, hi)
     }
 
@@ -570,11 +573,15 @@ mod tests {
     #[test]
     fn menger_bounds_hold() {
         let o = schemes::menger::MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, ..Default::default() };
-        for m in [primitives::cube(), primitives::tetrahedron(), primitives::dodecahedron()] {
+        let pf = schemes::menger::MengerOptions { offset: schemes::menger::Offset::PerFace, ..o };
+        let oct2 = schemes::menger::menger(&primitives::octahedron(), &pf).unwrap();
+        for m in [primitives::cube(), primitives::tetrahedron(), primitives::dodecahedron(), oct2] {
             let (lo, hi) = predict::menger(&Counts::of(&m));
-            let got = Counts::of(&schemes::menger::menger(&m, &o).unwrap());
-            for (a, l, h) in [(got.v, lo.v, hi.v), (got.e, lo.e, hi.e), (got.f, lo.f, hi.f)] {
-                assert!(l <= a && a <= h, "menger: {a} outside [{l}, {h}]");
+            for opt in [&o, &pf] {
+                let got = Counts::of(&schemes::menger::menger(&m, opt).unwrap());
+                for (a, l, h) in [(got.v, lo.v, hi.v), (got.e, lo.e, hi.e), (got.f, lo.f, hi.f)] {
+                    assert!(l <= a && a <= h, "menger: {a} outside [{l}, {h}]");
+                }
             }
         }
     }

@@ -156,3 +156,56 @@ def test_torus_second_iteration_reduced_to_no_crossing():
     m.validate()
     assert m.genus == 2 * t1.genus + t1.n_faces - 1 and m.volume > 0
     _assert_cgal_finds_none(m)
+
+
+# (input, iterations) free of crossings with offset="per_face" (src/schemes/menger/mod.rs,
+# "Per-face corners"): the octahedron's, icosahedron's and dodecahedron's third iterations
+# are not with the default construction (624, 1800 and 900 pairs)
+PER_FACE_CLEAN = [("octahedron", 3), ("icosahedron", 3), ("dodecahedron", 3), ("cube", 3), ("genus2", 2),
+                  ("tetrahedron", 2), ("torus", 1)]
+
+
+@pytest.mark.parametrize("name,k", PER_FACE_CLEAN)
+def test_per_face_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
+    for i, (m, rep, warned) in enumerate(_iterate(name, k, offset="per_face"), start=1):
+        assert len(m.self_intersections()) == 0, f"{name} {i}"
+        assert rep["crossing_pairs"] == [0]
+        # the construction's own depth: half the inset, full on right angles
+        nominal = rep["nominal_factor"][0]
+        assert nominal == (1.0 if name in ("cube", "genus2") else 0.5)
+        f = rep["face_factor"][0]
+        assert ((f > 0) & (f <= nominal)).all()
+        assert rep["reduced_faces"] == [int((f < nominal).sum())]
+        # a warning only where the depth went below it, never a crossing
+        assert all("self-intersects" not in w for w in warned)
+        assert bool(warned) == (rep["reduced_faces"][0] > 0)
+        m.validate()
+        assert m.volume > 0
+        if i == k:
+            r = assert_agrees_with_peers(m)
+            assert r["trimesh_volume"] > 0
+            _assert_cgal_finds_none(m)
+
+
+def test_per_face_keeps_the_classic_cube_and_says_where_it_crosses():
+    """On the cube's right angles the per-face corners coincide: the classic
+    sponge, bit for bit the default's positions up to the order of the inner
+    points' numbering (same counts, genus and volume). The tetrahedron's
+    third iteration crosses with it (the default's does not): the warning
+    gives the count and names the other construction."""
+    a = topomesh.cube().menger(2, offset="per_face")
+    b = topomesh.cube().menger(2)
+    assert (a.n_vertices, a.n_edges, a.n_faces, a.genus) == (b.n_vertices, b.n_edges, b.n_faces, 81)
+    assert a.volume == pytest.approx(8 * (20 / 27) ** 2, rel=1e-12)
+    t2 = topomesh.tetrahedron().menger(2, offset="per_face")
+    with pytest.warns(topomesh.GeometryWarning, match=r"self-intersects: (\d+) crossing .*offset=\"merged\"") as rec:
+        m, rep = t2.menger(offset="per_face", report=True)
+    left = len(m.self_intersections())
+    assert left > 0 and rep["crossing_pairs"] == [left] and f"{left} crossing" in str(rec[0].message)
+    m.validate()
+    assert m.genus == 2 * t2.genus + t2.n_faces - 1 and m.volume > 0
+
+
+def test_offset_names_are_checked():
+    with pytest.raises(topomesh.MeshError, match=r'offset = "perface" is not a construction; use "merged" .* or "per_face"'):
+        topomesh.cube().menger(offset="perface")

@@ -361,6 +361,7 @@ class Mesh:
         *,
         correspondence: Literal[False] = False,
         reduce_thickness: bool = True,
+        offset: Literal["merged", "per_face"] = "merged",
         report: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -374,6 +375,7 @@ class Mesh:
         *,
         correspondence: Literal[True],
         reduce_thickness: bool = True,
+        offset: Literal["merged", "per_face"] = "merged",
         report: Literal[False] = False,
     ) -> tuple[Mesh, Correspondence]: ...
     @overload
@@ -387,6 +389,7 @@ class Mesh:
         *,
         correspondence: Literal[False] = False,
         reduce_thickness: bool = True,
+        offset: Literal["merged", "per_face"] = "merged",
         report: Literal[True],
     ) -> tuple[Mesh, dict[str, Any]]: ...
     @overload
@@ -400,6 +403,7 @@ class Mesh:
         *,
         correspondence: Literal[True],
         reduce_thickness: bool = True,
+        offset: Literal["merged", "per_face"] = "merged",
         report: Literal[True],
     ) -> tuple[Mesh, Correspondence, dict[str, Any]]: ...
     # --- printing (src/python/printing.rs, topomesh.printing) ---

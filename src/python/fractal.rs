@@ -84,7 +84,22 @@ impl PyMesh {
     ///     offset depth was multiplied by, 1 where not reduced),
     ///     ``reduced_faces``, ``min_factor``, ``rounds`` (rebuilds kept),
     ///     ``crossing_pairs`` (crossing triangle pairs left in the output,
-    ///     None with ``reduce_thickness=False``) and ``crossing_vertices``.
+    ///     None with ``reduce_thickness=False``), ``crossing_vertices`` and
+    ///     ``nominal_factor`` (the construction's own depth factor: 1, or
+    ///     1/2 with ``offset="per_face"`` off right angles; faces below it
+    ///     count as reduced).
+    /// offset : {"merged", "per_face"}, default "merged", keyword-only
+    ///     How the inner surface is built (``src/schemes/menger/mod.rs``).
+    ///     ``"merged"``: one offset corner per group of faces joined by
+    ///     collapsed edges (dissertation VII.4). ``"per_face"``: every face
+    ///     corner gets its own offset corner straight below its window, so
+    ///     every pipe is a right prism; vertex faces are cones from a point
+    ///     below every face around the vertex, and the depth is half the
+    ///     inset (full on the cube's right angles: the classic sponge),
+    ///     halved for the whole mesh while the output crosses. Crossing-free
+    ///     where ``"merged"`` is not: the octahedron's, icosahedron's and
+    ///     dodecahedron's third iterations; it crosses on the tetrahedron's
+    ///     third and the torus's second, which ``"merged"`` keeps clean.
     ///
     /// Returns
     /// -------
@@ -112,7 +127,10 @@ impl PyMesh {
     /// geometric self-intersections only where measured so: the cube's
     /// iterations 1-4, the tetrahedron's 1-3, the octahedron's, the
     /// icosahedron's and the dodecahedron's 1-2, the torus's and the genus-2
-    /// surface's 1-2 (confirmed by CGAL's exact test). Vertices whose local
+    /// surface's 1-2 (confirmed by CGAL's exact test); with
+    /// ``offset="per_face"`` the cube's 1-4, the octahedron's, icosahedron's
+    /// and dodecahedron's 1-3, the genus-2 surface's 1-2, the torus's and
+    /// tetrahedron's 1-2. Vertices whose local
     /// result crosses itself are rebuilt
     /// with all their pipes meeting in one point, then the thickness is
     /// reduced where crossings remain; the measured figures (crossing pairs
@@ -126,7 +144,7 @@ impl PyMesh {
     ///     pairs (their count, from the exact whole-output check). With
     ///     ``reduce_thickness=False``, when the per-vertex check left
     ///     vertices crossing (that check alone can miss pairs).
-    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false, reduce_thickness = true, report = false))]
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false, reduce_thickness = true, report = false, offset = "merged"))]
     #[allow(clippy::too_many_arguments)]
     fn menger<'py>(
         &self,
@@ -139,8 +157,16 @@ impl PyMesh {
         correspondence: bool,
         reduce_thickness: bool,
         report: bool,
+        offset: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle, reduce_thickness, ..Default::default() };
+        let offset = match offset {
+            "merged" => mg::Offset::Merged,
+            "per_face" => mg::Offset::PerFace,
+            other => {
+                return Err(super::err(crate::error::MeshError::InvalidArgument(format!("menger: offset = {other:?} is not a construction; use \"merged\" (the default) or \"per_face\""))))
+            }
+        };
+        let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle, reduce_thickness, offset };
         // every iteration's report, in order
         let reports = std::sync::Mutex::new(Vec::<mg::MengerReport>::new());
         let spec = super::levels::Spec::nonlinear("menger", predict::menger);
@@ -167,6 +193,7 @@ impl PyMesh {
         d.set_item("rounds", reports.iter().map(|r| r.rounds).collect::<Vec<_>>())?;
         d.set_item("crossing_pairs", reports.iter().map(|r| r.crossing_pairs).collect::<Vec<_>>())?;
         d.set_item("crossing_vertices", reports.iter().map(|r| r.crossing_vertices).collect::<Vec<_>>())?;
+        d.set_item("nominal_factor", reports.iter().map(|r| r.nominal).collect::<Vec<_>>())?;
         let items: Vec<Bound<'py, PyAny>> = match out.cast::<pyo3::types::PyTuple>() {
             Ok(t) => t.iter().collect(),
             Err(_) => vec![out.clone()],
@@ -189,7 +216,7 @@ fn warning_text(k: usize, iterations: i128, r: &mg::MengerReport) -> Option<Stri
         (Some(0), None) => None,
         (Some(0), Some(red)) => Some(format!("menger: iteration {k} of {iterations}: {red} to keep it free of crossings")),
         (Some(p), red) => Some(format!(
-            "menger: iteration {k} of {iterations} self-intersects: {p} crossing triangle pairs remain (exact predicate){}; the mesh is a valid closed manifold (see the Mesh.menger notes for the measured cases)",
+            "menger: iteration {k} of {iterations} self-intersects: {p} crossing triangle pairs remain (exact predicate){}; the mesh is a valid closed manifold (see the Mesh.menger notes for the measured cases, and its other construction, offset=\"merged\" or \"per_face\")",
             red.map_or(String::new(), |s| format!(" after {s}, the most the reduction could remove"))
         )),
         (None, _) if r.crossing_vertices > 0 => Some(format!(

@@ -227,6 +227,50 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
     }
 }
 
+/// Uniform halvings of the per-face construction's depth (module docs,
+/// "Per-face corners"): at most this many rebuilds.
+pub const PER_FACE_ROUNDS: usize = 3;
+
+/// The per-face construction's depth before any halving (module docs,
+/// "Per-face corners"), as a fraction of the inset `D`, unless every edge
+/// of the mesh meets at a right or flat angle (the cube's family, whose
+/// per-face corners coincide into the classic sponge at full depth).
+pub const PER_FACE_DEPTH: f64 = 0.5;
+
+/// [`build_reduced`] for [`super::Offset::PerFace`] (module docs,
+/// "Per-face corners"): the depth starts at [`PER_FACE_DEPTH`] of the inset
+/// off right angles and, while the output crosses, every face's depth is
+/// halved (a uniform thinning, not a local one: measured, a local halving
+/// leaves faces of different depth side by side and stalls, octahedron 3 at
+/// 504 pairs); the build with the fewest pairs is kept.
+fn build_per_face(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
+    let base = super::offset::per_face_depth(m);
+    let mut best: Option<((Built, Mesh), MengerReport)> = None;
+    let mut scale = 1.0;
+    for rounds in 0..=PER_FACE_ROUNDS {
+        let red = Reduction { depth: vec![base * scale; m.n_faces()] };
+        let ((b, mesh), vertices, scanned) = build_valid(m, o, Some(&red))?;
+        let mut report = MengerReport { face_factor: b.depth_factor.clone(), rounds, crossing_pairs: None, crossing_vertices: vertices, nominal: base };
+        if !reduce {
+            return Ok(((b, mesh), report));
+        }
+        let n = match scanned {
+            Scan::Pairs(p) => p.len(),
+            Scan::Tris(t) => output_crossings(&t, b.first_inner).len(),
+        };
+        crate::cancel::check()?;
+        report.crossing_pairs = Some(n);
+        if best.as_ref().map_or(true, |(_, r)| r.crossing_pairs.is_some_and(|x| n < x)) {
+            best = Some(((b, mesh), report));
+        }
+        if n == 0 {
+            break;
+        }
+        scale *= 0.5;
+    }
+    Ok(best.expect("one build at least"))
+}
+
 /// One iteration with the thickness reduction (module docs, "Thickness
 /// reduction"): [`build_valid`], then, while the output has crossing
 /// triangle pairs (exact predicate, the whole output), the faces involved
@@ -234,6 +278,9 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
 /// [`REDUCTION_FLOOR`] stay there. Without `reduce`, one [`build_valid`]
 /// and no whole-output scan.
 pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
+    if o.offset == super::Offset::PerFace {
+        return build_per_face(m, o, reduce);
+    }
     let nf = m.n_faces();
     // per-face corners bound the depth at sharp edges too: their report
     // gives the depth the build used
@@ -248,7 +295,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         let ((b, mesh), vertices, scanned) = build_valid(m, o, (rounds > 0).then_some(&red))?;
         if !reduce {
             let face_factor = if per_face { b.depth_factor.clone() } else { vec![1.0; nf] };
-            let report = MengerReport { face_factor, rounds: 0, crossing_pairs: None, crossing_vertices: vertices };
+            let report = MengerReport { face_factor, rounds: 0, crossing_pairs: None, crossing_vertices: vertices, nominal: 1.0 };
             return Ok(((b, mesh), report));
         }
         let pairs = match scanned {
@@ -268,7 +315,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         hit.sort_unstable();
         hit.dedup();
         let face_factor = if per_face { b.depth_factor.clone() } else { (0..nf).map(|f| factor(&red, f)).collect() };
-        let report = MengerReport { face_factor, rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices };
+        let report = MengerReport { face_factor, rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices, nominal: 1.0 };
         let last = pairs.is_empty() || rounds == REDUCTION_ROUNDS;
         drop(pairs);
         best = Some(((b, mesh), report));

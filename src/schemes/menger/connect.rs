@@ -98,7 +98,12 @@ pub(super) fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) ->
                 den += n.dot(u) * n.dot(u);
             }
             let (r1, r2) = (pl.group_pos[pl.group[c1.idx()] as usize], pl.group_pos[pl.group[c2.idx()] as usize]);
-            let s = if den > 1e-6 { -num / den } else { (0.5 * (r1 + r2) - x0).dot(u) };
+            // per-face corners (module docs, "Per-face corners"): always the
+            // middle, so the miter quads run along the edge like a strip and
+            // leave the vertex's neighbourhood to its vertex face (slid
+            // towards the other planes, the miter point comes back to the
+            // vertex as the depth shrinks: octahedron 2, 168 → 0 pairs)
+            let s = if den > 1e-6 && !pl.per_face { -num / den } else { (0.5 * (r1 + r2) - x0).dot(u) };
             // kept within MITER_REACH·D of the vertex (near-parallel planes)
             let dmax = if refined { MITER_REACH } else { 2.0 } * dmin;
             let r0 = (x0 - pv).length();

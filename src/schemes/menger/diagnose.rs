@@ -100,7 +100,8 @@ fn classify_crossings() {
     use crate::schemes::level::{EDGE, FACE};
     let o = MengerOptions { offset: if std::env::var("PER_FACE").is_ok() { Offset::PerFace } else { Offset::Merged }, ..Default::default() };
     for (name, n) in cases("octahedron:3,dodecahedron:3") {
-        let m = menger_iterated(&input(&name), n - 1, &MengerOptions::default()).unwrap();
+        let pre = if std::env::var("PRE_PF").is_ok() { o } else { MengerOptions::default() };
+        let m = menger_iterated(&input(&name), n - 1, &pre).unwrap();
         let ((b, mesh), left, _) = build_valid(&m, &o, None).unwrap();
         let pl = plan(&m, &o, &vec![false; m.n_vertices()], None).unwrap();
         let pos = m.positions();
@@ -159,6 +160,27 @@ fn classify_crossings() {
                     eprintln!("    same face {a}: heights/D {:?} (face {ra}) {:?} (face {rb}) pairs {i} {j}", hgt(i), hgt(j));
                 }
             }
+        }
+        if std::env::var("VERTS").is_ok() {
+            let mut vs: BTreeMap<u32, usize> = BTreeMap::new();
+            for &(i, j) in &pairs {
+                for f in [t.tri_face[i as usize], t.tri_face[j as usize]] {
+                    let (k, id) = b.face_origin[f as usize];
+                    if k != FACE && k != EDGE {
+                        *vs.entry(id).or_default() += 1;
+                    }
+                }
+            }
+            let mut kinds: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+            for (&v, &c) in &vs {
+                let normals: Vec<glam::DVec3> = m.vertex_halfedges(VertexId(v)).map(|h| pl.face_n[m.face(h).idx()]).collect();
+                let kern = super::offset::below_every_face(pos[v as usize], &normals, 1.0).is_some();
+                let angles: Vec<String> = m.vertex_halfedges(VertexId(v)).map(|h| format!("{:.0}", angle(h))).collect();
+                let e = kinds.entry(format!("{} kernel {kern} angles {}", class(v), angles.join(","))).or_default();
+                e.0 += 1;
+                e.1 += c;
+            }
+            kinds.iter().for_each(|(k, (n, c))| eprintln!("  vertices {n:5} pairs {c:6}: {k}"));
         }
         roles.iter().for_each(|(k, v)| eprintln!("  {v:6} {k}"));
         rel.iter().for_each(|(k, v)| eprintln!("  {v:6} {k}"));

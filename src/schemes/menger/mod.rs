@@ -197,7 +197,7 @@
 //! merged point per group cannot express two pipe corners on one line),
 //! which no thickness fixes.
 //!
-//! # Per-face corners ([`Offset::PerFace`], measured, not the default)
+//! # Per-face corners ([`Offset::PerFace`], `offset="per_face"`)
 //!
 //! Issue 17's item 1 asks for an exact offset: every face's offset corner
 //! on its own offset plane, never one merged point per group. Derived once,
@@ -219,24 +219,56 @@
 //!    the strip is then a bevel inside the mitred offset and each pipe stays
 //!    in its wedge (item 2: the bound is reported in `face_factor`);
 //! 4. non-convex edges keep their miter vertices on the line where the two
-//!    offset planes meet (planar miter quads); vertex faces are the cycle
-//!    of per-face corners and miter vertices, split into planar parts where
-//!    possible (there is no full collapse to fall back on).
+//!    offset planes meet (planar miter quads), at the middle of the two
+//!    offset corners along the edge, so the miter quads run along the edge
+//!    like a strip and stay out of the vertex's neighbourhood;
+//! 5. a vertex face with no planar split is a cone from an apex *below
+//!    every face around the vertex* by the smallest depth there (the centre
+//!    of the normals' spherical cap, `below_every_face`), not from the
+//!    centroid of its corners: where the normals lie in an open hemisphere
+//!    the vertex's neighbourhood is star-shaped from that apex, so as the
+//!    depth shrinks each cone triangle stays under the faces while its base
+//!    (a side of the collar of per-face corners and miter points) does;
+//! 6. the depth is thin: `PER_FACE_DEPTH` = ½ of the inset `D` on every
+//!    face, unless every edge of the mesh meets at 90°, 180° or 270° (the
+//!    cube and its iterations: full depth, where invariant 2 welds the
+//!    corners into the classic sponge). While the output crosses, the depth
+//!    of *every* face is halved and the level rebuilt (at most
+//!    `PER_FACE_ROUNDS` times), and the build with the fewest pairs is kept.
 //!
-//! Invariants 1–3 make every pipe and every edge's cross-section
-//! crossing-free; nothing makes the vertex faces so, and that is where it
-//! fails. Measured (crossing pairs with contacts, every iteration on its own
-//! previous output; merged → per-face): cube 1–4 0 → 0; genus_surface(2)
-//! 1–2 0 → 0; dodecahedron 1–2 0 → 0; tetrahedron 2 0 → 120, 3 0 → 6612,
-//! 4 4646 → 173661; octahedron 2 0 → 360, 3 624 → 14784; icosahedron 2
-//! 0 → 900, 3 1980 → 29400; dodecahedron 3 900 → 19380; torus(24, 12) 1
-//! 0 → 144, 2 0 → 17712. On the second iterations every pair is a miter
-//! quad or a vertex face crossing another at a vertex with non-convex
-//! edges; on the third, inner surface through the outer one as well, with
-//! depths down to 0.05·D at the sharp edges of thin pipe walls. The
-//! default construction's remaining crossings are all pipe walls instead
-//! (`docs/schemes/menger.md`, "Where the default crosses").
+//! Invariants 1–5 make the structure at every vertex converge, as the depth
+//! shrinks, to a thin layer under its faces, which cannot cross where the
+//! vertex's normals fit in a hemisphere. Invariant 6 is measured, not
+//! derived: thinner is not always better (octahedron 3 with a tenth of
+//! the inset: 288 pairs, with a quarter: 0), and the depth of earlier
+//! iterations decides what later ones can offset (octahedron 2 built at
+//! full depth, 96 pairs, then halved: the third iteration keeps 408 pairs
+//! at best; built at half depth from the first iteration: 0). A depth per
+//! face (full on right-angled faces, half elsewhere) left 120 / 1396 pairs
+//! in the octahedron's / icosahedron's third iteration, and the per-face
+//! halving of the default construction ("Thickness reduction") stalls on
+//! faces of different depth side by side (octahedron 3: 504, dodecahedron
+//! 3: 963): one factor for the whole mesh, halved uniformly, is what left
+//! none. Each rule was measured alone on the default construction's first
+//! octahedron iteration (its second iteration, full depth, no reduction):
+//! centroid cones and slid miter points 384 pairs, apex below every face
+//! 168, and the middle miter points 96; at a quarter of the depth 0 (and
+//! 384 again with centroid cones, which then poke through the outer surface).
 //!
+//! Measured (crossing pairs with contacts, every iteration on its own
+//! previous output, `menger::diagnose::compare_offsets`; default →
+//! per-face): cube 1–4 0 → 0 (the classic sponge, same counts); genus
+//! surface(2) 1–2 0 → 0; octahedron 1–2 0 → 0, 3 624 → **0**; icosahedron
+//! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**;
+//! tetrahedron 1–2 0 → 0, 3 0 → 204, 4 4646 → 15126; torus(24, 12) 1 0 → 0,
+//! 2 0 → 2976. The per-face construction crosses where the input has
+//! vertices whose normals fit in no hemisphere (no apex for invariant 5:
+//! 192 of the 384 input vertices behind the torus's second iteration's
+//! pairs, each with two concave edges of 202–287°; the other 192 have an
+//! apex and still cross, not traced yet), so it is an option beside the
+//! default, not its replacement; neither is crossing-free on the
+//! tetrahedron's fourth iteration.
+
 //! # Status (measured)
 //!
 //! Cube, iterations 1–4: quads only, genus 5, 81, 1121, 15585, the first two
@@ -495,17 +527,23 @@ pub struct MengerReport {
     /// Input vertices whose own triangles still cross when the per-vertex
     /// check of step 3 ends (see [`menger_checked`]).
     pub crossing_vertices: usize,
+    /// The construction's own depth factor before any reduction: 1 for
+    /// [`Offset::Merged`], [`check::PER_FACE_DEPTH`] or 1 for
+    /// [`Offset::PerFace`] (module docs, "Per-face corners"); faces below
+    /// it count as reduced.
+    pub nominal: f64,
 }
 
 impl MengerReport {
-    /// Faces whose thickness was reduced, and the smallest factor (1 if none).
+    /// Faces whose thickness was reduced below the construction's own
+    /// depth ([`MengerReport::nominal`]), and the smallest factor (1 if none).
     pub fn reduced(&self) -> (usize, f64) {
-        let n = self.face_factor.iter().filter(|&&x| x < 1.0).count();
+        let n = self.face_factor.iter().filter(|&&x| x < self.nominal * (1.0 - 1e-12)).count();
         (n, self.face_factor.iter().copied().fold(1.0, f64::min))
     }
 }
 
-pub use check::{REDUCTION_FLOOR, REDUCTION_ROUNDS};
+pub use check::{PER_FACE_DEPTH, PER_FACE_ROUNDS, REDUCTION_FLOOR, REDUCTION_ROUNDS};
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(super) enum EdgeKind {

@@ -178,6 +178,28 @@ fn sharp_edge_depth(m: &Mesh, face_n: &[DVec3], face_d: &[f64], face_depth: &mut
     }
 }
 
+/// The per-face construction's depth factor before any halving
+/// ([`super::check::PER_FACE_DEPTH`]), one for the whole mesh: 1 when every
+/// edge meets at a right, flat or reflex right angle (90°, 180°, 270°,
+/// within [`ANGLE_TOL`]: the cube and its iterations, whose per-face corners
+/// coincide into the classic sponge), else `PER_FACE_DEPTH`. One factor for
+/// the whole mesh, not per face: right-angled faces of a mixed mesh (the
+/// pipe walls of an octahedron's iteration) at full depth beside thinned
+/// ones cross in the next iteration (octahedron 3: 120 pairs, 0 with one
+/// factor).
+pub(super) fn per_face_depth(m: &Mesh) -> f64 {
+    let pos = m.positions();
+    let normal: Vec<DVec3> = m.faces().map(|f| m.face_newell(f).normalize_or_zero()).collect();
+    let orthogonal = m.edges().all(|e| {
+        let h = e.halfedge();
+        let (n1, n2) = (normal[m.face(h).idx()], normal[m.face(h.twin()).idx()]);
+        let t = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize_or_zero();
+        let phi = std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2));
+        [1.0, 2.0, 3.0].iter().any(|k| (phi - k * std::f64::consts::FRAC_PI_2).abs() <= ANGLE_TOL)
+    });
+    if orthogonal { 1.0 } else { super::check::PER_FACE_DEPTH }
+}
+
 /// The share of the largest depth [`sharp_edge_depth`] allows, below 1 so
 /// that the strip across a sharp edge keeps a width.
 pub(super) const SHARP_MARGIN: f64 = 0.8;

@@ -198,7 +198,21 @@ pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &
             // (a fan from a corner can fold through the outer surface)
             pieces.clear();
             let c = out_pos.len() as u32;
-            out_pos.push(poly.iter().map(|&i| out_pos[i as usize]).sum::<DVec3>() / poly.len() as f64);
+            let centroid = poly.iter().map(|&i| out_pos[i as usize]).sum::<DVec3>() / poly.len() as f64;
+            // per-face corners (module docs, "Per-face corners"): the apex
+            // below every face around the vertex, by the smallest depth
+            // there, so the cone lies under the vertex's faces (the vertex's
+            // neighbourhood is star-shaped from it) as the depth shrinks,
+            // where the centroid of a saddle's collar can lie outside
+            let apex = if pl.per_face {
+                let v = crate::mesh::VertexId(origin[fi].1);
+                let normals: Vec<DVec3> = m.vertex_halfedges(v).map(|h| pl.face_n[m.face(h).idx()]).collect();
+                let dmin = m.vertex_halfedges(v).map(|h| pl.face_depth[m.face(h).idx()]).fold(f64::INFINITY, f64::min);
+                super::offset::below_every_face(pos[v.idx()], &normals, dmin).unwrap_or(centroid)
+            } else {
+                centroid
+            };
+            out_pos.push(apex);
             for i in 0..poly.len() {
                 pieces.push(vec![c, poly[i], poly[(i + 1) % poly.len()]]);
             }

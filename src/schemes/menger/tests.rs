@@ -275,14 +275,20 @@ mod per_face {
     #[test]
     fn sharp_edges_bound_the_depth_and_say_so() {
         // the tetrahedron's edges have φ = arccos(1/3) ≈ 70.5°: every face's
-        // depth is SHARP_MARGIN·tan(φ/2) of its inset, reported per face
+        // depth is at most SHARP_MARGIN·tan(φ/2) ≈ 0.566 of its inset, and
+        // PER_FACE_DEPTH (0.5, not a right-angled mesh) is below that:
+        // reported per face
         let out = run(&primitives::tetrahedron(), 1);
         let phi = (1.0f64 / 3.0).acos();
-        let want = super::super::offset::SHARP_MARGIN * (0.5 * phi).tan();
+        let sharp = super::super::offset::SHARP_MARGIN * (0.5 * phi).tan();
+        assert!(sharp > super::super::check::PER_FACE_DEPTH);
+        let want = super::super::check::PER_FACE_DEPTH;
         let (m, r) = &out[0];
         assert_eq!(r.face_factor.len(), 4);
         assert!(r.face_factor.iter().all(|&x| (x - want).abs() < 1e-12), "{:?}", r.face_factor);
-        assert_eq!(r.reduced(), (4, r.face_factor[0]));
+        // the construction's own depth is no reduction
+        assert_eq!(r.nominal, want);
+        assert_eq!(r.reduced(), (0, want));
         // strips along the six edges instead of collapses: 36 + 6 faces,
         // and the four corners' three per-face corners joined by a triangle
         assert_eq!(m.n_faces(), 46);
@@ -292,17 +298,24 @@ mod per_face {
 
     #[test]
     fn measured_crossings() {
-        // free of crossings: the dodecahedron's first two iterations, the
-        // genus-2 surface's first; not the octahedron's second (360 pairs,
-        // merged: 0), the figure of docs/schemes/menger.md
-        for (m0, n) in [(primitives::dodecahedron(), 2), (primitives::genus_surface(2).unwrap(), 1)] {
+        // free of crossings: the octahedron's first three iterations (the
+        // merged construction's third: 624 pairs), the dodecahedron's first
+        // two, the genus-2 surface's first; not the tetrahedron's third
+        // (204 pairs, merged: 0), the figures of docs/schemes/menger.md
+        for (m0, n) in [(primitives::octahedron(), 3), (primitives::dodecahedron(), 2), (primitives::genus_surface(2).unwrap(), 1)] {
             for (m, r) in run(&m0, n) {
                 assert_eq!(r.crossing_pairs, Some(0));
                 assert_eq!(crate::geometry::crossing::mesh_crossing_pairs(&m, true).len(), 0);
             }
         }
-        let out = run(&primitives::octahedron(), 2);
-        assert_eq!(out[1].1.crossing_pairs, Some(360));
+        let out = run(&primitives::tetrahedron(), 3);
+        let (m, r) = &out[2];
+        assert_eq!(r.crossing_pairs, Some(204));
+        assert_eq!(crate::geometry::crossing::mesh_crossing_pairs(m, true).len(), 204);
+        // the build kept is the first: half the inset everywhere, and less
+        // at the sharp edges of the second iteration's pipes
+        assert!(r.face_factor.iter().all(|&x| x <= 0.5 + 1e-12));
+        assert!(r.face_factor.iter().any(|&x| x < 0.5 - 1e-3));
     }
 }
 
@@ -317,9 +330,10 @@ fn side_plane_rejection_keeps_every_answer() {
     let t2 = menger_iterated(&crate::primitives::tetrahedron(), 2, &o).unwrap();
     let o1 = menger(&crate::primitives::octahedron(), &o).unwrap();
     // the tetrahedron's third iteration (nearly coplanar neighbours, no
-    // crossing), and per-face builds that cross (120 and 360 pairs)
+    // crossing), and per-face builds on the merged construction's outputs,
+    // which cross
     let mut met_all = 0;
-    for m in [menger(&t2, &o).unwrap(), menger_iterated(&crate::primitives::tetrahedron(), 2, &pf).unwrap(), menger(&o1, &pf).unwrap()] {
+    for m in [menger(&t2, &o).unwrap(), menger(&t2, &pf).unwrap(), menger(&o1, &pf).unwrap()] {
         let (pairs, rejected, met) = super::diagnose::rejection_check(&m);
         // most pairs are settled by the rejection
         assert!(rejected * 2 > pairs, "{rejected} of {pairs} rejected, {met} meeting");
