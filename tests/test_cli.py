@@ -88,6 +88,7 @@ def test_gallery_draws_attractor_pictures(tmp_path):
         (["subdivide", "--scheme", "honeycomb", "-n", "1"], lambda m: m.n_faces == 6 + 8),
         (["sierpinski", "-n", "2"], lambda m: m.genus == topomesh.cube().sierpinski(2).genus),
         (["menger", "-n", "1", "--thickness", "0.25"], lambda m: m.genus == 5),
+        (["menger", "-n", "2", "--offset", "per_face"], lambda m: (m.genus, m.n_faces) == (81, 960)),
     ],
 )
 def test_scheme_commands(tmp_path, capsys, args, check):

@@ -5,7 +5,7 @@
     topomesh convert IN OUT              between NPZ, PLY, OBJ, OFF, STL (binary) and 3MF
     topomesh subdivide IN OUT --scheme S -n K   S: a scheme, a TopMod remeshing or a Conway operator (method names)
     topomesh sierpinski IN OUT -n K
-    topomesh menger IN OUT -n K [--thickness D]
+    topomesh menger IN OUT -n K [--thickness D] [--offset merged|per_face]
 
 Every command that reads a file takes ``--boundaries {keep,refuse}``, ``--allow-multi-edges``
 and ``--repair`` (passed to :func:`topomesh.load`): open meshes are read and kept open unless
@@ -122,7 +122,7 @@ def cmd_sierpinski(a: argparse.Namespace) -> int:
 
 def cmd_menger(a: argparse.Namespace) -> int:
     kw = {} if a.thickness is None else {"thickness": a.thickness}
-    _iterate(_load(a, a.input), "menger", a.n, **kw).save(a.output)
+    _iterate(_load(a, a.input), "menger", a.n, offset=a.offset, **kw).save(a.output)
     return 0
 
 
@@ -176,6 +176,9 @@ def parser() -> argparse.ArgumentParser:
     me.add_argument("output")
     me.add_argument("-n", type=int, default=1)
     me.add_argument("--thickness", type=float, default=None)
+    me.add_argument("--offset", choices=["merged", "per_face"], default="merged",
+                    help="inner surface construction (Mesh.menger's offset): per_face is crossing-free on the "
+                         "octahedron's, icosahedron's and dodecahedron's third iterations")
     me.set_defaults(func=cmd_menger)
     return p
 

@@ -129,8 +129,8 @@ impl PyMesh {
     /// icosahedron's and the dodecahedron's 1-2, the torus's and the genus-2
     /// surface's 1-2 (confirmed by CGAL's exact test); with
     /// ``offset="per_face"`` the cube's 1-4, the octahedron's, icosahedron's
-    /// and dodecahedron's 1-3, the genus-2 surface's 1-2, the torus's and
-    /// tetrahedron's 1-2. Vertices whose local
+    /// and dodecahedron's 1-3, the genus-2 surface's 1-2, the tetrahedron's
+    /// 1-2 and the torus's 1. Vertices whose local
     /// result crosses itself are rebuilt
     /// with all their pipes meeting in one point, then the thickness is
     /// reduced where crossings remain; the measured figures (crossing pairs

@@ -252,8 +252,9 @@
 //! none. Each rule was measured alone on the default construction's first
 //! octahedron iteration (its second iteration, full depth, no reduction):
 //! centroid cones and slid miter points 384 pairs, apex below every face
-//! 168, and the middle miter points 96; at a quarter of the depth 0 (and
-//! 384 again with centroid cones, which then poke through the outer surface).
+//! 168, and the middle miter points 96; at a quarter of the depth 0 with
+//! either cone, at a twentieth 0 with the apex below every face and 384
+//! with centroid cones (they poke through the outer surface).
 //!
 //! Measured (crossing pairs with contacts, every iteration on its own
 //! previous output, `menger::diagnose::compare_offsets`; default →
@@ -261,7 +262,7 @@
 //! surface(2) 1–2 0 → 0; octahedron 1–2 0 → 0, 3 624 → **0**; icosahedron
 //! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**;
 //! tetrahedron 1–2 0 → 0, 3 0 → 204, 4 4646 → 15126; torus(24, 12) 1 0 → 0,
-//! 2 0 → 2976. The per-face construction crosses where the input has
+//! 2 0 → 2976; dodecahedron 4 76817 → 64795. The per-face construction crosses where the input has
 //! vertices whose normals fit in no hemisphere (no apex for invariant 5:
 //! 192 of the 384 input vertices behind the torus's second iteration's
 //! pairs, each with two concave edges of 202–287°; the other 192 have an
