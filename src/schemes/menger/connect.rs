@@ -107,7 +107,16 @@ pub(super) fn inner_points(m: &Mesh, pl: &Plan, refined: bool, full: &[bool]) ->
             // kept within MITER_REACH·D of the vertex (near-parallel planes)
             let dmax = if refined { MITER_REACH } else { 2.0 } * dmin;
             let r0 = (x0 - pv).length();
-            ip[ng + 2 * e.idx() + end] = if r0 > dmax {
+            ip[ng + 2 * e.idx() + end] = if pl.per_face {
+                // per-face corners: the middle along the edge is kept (the
+                // offset corners bound it), and only the distance from the
+                // edge is bounded, by the two faces' own depths (a reach
+                // bound by the thinnest face around the vertex pulled a 312°
+                // edge's miter point back to the vertex: tetrahedron 3)
+                let reach = if refined { MITER_REACH } else { 2.0 } * pl.face_depth[f1].min(pl.face_depth[f2]);
+                let x = if r0 > reach { pv + (x0 - pv) * (reach / r0) } else { x0 };
+                x + u * s
+            } else if r0 > dmax {
                 // nearly parallel offset planes (φ just above 180°) meet far
                 // away: pulled back towards the vertex, off the planes
                 pv + (x0 - pv) * (dmax / r0)

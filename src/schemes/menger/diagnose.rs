@@ -183,6 +183,29 @@ fn classify_crossings() {
                 e.1 += c;
             }
             kinds.iter().for_each(|(k, (n, c))| eprintln!("  vertices {n:5} pairs {c:6}: {k}"));
+            if let (Ok(_), Some((&v, _))) = (std::env::var("DETAIL"), vs.iter().next()) {
+                let pv = pos[v as usize];
+                let dmin = m.vertex_halfedges(VertexId(v)).map(|h| pl.face_d[m.face(h).idx()]).fold(f64::INFINITY, f64::min);
+                let loc = |x: glam::DVec3| ((x - pv) / dmin * 1000.0).round() / 1000.0;
+                eprintln!("  vertex {v}, D min {dmin:.4e} (coordinates below: relative to it, in D)");
+                for h in m.vertex_halfedges(VertexId(v)) {
+                    let f = m.face(h).idx();
+                    eprintln!("    face {f}: n {:?} D {:.3} depth {:.3} | edge to {} angle {:.1} {:?} dir {:?}", (pl.face_n[f] * 1000.0).round() / 1000.0,
+                        pl.face_d[f] / dmin, pl.face_depth[f] / dmin, m.head(h).0, angle(h), pl.kind[h.edge().idx()], loc(pos[m.head(h).idx()]).normalize_or_zero());
+                }
+                for (i, &o) in b.owner.iter().enumerate() {
+                    if o == v && i as u32 >= b.first_inner {
+                        eprintln!("    inner point {i}: {:?}", loc(b.pos[i]));
+                    }
+                }
+                for &(i, j) in &pairs {
+                    let (fa, fb) = (t.tri_face[i as usize], t.tri_face[j as usize]);
+                    let own = |f: u32| { let (k, id) = b.face_origin[f as usize]; k != FACE && k != EDGE && id == v };
+                    if own(fa) || own(fb) {
+                        eprintln!("    pair {} {:?} × {} {:?}", role(fa), tris[i as usize].map(|x| loc(p[x as usize])), role(fb), tris[j as usize].map(|x| loc(p[x as usize])));
+                    }
+                }
+            }
         }
         roles.iter().for_each(|(k, v)| eprintln!("  {v:6} {k}"));
         rel.iter().for_each(|(k, v)| eprintln!("  {v:6} {k}"));

@@ -221,7 +221,13 @@
 //! 4. non-convex edges keep their miter vertices on the line where the two
 //!    offset planes meet (planar miter quads), at the middle of the two
 //!    offset corners along the edge, so the miter quads run along the edge
-//!    like a strip and stay out of the vertex's neighbourhood;
+//!    like a strip and stay out of the vertex's neighbourhood; only their
+//!    distance from the edge is bounded (`MITER_REACH` times the two faces'
+//!    own depths, for nearly flat edges whose planes meet far away), never
+//!    their place along it (bounded by the thinnest face around the vertex,
+//!    as the default bounds it, a 312° edge's miter point was pulled back to
+//!    the vertex: 204 pairs in the tetrahedron's third iteration, 2,976 in
+//!    the torus's second, none without);
 //! 5. a vertex face with no planar split is a cone from an apex *below
 //!    every face around the vertex* by the smallest depth there (the centre
 //!    of the normals' spherical cap, `below_every_face`), not from the
@@ -260,15 +266,14 @@
 //! previous output, `menger::diagnose::compare_offsets`; default →
 //! per-face): cube 1–4 0 → 0 (the classic sponge, same counts); genus
 //! surface(2) 1–2 0 → 0; octahedron 1–2 0 → 0, 3 624 → **0**; icosahedron
-//! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**;
-//! tetrahedron 1–2 0 → 0, 3 0 → 204, 4 4646 → 15126; torus(24, 12) 1 0 → 0,
-//! 2 0 → 2976; dodecahedron 4 76817 → 64795. The per-face construction crosses where the input has
-//! vertices whose normals fit in no hemisphere (no apex for invariant 5:
-//! 192 of the 384 input vertices behind the torus's second iteration's
-//! pairs, each with two concave edges of 202–287°; the other 192 have an
-//! apex and still cross, not traced yet), so it is an option beside the
-//! default, not its replacement; neither is crossing-free on the
-//! tetrahedron's fourth iteration.
+//! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**, 4
+//! 76817 → 13200; tetrahedron 1–3 0 → 0, 4 4646 → 2760; torus(24, 12) 1–2
+//! 0 → 0. The tetrahedron's fourth iteration crosses at vertices of about
+//! forty kinds (mixed convex, flat and reflex edges), 15 of them with
+//! normals that fit in no hemisphere (no apex for invariant 5): not traced
+//! further. It is not the default because it drops the dissertation's VII.4
+//! collapses (every edge gets a strip unless its corners coincide, so
+//! `collapse_angle` has no effect), whose counts the default keeps.
 
 //! # Status (measured)
 //!
@@ -474,7 +479,7 @@ pub struct MengerOptions {
     /// Whether `thickness` is a fraction of each face's width (default true).
     pub relative: bool,
     /// Edges whose interior dihedral angle is at most this (degrees) are
-    /// collapsed (VII.4); default 90.
+    /// collapsed (VII.4); default 90. [`Offset::Merged`] only.
     pub collapse_angle: f64,
     /// Whether the thickness of faces whose result crosses is reduced until
     /// it does not (module docs, "Thickness reduction"); default true.
