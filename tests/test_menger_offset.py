@@ -208,3 +208,16 @@ def test_per_face_keeps_the_classic_cube_and_says_where_it_crosses():
 def test_offset_names_are_checked():
     with pytest.raises(topomesh.MeshError, match=r'offset = "perface" is not a construction; use "merged" .* or "per_face"'):
         topomesh.cube().menger(offset="perface")
+
+
+def test_per_face_correspondence_and_attributes():
+    """The per-face construction carries the same correspondence as the
+    default: the mesh is the plain call's, every output face has a parent
+    among the input's faces, and face attributes follow their parents."""
+    o = topomesh.octahedron()
+    o = o.with_attributes(face={"label": np.arange(o.n_faces, dtype=np.float64)})
+    m, corr = o.menger(correspondence=True, offset="per_face")
+    assert m == o.menger(offset="per_face")
+    parents = np.asarray(corr.face_parents)
+    assert parents.shape == (m.n_faces,) and parents.min() >= 0 and parents.max() < o.n_faces
+    assert np.array_equal(m.face_attributes["label"], parents.astype(np.float64))

@@ -140,6 +140,35 @@ mod tests {
         }
     }
 
+    /// The per-face construction (`Offset::PerFace`) on every mesh of the
+    /// corpus the default accepts (it refuses the same ones): a valid
+    /// manifold with the genus formula and positive volume, its origins
+    /// consistent, and the mesh the plain call gives.
+    #[test]
+    fn per_face_on_the_corpus() {
+        let pf = MengerOptions { offset: crate::schemes::menger::Offset::PerFace, ..Default::default() };
+        let mut built = 0;
+        for (name, m) in corpus() {
+            let merged = super::super::menger::menger(&m, &MengerOptions::default());
+            let (lv, r) = match menger_level(&m, &pf, &full_request()) {
+                Ok(x) => x,
+                Err(e) => {
+                    assert!(merged.is_err(), "{name}: per-face refused what the default accepts: {e}");
+                    continue;
+                }
+            };
+            assert!(merged.is_ok(), "{name}: per-face accepted what the default refuses");
+            lv.mesh.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(lv.mesh.genus(), 2 * m.genus() + m.n_faces() as i64 - 1, "{name}");
+            assert!(lv.mesh.signed_volume() > 0.0, "{name}");
+            assert_eq!(r.crossing_pairs, Some(0), "{name}");
+            lv.origins.as_ref().unwrap().check(&m, &lv.mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(lv.mesh.to_polygons(), super::super::menger::menger(&m, &pf).unwrap().to_polygons(), "{name}");
+            built += 1;
+        }
+        assert!(built >= 7, "{built}");
+    }
+
     #[test]
     fn plain_request_gives_only_the_mesh() {
         let (lv, _) = menger_level(&crate::primitives::cube(), &MengerOptions::default(), &Request::plain()).unwrap();
