@@ -190,19 +190,19 @@ def test_per_face_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
 def test_per_face_keeps_the_classic_cube_and_says_where_it_crosses():
     """On the cube's right angles the per-face corners coincide: the classic
     sponge (same counts, genus and volume as the default's). Built on the
-    default's second tetrahedron iteration it crosses (216 pairs): the
+    default's second octahedron iteration it crosses (792 pairs): the
     warning gives the count and names the other construction."""
     a = topomesh.cube().menger(2, offset="per_face")
     b = topomesh.cube().menger(2)
     assert (a.n_vertices, a.n_edges, a.n_faces, a.genus) == (b.n_vertices, b.n_edges, b.n_faces, 81)
     assert a.volume == pytest.approx(8 * (20 / 27) ** 2, rel=1e-12)
-    t2 = topomesh.tetrahedron().menger(2)
+    o2 = topomesh.octahedron().menger(2)
     with pytest.warns(topomesh.GeometryWarning, match=r"self-intersects: (\d+) crossing .*offset=\"merged\"") as rec:
-        m, rep = t2.menger(offset="per_face", report=True)
+        m, rep = o2.menger(offset="per_face", report=True)
     left = len(m.self_intersections())
     assert left > 0 and rep["crossing_pairs"] == [left] and f"{left} crossing" in str(rec[0].message)
     m.validate()
-    assert m.genus == 2 * t2.genus + t2.n_faces - 1 and m.volume > 0
+    assert m.genus == 2 * o2.genus + o2.n_faces - 1 and m.volume > 0
 
 
 def test_offset_names_are_checked():

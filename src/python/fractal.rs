@@ -99,8 +99,9 @@ impl PyMesh {
     ///     inset (full on the cube's right angles: the classic sponge),
     ///     halved for the whole mesh while the output crosses. Crossing-free
     ///     wherever ``"merged"`` is, and also on the octahedron's,
-    ///     icosahedron's and dodecahedron's third iterations; fewer crossings
-    ///     on the tetrahedron's fourth (2,760 pairs against 4,646). Not the
+    ///     icosahedron's and dodecahedron's third iterations and the
+    ///     dodecahedron's fourth; fewer crossings on the tetrahedron's fourth
+    ///     (276 pairs against 4,646). Not the
     ///     default: it gives every edge a strip where the dissertation's
     ///     VII.4 rule collapses the edges up to ``collapse_angle`` (which it
     ///     ignores), so its counts are not the chapter's (the
@@ -133,9 +134,9 @@ impl PyMesh {
     /// iterations 1-4, the tetrahedron's 1-3, the octahedron's, the
     /// icosahedron's and the dodecahedron's 1-2, the torus's and the genus-2
     /// surface's 1-2 (confirmed by CGAL's exact test); with
-    /// ``offset="per_face"`` the cube's 1-4, the octahedron's, icosahedron's
-    /// and dodecahedron's 1-3, the tetrahedron's 1-3, the torus's and the
-    /// genus-2 surface's 1-2. Vertices whose local
+    /// ``offset="per_face"`` the cube's 1-4, the octahedron's and
+    /// icosahedron's 1-3, the dodecahedron's 1-4, the tetrahedron's 1-3, the
+    /// torus's and the genus-2 surface's 1-2. Vertices whose local
     /// result crosses itself are rebuilt
     /// with all their pipes meeting in one point, then the thickness is
     /// reduced where crossings remain; the measured figures (crossing pairs

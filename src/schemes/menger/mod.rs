@@ -234,7 +234,13 @@
 //!    centroid of its corners: where the normals lie in an open hemisphere
 //!    the vertex's neighbourhood is star-shaped from that apex, so as the
 //!    depth shrinks each cone triangle stays under the faces while its base
-//!    (a side of the collar of per-face corners and miter points) does;
+//!    (a side of the collar of per-face corners and miter points) does.
+//!    Where they do not, no point is below every face; the apex is then that
+//!    depth inward along the sum of the normals (measured: the centroid
+//!    there left 2,760 pairs in the tetrahedron's fourth iteration and
+//!    13,200 in the dodecahedron's, this point 276 and 0; two apexes, one
+//!    per run of faces whose normals fit a hemisphere, 11,722 and crossings
+//!    in the octahedron's third);
 //! 6. the depth is thin: `PER_FACE_DEPTH` = ½ of the inset `D` on every
 //!    face, unless every edge of the mesh meets at 90°, 180° or 270° (the
 //!    cube and its iterations: full depth, where invariant 2 welds the
@@ -267,11 +273,11 @@
 //! per-face): cube 1–4 0 → 0 (the classic sponge, same counts); genus
 //! surface(2) 1–2 0 → 0; octahedron 1–2 0 → 0, 3 624 → **0**; icosahedron
 //! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**, 4
-//! 76817 → 13200; tetrahedron 1–3 0 → 0, 4 4646 → 2760; torus(24, 12) 1–2
-//! 0 → 0. The tetrahedron's fourth iteration crosses at vertices of about
-//! forty kinds (mixed convex, flat and reflex edges), 15 of them with
-//! normals that fit in no hemisphere (no apex for invariant 5): not traced
-//! further. It is not the default because it drops the dissertation's VII.4
+//! 76817 → **0**; tetrahedron 1–3 0 → 0, 4 4646 → 276 (168 proper);
+//! torus(24, 12) 1–2 0 → 0. The tetrahedron's fourth iteration's first
+//! build crosses at vertices of about thirty kinds (mixed convex, flat and
+//! reflex edges), a third of them with normals that fit in no hemisphere:
+//! not traced further. It is not the default because it drops the dissertation's VII.4
 //! collapses (every edge gets a strip unless its corners coincide, so
 //! `collapse_angle` has no effect), whose counts the default keeps.
 

@@ -203,12 +203,18 @@ pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &
             // below every face around the vertex, by the smallest depth
             // there, so the cone lies under the vertex's faces (the vertex's
             // neighbourhood is star-shaped from it) as the depth shrinks,
-            // where the centroid of a saddle's collar can lie outside
+            // where the centroid of a saddle's collar can lie outside; where
+            // no point is below every face (normals in no hemisphere), that
+            // depth along the sum of the normals (inward), still not the
+            // centroid (tetrahedron 4: 2,760 pairs with it, 276 without)
             let apex = if pl.per_face {
                 let v = crate::mesh::VertexId(origin[fi].1);
                 let normals: Vec<DVec3> = m.vertex_halfedges(v).map(|h| pl.face_n[m.face(h).idx()]).collect();
                 let dmin = m.vertex_halfedges(v).map(|h| pl.face_depth[m.face(h).idx()]).fold(f64::INFINITY, f64::min);
-                super::offset::below_every_face(pos[v.idx()], &normals, dmin).unwrap_or(centroid)
+                super::offset::below_every_face(pos[v.idx()], &normals, dmin).unwrap_or_else(|| {
+                    let u = normals.iter().sum::<DVec3>().normalize_or_zero();
+                    if u == DVec3::ZERO { centroid } else { pos[v.idx()] - u * dmin }
+                })
             } else {
                 centroid
             };
