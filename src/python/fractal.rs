@@ -101,7 +101,7 @@ impl PyMesh {
     ///     wherever ``"merged"`` is, and also on the octahedron's,
     ///     icosahedron's and dodecahedron's third iterations and the
     ///     dodecahedron's fourth; fewer crossings on the tetrahedron's fourth
-    ///     (276 pairs against 4,646). Not the
+    ///     (48 pairs against 4,646). Not the
     ///     default: it gives every edge a strip where the dissertation's
     ///     VII.4 rule collapses the edges up to ``collapse_angle`` (which it
     ///     ignores), so its counts are not the chapter's (the
