@@ -100,8 +100,8 @@ impl PyMesh {
     ///     halved for the whole mesh while the output crosses. Crossing-free
     ///     wherever ``"merged"`` is, and also on the octahedron's,
     ///     icosahedron's and dodecahedron's third iterations and the
-    ///     dodecahedron's fourth; fewer crossings on the tetrahedron's fourth
-    ///     (48 pairs against 4,646). Not the
+    ///     tetrahedron's and dodecahedron's fourth (4,646 and 76,817 pairs
+    ///     with ``"merged"``). Not the
     ///     default: it gives every edge a strip where the dissertation's
     ///     VII.4 rule collapses the edges up to ``collapse_angle`` (which it
     ///     ignores), so its counts are not the chapter's (the
@@ -134,8 +134,8 @@ impl PyMesh {
     /// iterations 1-4, the tetrahedron's 1-3, the octahedron's, the
     /// icosahedron's and the dodecahedron's 1-2, the torus's and the genus-2
     /// surface's 1-2 (confirmed by CGAL's exact test); with
-    /// ``offset="per_face"`` the cube's 1-4, the octahedron's and
-    /// icosahedron's 1-3, the dodecahedron's 1-4, the tetrahedron's 1-3, the
+    /// ``offset="per_face"`` the cube's, the tetrahedron's and the
+    /// dodecahedron's 1-4, the octahedron's and icosahedron's 1-3, the
     /// torus's and the genus-2 surface's 1-2. Vertices whose local
     /// result crosses itself are rebuilt
     /// with all their pipes meeting in one point, then the thickness is

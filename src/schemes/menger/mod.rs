@@ -235,12 +235,16 @@
 //!    the vertex's neighbourhood is star-shaped from that apex, so as the
 //!    depth shrinks each cone triangle stays under the faces while its base
 //!    (a side of the collar of per-face corners and miter points) does.
-//!    Where they do not, no point is below every face; the apex is then that
-//!    depth inward along the sum of the normals (measured: the centroid
-//!    there left 2,760 pairs in the tetrahedron's fourth iteration and
-//!    13,200 in the dodecahedron's, this point 276 and 0; two apexes, one
-//!    per run of faces whose normals fit a hemisphere, 11,722 and crossings
-//!    in the octahedron's third). Off right angles every vertex face with
+//!    Where they do not, no point is below every face; the apex is then
+//!    inward along the sum of the normals, by that depth, or ½, ¼ or 2
+//!    times it, or the collar's centroid: the first whose cone meets none
+//!    of the vertex's outer corner and edge quads (exact predicate; at
+//!    the smallest depth alone 12 vertices of the tetrahedron's fourth
+//!    iteration, edges of 306°, 135°, 161°, 241°, 180°, 90°, kept 48 pairs;
+//!    the centroid alone left 2,760 pairs there and 13,200 in the
+//!    dodecahedron's fourth; two apexes, one per run of faces whose
+//!    normals fit a hemisphere, 11,722 and crossings in the octahedron's
+//!    third). Off right angles every vertex face with
 //!    more than three corners is such a cone, planar or not: a planar one
 //!    spanning the collar cut through the outer surface at the
 //!    tetrahedron's vertices of 60°, 270° and 270° (fourth iteration: 276
@@ -278,11 +282,9 @@
 //! per-face): cube 1–4 0 → 0 (the classic sponge, same counts); genus
 //! surface(2) 1–2 0 → 0; octahedron 1–2 0 → 0, 3 624 → **0**; icosahedron
 //! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**, 4
-//! 76817 → **0**; tetrahedron 1–3 0 → 0, 4 4646 → 48; torus(24, 12) 1–2
-//! 0 → 0. The tetrahedron's fourth iteration's 48 pairs are all at 12
-//! vertices of one kind (edges of 306°, 135°, 161°, 241°, 180°, 90°, whose
-//! normals fit in no hemisphere), where the apex along the normals' sum lies
-//! above the outer corner at the 306° edge: not solved. It is not the
+//! 76817 → **0**; tetrahedron 1–3 0 → 0, 4 4646 → **0**; torus(24, 12)
+//! 1–2 0 → 0: every case of issue 17's list, the tetrahedron's fourth and
+//! the cube's fourth confirmed by CGAL's exact test as well. It is not the
 //! default because it drops the dissertation's VII.4
 //! collapses (every edge gets a strip unless its corners coincide, so
 //! `collapse_angle` has no effect), whose counts the default keeps.

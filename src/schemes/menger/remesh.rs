@@ -226,7 +226,18 @@ pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &
                 let dmin = m.vertex_halfedges(v).map(|h| pl.face_depth[m.face(h).idx()]).fold(f64::INFINITY, f64::min);
                 super::offset::below_every_face(pos[v.idx()], &normals, dmin).unwrap_or_else(|| {
                     let u = normals.iter().sum::<DVec3>().normalize_or_zero();
-                    if u == DVec3::ZERO { centroid } else { pos[v.idx()] - u * dmin }
+                    if u == DVec3::ZERO {
+                        return centroid;
+                    }
+                    // the first of these whose cone misses the outer corner
+                    // and edge quads around the vertex (12 vertices of the
+                    // tetrahedron's fourth iteration, edges of 306°, 135°,
+                    // 161°, 241°, 180°, 90°, put the first above the 306°
+                    // edge's corner)
+                    let pv = pos[v.idx()];
+                    let cands = [pv - u * dmin, pv - u * (0.5 * dmin), pv - u * (0.25 * dmin), pv - u * (2.0 * dmin), centroid];
+                    let (t0, q0) = (m.n_vertices(), m.n_vertices() + 2 * m.n_edges());
+                    cands.iter().copied().find(|&c| !cone_meets_frame(m, v, c, &poly, &out_pos, t0, q0)).unwrap_or(cands[0])
                 })
             } else {
                 centroid
@@ -288,4 +299,30 @@ fn split_planar(poly: &[u32], pos: &[DVec3], tol: f64, out: &mut Vec<Vec<u32>>) 
     for i in 1..n - 1 {
         out.push(vec![poly[0], poly[i], poly[i + 1]]);
     }
+}
+
+/// Whether the cone from `apex` over the collar `poly` (output vertex ids)
+/// meets the outer remeshing around input vertex `v` (its corner and edge
+/// quads, two triangles each; contacts included): the check of the apex
+/// candidates where no point lies below every face.
+fn cone_meets_frame(m: &Mesh, v: crate::mesh::VertexId, apex: DVec3, poly: &[u32], out_pos: &[DVec3], t0: usize, q0: usize) -> bool {
+    use crate::geometry::crossing::triangles_meet;
+    let tri_near = |h: HalfedgeId, near_tail: bool| -> u32 { (t0 + 2 * h.edge().idx() + if (h.0 & 1 == 0) == near_tail { 0 } else { 1 }) as u32 };
+    let mut frame: Vec<[u32; 3]> = Vec::new();
+    for h in m.vertex_halfedges(v) {
+        let (pr, nx) = (m.prev(h), m.next(h));
+        let corner = [m.vertex(h).0, tri_near(h, true), (q0 + h.idx()) as u32, tri_near(pr, false)];
+        let edge = [tri_near(h, true), tri_near(h, false), (q0 + nx.idx()) as u32, (q0 + h.idx()) as u32];
+        for q in [corner, edge] {
+            frame.push([q[0], q[1], q[2]]);
+            frame.push([q[0], q[2], q[3]]);
+        }
+    }
+    let apex_id = u32::MAX;
+    let at = |i: u32| if i == apex_id { apex } else { out_pos[i as usize] };
+    let k = poly.len();
+    (0..k).any(|i| {
+        let t = [apex_id, poly[i], poly[(i + 1) % k]];
+        frame.iter().any(|f| triangles_meet(t, t.map(at), *f, f.map(at), true))
+    })
 }
