@@ -23,10 +23,6 @@ type Emitted = (Vec<i64>, Vec<i64>, Vec<u8>, Vec<(u8, u32)>);
 fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32, iv: &dyn Fn(u32) -> u32) -> Emitted {
     use crate::schemes::level::{EDGE, FACE, VERTEX};
     let ng = pl.group_pos.len();
-    let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
-        let near_tail_of_2e = (h.0 & 1 == 0) == near_tail;
-        tri(2 * h.edge().idx() + if near_tail_of_2e { 0 } else { 1 })
-    };
     let r = |h: HalfedgeId| iv(inner.rep[pl.group[h.idx()] as usize]);
     let mid = |e: usize, end: usize| iv(inner.rep[ng + 2 * e + end]);
     let mut sizes: Vec<i64> = Vec::new();
@@ -46,10 +42,11 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
     // outer remeshing (corner and edge quads) and the pipes
     for f in m.faces() {
         for h in m.face_halfedges(f) {
-            let (pr, nx) = (m.prev(h), m.next(h));
+            let nx = m.next(h);
             let of = (FACE, f.0);
-            push(&[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], 0, of);
-            push(&[t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())], 1, of);
+            let [corner, edge] = outer_quads(m, h, tri, qv);
+            push(&corner, 0, of);
+            push(&edge, 1, of);
             push(&[qv(h.idx()), qv(nx.idx()), r(nx), r(h)], 2, of);
         }
     }
@@ -98,6 +95,19 @@ fn emit_faces(m: &Mesh, pl: &Plan, inner: &Inner, tri: &dyn Fn(usize) -> u32, qv
         push(&poly, 5, (VERTEX, v.0));
     }
     (sizes, idx, tags, origin)
+}
+
+/// The outer remeshing's corner quad and edge quad of the corner at the
+/// tail of `h` (step 4), with `tri` numbering the trisection points (two
+/// per edge, the one near the tail of its even half-edge first) and `qv`
+/// the inset corners by half-edge.
+fn outer_quads(m: &Mesh, h: HalfedgeId, tri: &dyn Fn(usize) -> u32, qv: &dyn Fn(usize) -> u32) -> [[u32; 4]; 2] {
+    let t_near = |h: HalfedgeId, near_tail: bool| -> u32 {
+        let near_tail_of_2e = (h.0 & 1 == 0) == near_tail;
+        tri(2 * h.edge().idx() + if near_tail_of_2e { 0 } else { 1 })
+    };
+    let (pr, nx) = (m.prev(h), m.next(h));
+    [[m.vertex(h).0, t_near(h, true), qv(h.idx()), t_near(pr, false)], [t_near(h, true), t_near(h, false), qv(nx.idx()), qv(h.idx())]]
 }
 
 /// Positions and polygon faces of one iteration, with the number of inner
@@ -307,13 +317,9 @@ fn split_planar(poly: &[u32], pos: &[DVec3], tol: f64, out: &mut Vec<Vec<u32>>) 
 /// candidates where no point lies below every face.
 fn cone_meets_frame(m: &Mesh, v: crate::mesh::VertexId, apex: DVec3, poly: &[u32], out_pos: &[DVec3], t0: usize, q0: usize) -> bool {
     use crate::geometry::crossing::triangles_meet;
-    let tri_near = |h: HalfedgeId, near_tail: bool| -> u32 { (t0 + 2 * h.edge().idx() + if (h.0 & 1 == 0) == near_tail { 0 } else { 1 }) as u32 };
     let mut frame: Vec<[u32; 3]> = Vec::new();
     for h in m.vertex_halfedges(v) {
-        let (pr, nx) = (m.prev(h), m.next(h));
-        let corner = [m.vertex(h).0, tri_near(h, true), (q0 + h.idx()) as u32, tri_near(pr, false)];
-        let edge = [tri_near(h, true), tri_near(h, false), (q0 + nx.idx()) as u32, (q0 + h.idx()) as u32];
-        for q in [corner, edge] {
+        for q in outer_quads(m, h, &|i| (t0 + i) as u32, &|h| (q0 + h) as u32) {
             frame.push([q[0], q[1], q[2]]);
             frame.push([q[0], q[2], q[3]]);
         }
