@@ -120,6 +120,15 @@
 //! cube with the default thickness every edge collapses, so the first
 //! iteration is the classic level-1 sponge (V 64, E 144, F 72, genus 5).
 //!
+//! With per-face corners ("Per-face corners" below) the same formulas hold
+//! with `G = 2E` (one offset corner per half-edge, fewer where coincident
+//! ones are welded, as at the cube's right angles), `S` every edge that is
+//! neither mitered nor welded away (collapsed edges included), and each
+//! vertex face of `k > 3` corners off right angles a cone: one apex vertex
+//! (in `G + 2E_m + cones`) and `k` triangles instead of one face. The
+//! tetrahedron's first iteration: V 40 (4 + 4E + 2E), E 90, F 46 (the chapter's 36 faces
+//! plus six strips, four triangular vertex faces), genus 3.
+//!
 //! # Thickness, welding, planarity
 //!
 //! With a relative thickness `t` (default 1/3), a face's `D` is `t` times the
