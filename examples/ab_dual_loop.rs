@@ -8,16 +8,13 @@
 //! profiler).
 mod common;
 
-use topomesh::primitives;
 use topomesh::schemes::{dual::dual, loop_subdivision::loop_subdivision, topmod::compose};
 
 #[global_allocator]
 static GLOBAL: common::Huge = common::Huge;
 
 fn main() {
-    common::huge_pages_from_env();
-    let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
-    let t = primitives::torus(400, 250, 3.0, 1.0).unwrap();
+    let (reps, t) = common::setup();
     let ops: [(&str, common::Op); 2] = [("composition", |m| dual(&loop_subdivision(&dual(m)?)?)), ("one pass", compose::dual_loop)];
     let (a, b) = (ops[0].1(&t).unwrap(), ops[1].1(&t).unwrap());
     assert!(a == b, "the builds differ");

@@ -8,16 +8,13 @@
 //! pages as the extension then does (`common::Huge`).
 mod common;
 
-use topomesh::primitives;
 use topomesh::schemes::conway::conway;
 
 #[global_allocator]
 static GLOBAL: common::Huge = common::Huge;
 
 fn main() {
-    common::huge_pages_from_env();
-    let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
-    let t = primitives::torus(400, 250, 3.0, 1.0).unwrap();
+    let (reps, t) = common::setup();
     // zip (`dk`, the same output size, already one pass) for reference
     let ops: [(&str, common::Op); 3] = [("composition", |m| conway("zd", Some(m))), ("one pass", |m| conway("t", Some(m))), ("zip", |m| conway("z", Some(m)))];
     let (a, b) = (ops[0].1(&t).unwrap(), ops[1].1(&t).unwrap());

@@ -57,6 +57,14 @@ pub fn huge_pages_from_env() {
     }
 }
 
+/// The A/B examples' start: the huge-page setting read, the repetitions
+/// from the first argument (default 7) and the catalog's 400×250 torus.
+pub fn setup() -> (usize, Mesh) {
+    huge_pages_from_env();
+    let reps: usize = std::env::args().nth(1).map_or(7, |s| s.parse().unwrap());
+    (reps, topomesh::primitives::torus(400, 250, 3.0, 1.0).unwrap())
+}
+
 /// FNV-1a over the positions' bits, the face cycles and the corner twins.
 pub fn hash(m: &Mesh) -> u64 {
     let mut h = 0xcbf29ce484222325u64;

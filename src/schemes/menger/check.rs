@@ -282,9 +282,6 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         return build_per_face(m, o, reduce);
     }
     let nf = m.n_faces();
-    // per-face corners bound the depth at sharp edges too: their report
-    // gives the depth the build used
-    let per_face = o.offset == super::Offset::PerFace;
     let mut red = Reduction { depth: vec![1.0; nf] };
     let factor = |r: &Reduction, f: usize| r.depth[f];
     let mut rounds = 0;
@@ -294,8 +291,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
     loop {
         let ((b, mesh), vertices, scanned) = build_valid(m, o, (rounds > 0).then_some(&red))?;
         if !reduce {
-            let face_factor = if per_face { b.depth_factor.clone() } else { vec![1.0; nf] };
-            let report = MengerReport { face_factor, rounds: 0, crossing_pairs: None, crossing_vertices: vertices, nominal: 1.0 };
+            let report = MengerReport { face_factor: vec![1.0; nf], rounds: 0, crossing_pairs: None, crossing_vertices: vertices, nominal: 1.0 };
             return Ok(((b, mesh), report));
         }
         let pairs = match scanned {
@@ -314,7 +310,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         }
         hit.sort_unstable();
         hit.dedup();
-        let face_factor = if per_face { b.depth_factor.clone() } else { (0..nf).map(|f| factor(&red, f)).collect() };
+        let face_factor = (0..nf).map(|f| factor(&red, f)).collect();
         let report = MengerReport { face_factor, rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices, nominal: 1.0 };
         let last = pairs.is_empty() || rounds == REDUCTION_ROUNDS;
         drop(pairs);

@@ -128,11 +128,7 @@ fn classify_crossings() {
                 _ => "vertex face".into(),
             }
         };
-        let angle = |h: HalfedgeId| -> f64 {
-            let (n1, n2) = (pl.face_n[m.face(h).idx()], pl.face_n[m.face(h.twin()).idx()]);
-            let u = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize_or_zero();
-            (std::f64::consts::PI - n1.cross(n2).dot(u).atan2(n1.dot(n2))).to_degrees()
-        };
+        let angle = |h: HalfedgeId| super::offset::interior_angle(&m, &pl.face_n, h).to_degrees();
         let relation = |a: u32, c: u32| -> String {
             if a == c {
                 return "same face".into();

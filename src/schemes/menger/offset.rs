@@ -59,10 +59,7 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Redu
     let kind: Vec<EdgeKind> = m
         .edges()
         .map(|e| {
-            let h = e.halfedge();
-            let (n1, n2) = (face_n[m.face(h).idx()], face_n[m.face(h.twin()).idx()]);
-            let t = (pos[m.head(h).idx()] - p(h)).normalize_or_zero();
-            let phi = std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2));
+            let phi = interior_angle(m, &face_n, e.halfedge());
             if phi <= collapse {
                 EdgeKind::Collapse
             } else if phi <= std::f64::consts::PI + ANGLE_TOL {
@@ -163,13 +160,10 @@ pub(super) fn plan(m: &Mesh, o: &MengerOptions, full: &[bool], red: Option<&Redu
 /// a right prism of depth `d` over its window `D` from the edge, stays in
 /// the wedge (whose thickness there is `D tan φ`).
 fn sharp_edge_depth(m: &Mesh, face_n: &[DVec3], face_d: &[f64], face_depth: &mut [f64]) {
-    let pos = m.positions();
     for e in m.edges() {
         let h = e.halfedge();
         let (f1, f2) = (m.face(h).idx(), m.face(h.twin()).idx());
-        let (n1, n2) = (face_n[f1], face_n[f2]);
-        let t = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize_or_zero();
-        let phi = std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2));
+        let phi = interior_angle(m, face_n, h);
         if phi > 0.0 && phi < std::f64::consts::FRAC_PI_2 - ANGLE_TOL {
             let bound = SHARP_MARGIN * face_d[f1].min(face_d[f2]) * (0.5 * phi).tan();
             face_depth[f1] = face_depth[f1].min(bound);
@@ -188,16 +182,26 @@ fn sharp_edge_depth(m: &Mesh, face_n: &[DVec3], face_d: &[f64], face_depth: &mut
 /// ones cross in the next iteration (octahedron 3: 120 pairs, 0 with one
 /// factor).
 pub(super) fn per_face_depth(m: &Mesh) -> f64 {
-    let pos = m.positions();
     let normal: Vec<DVec3> = m.faces().map(|f| m.face_newell(f).normalize_or_zero()).collect();
-    let orthogonal = m.edges().all(|e| {
-        let h = e.halfedge();
-        let (n1, n2) = (normal[m.face(h).idx()], normal[m.face(h.twin()).idx()]);
-        let t = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize_or_zero();
-        let phi = std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2));
+    if right_angled(m, &normal) { 1.0 } else { super::check::PER_FACE_DEPTH }
+}
+
+/// Whether every edge meets at 90°, 180° or 270° (within [`ANGLE_TOL`]),
+/// for unit face normals `face_n` ([`per_face_depth`]).
+pub(super) fn right_angled(m: &Mesh, face_n: &[DVec3]) -> bool {
+    m.edges().all(|e| {
+        let phi = interior_angle(m, face_n, e.halfedge());
         [1.0, 2.0, 3.0].iter().any(|k| (phi - k * std::f64::consts::FRAC_PI_2).abs() <= ANGLE_TOL)
-    });
-    if orthogonal { 1.0 } else { super::check::PER_FACE_DEPTH }
+    })
+}
+
+/// The interior (material) dihedral angle of the edge of `h`, in radians
+/// (0 to 2π; π for a flat edge), from the unit normals of its two faces.
+pub(super) fn interior_angle(m: &Mesh, face_n: &[DVec3], h: HalfedgeId) -> f64 {
+    let pos = m.positions();
+    let (n1, n2) = (face_n[m.face(h).idx()], face_n[m.face(h.twin()).idx()]);
+    let t = (pos[m.head(h).idx()] - pos[m.vertex(h).idx()]).normalize_or_zero();
+    std::f64::consts::PI - n1.cross(n2).dot(t).atan2(n1.dot(n2))
 }
 
 /// The share of the largest depth [`sharp_edge_depth`] allows, below 1 so

@@ -198,7 +198,7 @@ pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &
     let mut k = 0;
     let mut pieces = Vec::new();
     let mut coned: Vec<u32> = Vec::new();
-    let cone_all = pl.per_face && super::offset::per_face_depth(m) < 1.0;
+    let cone_all = pl.per_face && !super::offset::right_angled(m, &pl.face_n);
     for (fi, &n) in sizes.iter().enumerate() {
         let poly: Vec<u32> = idx[k..k + n as usize].iter().map(|&x| x as u32).collect();
         k += n as usize;
@@ -209,14 +209,11 @@ pub(super) fn build_polygons(m: &Mesh, o: &MengerOptions, refined: bool, full: &
         // the collar cut through the outer surface at the tetrahedron's
         // vertices of 60°, 270° and 270°: 276 pairs in its fourth iteration,
         // 48 as cones); on the cube's right angles they stay as built
-        if cone_all && tags[fi] == 5 && poly.len() > 3 {
-            for i in 1..poly.len() - 1 {
-                pieces.push(vec![poly[0], poly[i], poly[i + 1]]);
-            }
-        } else {
+        let vertex_face = tags[fi] == 5 && poly.len() > 3;
+        if !(vertex_face && cone_all) {
             split_planar(&poly, &out_pos, tol, &mut pieces);
         }
-        if pieces.len() == poly.len() - 2 && poly.len() > 3 && tags[fi] == 5 {
+        if vertex_face && (cone_all || pieces.len() == poly.len() - 2) {
             // a vertex face with no planar split: a cone from its centroid
             // (a fan from a corner can fold through the outer surface)
             pieces.clear();
