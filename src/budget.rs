@@ -572,7 +572,7 @@ mod tests {
 
     #[test]
     fn menger_bounds_hold() {
-        let o = schemes::menger::MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, ..Default::default() };
+        let o = schemes::menger::MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, offset: schemes::menger::Offset::Merged, ..Default::default() };
         let pf = schemes::menger::MengerOptions { offset: schemes::menger::Offset::PerFace, ..o };
         let oct2 = schemes::menger::menger(&primitives::octahedron(), &pf).unwrap();
         for m in [primitives::cube(), primitives::tetrahedron(), primitives::dodecahedron(), oct2] {

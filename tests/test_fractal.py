@@ -215,36 +215,39 @@ def test_menger_cube_first_iterations_are_classic():
     assert m2.volume == pytest.approx(8 * (20 / 27) ** 2, rel=1e-9)
 
 
-MENGER_CASES = [("cube", 4), ("tetrahedron", 4), ("dodecahedron", 3)]
+# (input, iterations, construction): the default per-face corners, and the
+# dissertation's merged ones (offset="merged", VII.4) where they still cross
+MENGER_CASES = [("cube", 4, "per_face"), ("tetrahedron", 4, "per_face"), ("dodecahedron", 3, "per_face"),
+                ("dodecahedron", 3, "merged")]
 # iterations that still self-intersect (src/schemes/menger/mod.rs, Status):
-# Mesh.menger warns on them
-MENGER_CROSSING = {("tetrahedron", 4), ("dodecahedron", 3), ("dodecahedron", 4)}
-# iterations made crossing-free by the thickness reduction (mod.rs, "Thickness
-# reduction"): Mesh.menger warns with the faces reduced. None of these cases
-# since the tetrahedron's third iteration lost its 4 spurious contacts (the
-# torus's second iteration is one: tests/test_menger_offset.py)
-MENGER_REDUCED: set = set()
+# Mesh.menger warns on them; none with the default construction
+MENGER_CROSSING = {("merged", "tetrahedron", 4), ("merged", "dodecahedron", 3), ("merged", "dodecahedron", 4)}
+# iterations whose depth went below the construction's own (mod.rs, "Per-face
+# corners", invariant 6, and the bound at sharp edges): Mesh.menger warns with
+# the faces reduced (the merged construction's reduced case, the torus's second
+# iteration, is in tests/test_menger_offset.py)
+MENGER_REDUCED = {("per_face", "tetrahedron", 3), ("per_face", "tetrahedron", 4), ("per_face", "dodecahedron", 3)}
 
 
-def menger_step(m, name, k):
+def menger_step(m, name, k, offset="per_face"):
     """One Menger iteration of the k-th level, expecting GeometryWarning
     exactly where the iteration is known to self-intersect or to have its
     thickness reduced (pytest turns any other warning into an error)."""
-    if (name, k) in MENGER_REDUCED:
+    if (offset, name, k) in MENGER_REDUCED:
         with pytest.warns(topomesh.GeometryWarning, match=r"iteration 1 of 1: the thickness was reduced on \d+ of \d+ faces"):
-            return m.menger()
-    if (name, k) not in MENGER_CROSSING:
-        return m.menger()
+            return m.menger(offset=offset)
+    if (offset, name, k) not in MENGER_CROSSING:
+        return m.menger(offset=offset)
     with pytest.warns(topomesh.GeometryWarning, match=r"iteration 1 of 1 self-intersects: \d+ crossing triangle pairs remain"):
-        return m.menger()
+        return m.menger(offset=offset)
 
 
-@pytest.mark.parametrize("name,iterations", MENGER_CASES)
-def test_menger_genus_recurrence_and_peers(name, iterations):
+@pytest.mark.parametrize("name,iterations,offset", MENGER_CASES)
+def test_menger_genus_recurrence_and_peers(name, iterations, offset):
     m = PLATONIC[name]()
     for k in range(1, iterations + 1):
         g, f = m.genus, m.n_faces
-        m = menger_step(m, name, k)
+        m = menger_step(m, name, k, offset)
         m.validate()
         assert m.genus == 2 * g + f - 1, f"{name} iteration {k}"
         assert m.n_components == 1
@@ -254,15 +257,18 @@ def test_menger_genus_recurrence_and_peers(name, iterations):
 
 
 def test_menger_dodecahedron_fourth_iteration_topology():
+    """The merged construction (the per-face one, the default, has no
+    crossing here: tests/test_menger_offset.py; its fourth iteration is
+    measured in docs/schemes/menger.md)."""
     # one warning per crossing iteration, naming it: only the third crosses
     with pytest.warns(topomesh.GeometryWarning) as rec:
-        m = topomesh.dodecahedron().menger(3)
+        m = topomesh.dodecahedron().menger(3, offset="merged")
     assert [str(w.message).split(":")[1].strip() for w in rec] == ["iteration 3 of 3 self-intersects"]
     g, f = m.genus, m.n_faces
     # without the thickness reduction: its whole-output scan and rebuilds take
     # minutes at 660 k faces (76,817 pairs left with it, docs/schemes/menger.md)
     with pytest.warns(topomesh.GeometryWarning, match=r"iteration 1 of 1 self-intersects: .* left \d+ input vertices"):
-        m = m.menger(reduce_thickness=False)
+        m = m.menger(reduce_thickness=False, offset="merged")
     m.validate()
     assert m.genus == 2 * g + f - 1
     assert m.n_components == 1 and m.volume > 0
@@ -298,9 +304,9 @@ def test_menger_options_and_errors():
 @pytest.mark.parametrize("name", ["tetrahedron", "dodecahedron"])
 def test_menger_faces_planar_and_pipes_unsplit(name):
     """Remeshing corners follow merged offset corners (src/schemes/menger/mod.rs,
-    step 2), so pipe walls stay planar quads instead of being split into
-    two long triangles: every face of the second iteration is planar."""
-    m = PLATONIC[name]().menger(2)
+    step 2; offset="merged"), so pipe walls stay planar quads instead of being
+    split into two long triangles: every face of the second iteration is planar."""
+    m = PLATONIC[name]().menger(2, offset="merged")
     v, sizes, idx = m.vertices, m.face_sizes, m.face_indices
     start = np.concatenate([[0], np.cumsum(sizes)])
     worst = 0.0
@@ -324,10 +330,11 @@ def test_menger_warns_only_where_crossings_remain():
     # crossing-free: no warning (pytest's filterwarnings turns one into an error);
     # made crossing-free by the thickness reduction, a warning saying where:
     # tests/test_menger_offset.py (the torus's second iteration)
-    topomesh.tetrahedron().menger(3)
-    d2 = topomesh.dodecahedron().menger(2)
+    # (the merged construction: the default has no crossing here)
+    topomesh.tetrahedron().menger(3, offset="merged")
+    d2 = topomesh.dodecahedron().menger(2, offset="merged")
     with pytest.warns(topomesh.GeometryWarning) as rec:
-        d3 = d2.menger()
+        d3 = d2.menger(offset="merged")
     assert len(rec) == 1
     n = int(str(rec[0].message).split("self-intersects: ")[1].split()[0])
     assert n == len(d3.self_intersections()) > 0
@@ -372,8 +379,9 @@ def test_menger_no_self_intersections(name, iterations):
 def test_menger_tetrahedron_second_iteration_crossing_free_other_thickness(thickness):
     from tests.test_ops import self_intersections
 
-    m = topomesh.tetrahedron().menger(2, thickness=thickness)
+    m1 = topomesh.tetrahedron().menger(1, thickness=thickness)
+    m = m1.menger(thickness=thickness)
     m.validate()
-    assert m.genus == 2 * 3 + 36 - 1
+    assert m1.genus == 2 * 0 + 4 - 1 and m.genus == 2 * m1.genus + m1.n_faces - 1
     assert not self_intersections(m)
     assert_agrees_with_peers(m)

@@ -3,7 +3,9 @@ predicate (``Mesh.self_intersections``, src/geometry/crossing/), the
 thickness reduction and its report (src/schemes/menger/mod.rs, "Thickness
 reduction"), positive volume and the validation harness.
 
-The cases claimed crossing-free are asserted to have zero crossing pairs;
+Both constructions are tested: the default, per-face corners, and the
+dissertation's merged corners (``offset="merged"``, VII.4). The cases
+claimed crossing-free are asserted to have zero crossing pairs;
 the ones that still cross are asserted to say so (a GeometryWarning with
 the count the exact scan finds), never silently. The larger iterations
 (cube 4, tetrahedron 4, dodecahedron 3-4, icosahedron 3, torus 2) are
@@ -32,8 +34,11 @@ INPUTS = {
     "genus2": lambda: topomesh.genus_surface(2),
 }
 
-# (input, iterations) free of crossings with the default options
-CLEAN = [("cube", 3), ("tetrahedron", 3), ("octahedron", 2), ("icosahedron", 2), ("dodecahedron", 2),
+# (input, iterations) free of crossings with the dissertation's merged construction
+# (offset="merged", VII.4), which these first tests measure; the default per-face
+# construction is tested from PER_FACE_CLEAN on
+MERGED = {"offset": "merged"}
+MERGED_CLEAN = [("cube", 3), ("tetrahedron", 3), ("octahedron", 2), ("icosahedron", 2), ("dodecahedron", 2),
          ("torus", 1), ("genus2", 2)]
 
 
@@ -59,9 +64,9 @@ def _assert_cgal_finds_none(m):
     assert len(cgal.remesh_self_intersections(v, t, detect_only=True)[2]) == 0
 
 
-@pytest.mark.parametrize("name,k", CLEAN)
-def test_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
-    for i, (m, rep, warned) in enumerate(_iterate(name, k), start=1):
+@pytest.mark.parametrize("name,k", MERGED_CLEAN)
+def test_merged_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
+    for i, (m, rep, warned) in enumerate(_iterate(name, k, **MERGED), start=1):
         assert len(m.self_intersections()) == 0, f"{name} {i}"
         assert rep["crossing_pairs"] == [0]
         assert rep["reduced_faces"] == [0] and rep["min_factor"] == [1.0]
@@ -74,12 +79,13 @@ def test_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
             _assert_cgal_finds_none(m)
 
 
+@pytest.mark.parametrize("offset", ["per_face", "merged"])
 @pytest.mark.parametrize("name,k", [("cube", 3), ("tetrahedron", 2), ("dodecahedron", 2), ("genus2", 2)])
-def test_reduction_leaves_crossing_free_outputs_unchanged(name, k):
+def test_reduction_leaves_crossing_free_outputs_unchanged(name, k, offset):
     """Outputs without crossings are bit for bit the construction without
     the reduction."""
-    a = INPUTS[name]().menger(k)
-    b = INPUTS[name]().menger(k, reduce_thickness=False)
+    a = INPUTS[name]().menger(k, offset=offset)
+    b = INPUTS[name]().menger(k, reduce_thickness=False, offset=offset)
     assert np.array_equal(a.vertices, b.vertices)
     assert np.array_equal(a.face_sizes, b.face_sizes) and np.array_equal(a.face_indices, b.face_indices)
 
@@ -97,19 +103,20 @@ def test_report_shape_and_tuple_order():
 
 
 def test_crossing_iteration_is_never_silent():
-    """The octahedron's third iteration (19.7 k faces) still crosses: the
+    """The merged construction's octahedron third iteration (19.7 k faces)
+    still crosses: the
     warning gives the count the exact scan finds, the report the faces
     reduced, and the reduction keeps the build with the fewest pairs (never
     more than without it)."""
-    o2 = topomesh.octahedron().menger(2)
+    o2 = topomesh.octahedron().menger(2, **MERGED)
     with pytest.warns(topomesh.GeometryWarning) as rec:
-        m, rep = o2.menger(report=True)
+        m, rep = o2.menger(report=True, **MERGED)
     left = len(m.self_intersections())
     assert left > 0 and rep["crossing_pairs"] == [left]
     msg = [str(w.message) for w in rec]
     assert len(msg) == 1 and re.search(rf"self-intersects: {left} crossing triangle pairs remain", msg[0])
     with pytest.warns(topomesh.GeometryWarning, match="left \\d+ input vertices"):
-        plain = o2.menger(reduce_thickness=False)
+        plain = o2.menger(reduce_thickness=False, **MERGED)
     assert left <= len(plain.self_intersections())
     f = rep["face_factor"][0]
     assert len(f) == o2.n_faces and ((f > 0) & (f <= 1)).all()
@@ -123,31 +130,32 @@ def test_crossing_iteration_is_never_silent():
 
 
 def test_tetrahedron_third_iteration_needs_no_reduction():
-    """The tetrahedron's third iteration used to be reduced for 4 coplanar
+    """The merged construction's tetrahedron third iteration used to be reduced for 4 coplanar
     "contacts" between nearly coplanar neighbours sharing a corner (planes
     1e-10 rad apart), which CGAL does not find; the exact tests no longer
     report them (src/geometry/crossing/), and the build is kept as is."""
-    t2 = topomesh.tetrahedron().menger(2)
-    plain = t2.menger(reduce_thickness=False)
+    t2 = topomesh.tetrahedron().menger(2, **MERGED)
+    plain = t2.menger(reduce_thickness=False, **MERGED)
     assert len(plain.self_intersections()) == 0
     _assert_cgal_finds_none(plain)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        m, rep = t2.menger(report=True)
+        m, rep = t2.menger(report=True, **MERGED)
     assert rep["crossing_pairs"] == [0] and rep["reduced_faces"] == [0]
     assert m == plain
 
 
 def test_torus_second_iteration_reduced_to_no_crossing():
-    """The torus's second iteration has 432 proper crossings as built; the
+    """The merged construction's torus second iteration has 432 proper
+    crossings as built; the
     reduction halves the depth of the faces behind them, leaves none (CGAL
     agrees; it used to leave 223 "contacts" CGAL did not find) and says so."""
-    t1 = INPUTS["torus"]().menger()
+    t1 = INPUTS["torus"]().menger(**MERGED)
     with pytest.warns(topomesh.GeometryWarning, match="left \\d+ input vertices"):
-        plain = t1.menger(reduce_thickness=False)
+        plain = t1.menger(reduce_thickness=False, **MERGED)
     assert len(plain.self_intersections()) == 432
     with pytest.warns(topomesh.GeometryWarning, match=r"reduced on \d+ of 4636 faces .* free of crossings") as rec:
-        m, rep = t1.menger(report=True)
+        m, rep = t1.menger(report=True, **MERGED)
     assert len(rec) == 1
     assert len(m.self_intersections()) == 0 and rep["crossing_pairs"] == [0]
     f = rep["face_factor"][0]
@@ -158,17 +166,17 @@ def test_torus_second_iteration_reduced_to_no_crossing():
     _assert_cgal_finds_none(m)
 
 
-# (input, iterations) free of crossings with offset="per_face" (src/schemes/menger/mod.rs,
-# "Per-face corners"): the octahedron's, icosahedron's and dodecahedron's third iterations
-# and the tetrahedron's fourth are not with the default construction (624, 1800, 900 and
-# 4,646 pairs)
+# (input, iterations) free of crossings with the default construction, offset="per_face"
+# (src/schemes/menger/mod.rs, "Per-face corners"): the octahedron's, icosahedron's and
+# dodecahedron's third iterations and the tetrahedron's fourth are not with the merged
+# one (624, 1800, 900 and 4,646 pairs)
 PER_FACE_CLEAN = [("octahedron", 3), ("icosahedron", 3), ("dodecahedron", 3), ("cube", 3), ("genus2", 2),
                   ("tetrahedron", 4), ("torus", 2)]
 
 
 @pytest.mark.parametrize("name,k", PER_FACE_CLEAN)
 def test_per_face_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
-    for i, (m, rep, warned) in enumerate(_iterate(name, k, offset="per_face"), start=1):
+    for i, (m, rep, warned) in enumerate(_iterate(name, k), start=1):
         assert len(m.self_intersections()) == 0, f"{name} {i}"
         assert rep["crossing_pairs"] == [0]
         # the construction's own depth: half the inset, full on right angles
@@ -190,17 +198,19 @@ def test_per_face_clean_cases_have_no_crossing_and_agree_with_peers(name, k):
 
 
 def test_per_face_keeps_the_classic_cube_and_says_where_it_crosses():
-    """On the cube's right angles the per-face corners coincide: the classic
-    sponge (same counts, genus and volume as the default's). Built on the
-    default's second octahedron iteration it crosses (792 pairs): the
-    warning gives the count and names the other construction."""
-    a = topomesh.cube().menger(2, offset="per_face")
-    b = topomesh.cube().menger(2)
+    """Per-face is the default. On the cube's right angles the per-face
+    corners coincide: the classic sponge (same counts, genus and volume as
+    the merged construction's). Built on the merged construction's second
+    octahedron iteration it crosses (792 pairs): the warning gives the count
+    and names the other construction."""
+    a = topomesh.cube().menger(2)
+    assert a == topomesh.cube().menger(2, offset="per_face")
+    b = topomesh.cube().menger(2, **MERGED)
     assert (a.n_vertices, a.n_edges, a.n_faces, a.genus) == (b.n_vertices, b.n_edges, b.n_faces, 81)
     assert a.volume == pytest.approx(8 * (20 / 27) ** 2, rel=1e-12)
-    o2 = topomesh.octahedron().menger(2)
+    o2 = topomesh.octahedron().menger(2, **MERGED)
     with pytest.warns(topomesh.GeometryWarning, match=r"self-intersects: (\d+) crossing .*offset=\"merged\"") as rec:
-        m, rep = o2.menger(offset="per_face", report=True)
+        m, rep = o2.menger(report=True)
     left = len(m.self_intersections())
     assert left > 0 and rep["crossing_pairs"] == [left] and f"{left} crossing" in str(rec[0].message)
     m.validate()
@@ -208,7 +218,7 @@ def test_per_face_keeps_the_classic_cube_and_says_where_it_crosses():
 
 
 def test_offset_names_are_checked():
-    with pytest.raises(topomesh.MeshError, match=r'offset = "perface" is not a construction; use "merged" .* or "per_face"'):
+    with pytest.raises(topomesh.MeshError, match=r'offset = "perface" is not a construction; use "per_face" .* or "merged"'):
         topomesh.cube().menger(offset="perface")
 
 

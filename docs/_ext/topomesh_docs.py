@@ -40,7 +40,7 @@ GALLERY = [
     # fractals
     "tetrahedron_sierpinski", "cube_sierpinski_doo_sabin", "star_prism_sierpinski_doo_sabin",
     "menger_sponge_1", "menger_sponge_2", "cube_menger", "tetrahedron_menger", "dodecahedron_menger",
-    "octahedron_menger_per_face",
+    "octahedron_menger", "tetrahedron_menger_merged",
     # attractors
     "ifs_cubic_bspline", "ifs_koch", "ifs_gasket",
 ]

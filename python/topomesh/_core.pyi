@@ -361,7 +361,7 @@ class Mesh:
         *,
         correspondence: Literal[False] = False,
         reduce_thickness: bool = True,
-        offset: Literal["merged", "per_face"] = "merged",
+        offset: Literal["per_face", "merged"] = "per_face",
         report: Literal[False] = False,
     ) -> Mesh: ...
     @overload
@@ -375,7 +375,7 @@ class Mesh:
         *,
         correspondence: Literal[True],
         reduce_thickness: bool = True,
-        offset: Literal["merged", "per_face"] = "merged",
+        offset: Literal["per_face", "merged"] = "per_face",
         report: Literal[False] = False,
     ) -> tuple[Mesh, Correspondence]: ...
     @overload
@@ -389,7 +389,7 @@ class Mesh:
         *,
         correspondence: Literal[False] = False,
         reduce_thickness: bool = True,
-        offset: Literal["merged", "per_face"] = "merged",
+        offset: Literal["per_face", "merged"] = "per_face",
         report: Literal[True],
     ) -> tuple[Mesh, dict[str, Any]]: ...
     @overload
@@ -403,7 +403,7 @@ class Mesh:
         *,
         correspondence: Literal[True],
         reduce_thickness: bool = True,
-        offset: Literal["merged", "per_face"] = "merged",
+        offset: Literal["per_face", "merged"] = "per_face",
         report: Literal[True],
     ) -> tuple[Mesh, Correspondence, dict[str, Any]]: ...
     # --- printing (src/python/printing.rs, topomesh.printing) ---

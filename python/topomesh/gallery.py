@@ -33,7 +33,7 @@ class Entry:
     color: Callable[[Mesh], np.ndarray] | None = None
 
 
-def _menger(m, k: int, offset: str = "merged"):
+def _menger(m, k: int, offset: str = "per_face"):
     """``m.menger(iterations=k, offset=offset)`` with the thickness-reduction
     notice silenced (the reduction is the expected path for some entries, and
     the per-face construction's depth is bounded at sharp edges; other
@@ -109,14 +109,12 @@ def _extra_entries(solids: dict[str, Callable[[], Mesh]]) -> Iterator[Entry]:
         )
     for level in (1, 2, 3):
         yield Entry(f"menger_sponge_{level}", f"Classic Menger sponge, level {level}", lambda k=level: topomesh.menger_sponge(k))
-    # iterations that are free of self-intersections (tests/test_fractal.py, tests/test_menger_offset.py);
-    # the tetrahedron's third is so after the thickness reduction, whose notice is expected here
-    for name, k in (("cube", 3), ("tetrahedron", 3), ("dodecahedron", 2)):
+    # iterations that are free of self-intersections (tests/test_fractal.py, tests/test_menger_offset.py)
+    for name, k in (("cube", 3), ("tetrahedron", 3), ("octahedron", 3), ("dodecahedron", 3)):
         yield Entry(f"{name}_menger", f"Generalized Menger {name} ×{k}", lambda n=name, k=k: _menger(solids[n](), k))
-    # the per-face construction, crossing-free where the default is not (docs/schemes/menger.md)
-    for name, k in (("octahedron", 3), ("dodecahedron", 3)):
-        yield Entry(f"{name}_menger_per_face", f"Generalized Menger {name} ×{k}, per-face corners",
-                    lambda n=name, k=k: _menger(solids[n](), k, offset="per_face"))
+    # the dissertation's merged construction (VII.4: collapsed edges, the chapter's counts)
+    yield Entry("tetrahedron_menger_merged", "Generalized Menger tetrahedron ×3, the dissertation's merged corners",
+                lambda: _menger(solids["tetrahedron"](), 3, offset="merged"))
     # handles and rinds (issue 3)
     yield Entry("cup", "The dissertation's cup (Fig. 65): rind body + curved handle", modeling.cup)
     yield Entry("arch_cube_3", "Genus-3 cube: three curved handles", lambda: modeling.arch_cube(3))

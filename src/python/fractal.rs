@@ -49,9 +49,10 @@ impl PyMesh {
 
     /// Generalized Menger sponge (dissertation ch. VII): every face is
     /// inset by the thickness ``D`` into a remeshing face, a copy is offset
-    /// inward by ``D``, the offset faces are joined across edges (collapsed
-    /// where the dihedral angle is at most ``collapse_angle``, split by a
-    /// miter vertex at non-convex edges), every original face is remeshed
+    /// inward (by default every face corner with its own offset corner, so
+    /// every pipe is a right prism; see ``offset``), the offset faces are
+    /// joined across edges by strips (split by a miter point at non-convex
+    /// edges) and around vertices by cones, every original face is remeshed
     /// into corner and edge quads, and a pipe joins each remeshing face to
     /// its offset face.
     ///
@@ -89,23 +90,21 @@ impl PyMesh {
     ///     ``nominal_factor`` (the construction's own depth factor: 1, or
     ///     1/2 with ``offset="per_face"`` off right angles; faces below it
     ///     count as reduced).
-    /// offset : {"merged", "per_face"}, default "merged", keyword-only
+    /// offset : {"per_face", "merged"}, default "per_face", keyword-only
     ///     How the inner surface is built (``src/schemes/menger/mod.rs``).
-    ///     ``"merged"``: one offset corner per group of faces joined by
-    ///     collapsed edges (dissertation VII.4). ``"per_face"``: every face
-    ///     corner gets its own offset corner straight below its window, so
-    ///     every pipe is a right prism; vertex faces are cones from a point
-    ///     below every face around the vertex, and the depth is half the
-    ///     inset (full on the cube's right angles: the classic sponge),
-    ///     halved for the whole mesh while the output crosses. Crossing-free
-    ///     wherever ``"merged"`` is, and also on the octahedron's,
-    ///     icosahedron's and dodecahedron's third iterations and the
-    ///     tetrahedron's and dodecahedron's fourth (4,646 and 76,817 pairs
-    ///     with ``"merged"``). Not the
-    ///     default: it gives every edge a strip where the dissertation's
-    ///     VII.4 rule collapses the edges up to ``collapse_angle`` (which it
-    ///     ignores), so its counts are not the chapter's (the
-    ///     tetrahedron's first iteration: 46 faces, not 36).
+    ///     ``"per_face"``: every face corner gets its own offset corner
+    ///     straight below its window, so every pipe is a right prism; vertex
+    ///     faces are cones from a point below every face around the vertex,
+    ///     and the depth is half the inset (full on the cube's right angles:
+    ///     the classic sponge), halved for the whole mesh while the output
+    ///     crosses. ``"merged"``: the dissertation's construction (VII.4),
+    ///     one offset corner per group of faces joined by collapsed edges
+    ///     (edges up to ``collapse_angle``), kept to reproduce the chapter's
+    ///     counts (the tetrahedron's first iteration: 36 faces, against 46
+    ///     per-face, where every edge keeps a strip); it crosses itself on
+    ///     the octahedron's, icosahedron's and dodecahedron's third
+    ///     iterations and the tetrahedron's fourth (624, 1,800, 900 and
+    ///     4,646 pairs), where ``"per_face"`` has none.
     ///
     /// Returns
     /// -------
@@ -129,18 +128,16 @@ impl PyMesh {
     ///
     /// Notes
     /// -----
-    /// The result is always a valid oriented manifold, but free of
-    /// geometric self-intersections only where measured so: the cube's
-    /// iterations 1-4, the tetrahedron's 1-3, the octahedron's, the
-    /// icosahedron's and the dodecahedron's 1-2, the torus's and the genus-2
-    /// surface's 1-2 (confirmed by CGAL's exact test); with
-    /// ``offset="per_face"`` the cube's, the tetrahedron's and the
-    /// dodecahedron's 1-4, the octahedron's and icosahedron's 1-3, the
-    /// torus's and the genus-2 surface's 1-2. Vertices whose local
-    /// result crosses itself are rebuilt
-    /// with all their pipes meeting in one point, then the thickness is
-    /// reduced where crossings remain; the measured figures (crossing pairs
-    /// left, per case) are in ``docs/schemes/menger.md``.
+    /// The result is always a valid oriented manifold, and free of
+    /// geometric self-intersections where measured so (exact predicate,
+    /// confirmed by CGAL's test): the cube's, the tetrahedron's and the
+    /// dodecahedron's iterations 1-4, the octahedron's and icosahedron's
+    /// 1-3, the torus's and the genus-2 surface's 1-2. Elsewhere the
+    /// thickness is halved while crossings remain and any left are warned
+    /// about; with ``offset="merged"`` vertices whose local result crosses
+    /// are first rebuilt with all their pipes meeting in one point. The
+    /// measured figures (crossing pairs left, per case and construction)
+    /// are in ``docs/schemes/menger.md``.
     ///
     /// Warns
     /// -----
@@ -150,7 +147,7 @@ impl PyMesh {
     ///     pairs (their count, from the exact whole-output check). With
     ///     ``reduce_thickness=False``, when the per-vertex check left
     ///     vertices crossing (that check alone can miss pairs).
-    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false, reduce_thickness = true, report = false, offset = "merged"))]
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false, reduce_thickness = true, report = false, offset = "per_face"))]
     #[allow(clippy::too_many_arguments)]
     fn menger<'py>(
         &self,
@@ -169,7 +166,7 @@ impl PyMesh {
             "merged" => mg::Offset::Merged,
             "per_face" => mg::Offset::PerFace,
             other => {
-                return Err(super::err(crate::error::MeshError::InvalidArgument(format!("menger: offset = {other:?} is not a construction; use \"merged\" (the default) or \"per_face\""))))
+                return Err(super::err(crate::error::MeshError::InvalidArgument(format!("menger: offset = {other:?} is not a construction; use \"per_face\" (the default) or \"merged\""))))
             }
         };
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle, reduce_thickness, offset };

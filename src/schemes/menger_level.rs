@@ -112,8 +112,13 @@ mod tests {
 
     #[test]
     fn origins_and_transfer_on_platonic_and_torus() {
-        let o = MengerOptions::default();
-        for (name, m) in [("cube", crate::primitives::cube()), ("tetrahedron", crate::primitives::tetrahedron()), ("dodecahedron", crate::primitives::dodecahedron()), ("torus", crate::primitives::torus(6, 4, 1.0, 0.4).unwrap())] {
+        use crate::schemes::menger::Offset;
+        for (o, (name, m)) in [Offset::PerFace, Offset::Merged].into_iter().flat_map(|offset| {
+            let o = MengerOptions { offset, ..Default::default() };
+            [("cube", crate::primitives::cube()), ("tetrahedron", crate::primitives::tetrahedron()), ("dodecahedron", crate::primitives::dodecahedron()), ("torus", crate::primitives::torus(6, 4, 1.0, 0.4).unwrap())].map(|c| (o, c))
+        }) {
+            let name = format!("{name} {:?}", o.offset);
+            let name = name.as_str();
             let (lv, _) = menger_level(&m, &o, &full_request()).unwrap();
             let plain = super::super::menger::menger(&m, &o).unwrap();
             assert_eq!(lv.mesh.to_polygons(), plain.to_polygons(), "{name}");
@@ -140,8 +145,8 @@ mod tests {
         }
     }
 
-    /// The per-face construction (`Offset::PerFace`) on every mesh of the
-    /// corpus the default accepts (it refuses the same ones): a valid
+    /// The per-face construction (`Offset::PerFace`, the default) on every
+    /// mesh of the corpus the merged one accepts (it refuses the same ones): a valid
     /// manifold with the genus formula and positive volume, its origins
     /// consistent, and the mesh the plain call gives.
     #[test]
@@ -149,15 +154,15 @@ mod tests {
         let pf = MengerOptions { offset: crate::schemes::menger::Offset::PerFace, ..Default::default() };
         let mut built = 0;
         for (name, m) in corpus() {
-            let merged = super::super::menger::menger(&m, &MengerOptions::default());
+            let merged = super::super::menger::menger(&m, &MengerOptions { offset: crate::schemes::menger::Offset::Merged, ..Default::default() });
             let (lv, r) = match menger_level(&m, &pf, &full_request()) {
                 Ok(x) => x,
                 Err(e) => {
-                    assert!(merged.is_err(), "{name}: per-face refused what the default accepts: {e}");
+                    assert!(merged.is_err(), "{name}: per-face refused what merged accepts: {e}");
                     continue;
                 }
             };
-            assert!(merged.is_ok(), "{name}: per-face accepted what the default refuses");
+            assert!(merged.is_ok(), "{name}: per-face accepted what merged refuses");
             lv.mesh.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
             assert_eq!(lv.mesh.genus(), 2 * m.genus() + m.n_faces() as i64 - 1, "{name}");
             assert!(lv.mesh.signed_volume() > 0.0, "{name}");

@@ -2,6 +2,14 @@
 //! dissertation, ch. VII.3–VII.5, on any closed manifold polygon mesh.
 //!
 //! One iteration with thickness `D` (per face, see [`MengerOptions`]):
+//! steps 1, 4 and 5 are common to both constructions of the inner surface;
+//! steps 2–3 below are the dissertation's **merged corners**
+//! ([`Offset::Merged`], `offset="merged"`), kept to reproduce its counts.
+//! The default is **per-face corners** ([`Offset::PerFace`], "Per-face
+//! corners" below): every face corner keeps its own offset corner, no edge
+//! collapses, and every case of the Status section is free of crossings
+//! (the merged corners cross on the octahedron's, icosahedron's and
+//! dodecahedron's third iterations and the tetrahedron's fourth).
 //!
 //! 1. **Remeshing faces** (VII.3 step 1): every corner `p` of a face `f` is
 //!    inset to `q = p + D (w₁ + w₂)/(1 + w₁·w₂)`, where `w₁, w₂` are the unit
@@ -234,7 +242,7 @@
 //!    distance from the edge is bounded (`MITER_REACH` times the two faces'
 //!    own depths, for nearly flat edges whose planes meet far away), never
 //!    their place along it (bounded by the thinnest face around the vertex,
-//!    as the default bounds it, a 312° edge's miter point was pulled back to
+//!    as the merged construction bounds it, a 312° edge's miter point was pulled back to
 //!    the vertex: 204 pairs in the tetrahedron's third iteration, 2,976 in
 //!    the torus's second, none without);
 //! 5. a vertex face with no planar split is a cone from an apex *below
@@ -276,10 +284,10 @@
 //! at best; built at half depth from the first iteration: 0). A depth per
 //! face (full on right-angled faces, half elsewhere) left 120 / 1396 pairs
 //! in the octahedron's / icosahedron's third iteration, and the per-face
-//! halving of the default construction ("Thickness reduction") stalls on
+//! halving of the merged construction ("Thickness reduction") stalls on
 //! faces of different depth side by side (octahedron 3: 504, dodecahedron
 //! 3: 963): one factor for the whole mesh, halved uniformly, is what left
-//! none. Each rule was measured alone on the default construction's first
+//! none. Each rule was measured alone on the merged construction's first
 //! octahedron iteration (its second iteration, full depth, no reduction):
 //! centroid cones and slid miter points 384 pairs, apex below every face
 //! 168, and the middle miter points 96; at a quarter of the depth 0 with
@@ -287,18 +295,22 @@
 //! with centroid cones (they poke through the outer surface).
 //!
 //! Measured (crossing pairs with contacts, every iteration on its own
-//! previous output, `menger::diagnose::compare_offsets`; default →
+//! previous output, `menger::diagnose::compare_offsets`; merged →
 //! per-face): cube 1–4 0 → 0 (the classic sponge, same counts); genus
 //! surface(2) 1–2 0 → 0; octahedron 1–2 0 → 0, 3 624 → **0**; icosahedron
 //! 1–2 0 → 0, 3 1800 → **0**; dodecahedron 1–2 0 → 0, 3 900 → **0**, 4
 //! 76817 → **0**; tetrahedron 1–3 0 → 0, 4 4646 → **0**; torus(24, 12)
 //! 1–2 0 → 0: every case of issue 17's list, the tetrahedron's fourth and
-//! the cube's fourth confirmed by CGAL's exact test as well. It is not the
-//! default because it drops the dissertation's VII.4
-//! collapses (every edge gets a strip unless its corners coincide, so
-//! `collapse_angle` has no effect), whose counts the default keeps.
+//! the cube's fourth confirmed by CGAL's exact test as well. It is the
+//! default for that; it drops the dissertation's VII.4 collapses (every
+//! edge gets a strip unless its corners coincide, so `collapse_angle` has
+//! no effect), whose counts the merged construction keeps.
 
 //! # Status (measured)
+//!
+//! The figures of this section are the merged construction's
+//! (`offset="merged"`); the default's are at the end of "Per-face corners"
+//! above.
 //!
 //! Cube, iterations 1–4: quads only, genus 5, 81, 1121, 15585, the first two
 //! with the classic sponge's volume; trimesh and manifold3d agree (watertight,
@@ -508,7 +520,7 @@ pub struct MengerOptions {
     /// it does not (module docs, "Thickness reduction"); default true.
     pub reduce_thickness: bool,
     /// The inner surface's construction (module docs, "Per-face corners");
-    /// default [`Offset::Merged`].
+    /// default [`Offset::PerFace`].
     pub offset: Offset,
 }
 
@@ -517,17 +529,19 @@ pub struct MengerOptions {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Offset {
     /// One merged point per group of faces joined by collapsed edges, with
-    /// the crossing check's full collapses (steps 2–3).
-    #[default]
+    /// the crossing check's full collapses (steps 2–3): the dissertation's
+    /// construction and counts (VII.4), kept to reproduce them.
     Merged,
     /// One offset corner per face corner, never merged (module docs,
-    /// "Per-face corners").
+    /// "Per-face corners"); the default: crossing-free on every case the
+    /// module docs list.
+    #[default]
     PerFace,
 }
 
 impl Default for MengerOptions {
     fn default() -> Self {
-        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, reduce_thickness: true, offset: Offset::Merged }
+        MengerOptions { thickness: 1.0 / 3.0, relative: true, collapse_angle: 90.0, reduce_thickness: true, offset: Offset::PerFace }
     }
 }
 

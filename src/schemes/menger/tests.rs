@@ -45,15 +45,18 @@ mod iterations {
 
     #[test]
     fn platonic_iterations() {
-        let o = MengerOptions::default();
-        let c = check(&primitives::cube(), 4, &o);
-        assert_eq!(c.genus(), 15585); // 5, 81, 1121, 15585
-        assert_eq!(c.face_size_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
-        check(&primitives::tetrahedron(), 3, &o);
-        check(&primitives::dodecahedron(), 3, &o);
-        // the second cube iteration has the classic level-2 volume
-        let c2 = menger_iterated(&primitives::cube(), 2, &o).unwrap();
-        assert!((c2.signed_volume() - 8.0 * (20.0f64 / 27.0).powi(2)).abs() < 1e-9);
+        // both constructions: per-face (the default) and merged (VII.4)
+        for offset in [Offset::PerFace, Offset::Merged] {
+            let o = MengerOptions { offset, ..Default::default() };
+            let c = check(&primitives::cube(), 4, &o);
+            assert_eq!(c.genus(), 15585); // 5, 81, 1121, 15585
+            assert_eq!(c.face_size_histogram().keys().copied().collect::<Vec<_>>(), vec![4]);
+            check(&primitives::tetrahedron(), 3, &o);
+            check(&primitives::dodecahedron(), 3, &o);
+            // the second cube iteration has the classic level-2 volume
+            let c2 = menger_iterated(&primitives::cube(), 2, &o).unwrap();
+            assert!((c2.signed_volume() - 8.0 * (20.0f64 / 27.0).powi(2)).abs() < 1e-9);
+        }
     }
 
     #[test]
@@ -83,12 +86,18 @@ mod intersection_tests {
     use super::*;
     use crate::primitives;
 
+    /// The dissertation's merged construction, whose crossing check and
+    /// reduction these tests measure (the default is per-face).
+    fn merged() -> MengerOptions {
+        MengerOptions { offset: Offset::Merged, ..Default::default() }
+    }
+
     /// Proper triangle crossings: none on the cube's iterations 1–4, the
     /// tetrahedron's 1–2 and the dodecahedron's 1–2. (Their third
     /// iterations still cross; see the module docs.)
     #[test]
     fn cube4_no_crossings() {
-        let m = menger_iterated(&primitives::cube(), 4, &MengerOptions::default()).unwrap();
+        let m = menger_iterated(&primitives::cube(), 4, &merged()).unwrap();
         assert_eq!(count_self_intersections(&m), 0);
     }
 
@@ -98,12 +107,12 @@ mod intersection_tests {
     #[test]
     fn third_iterations_with_crossing_check() {
         for t in [1.0 / 3.0, 0.25] {
-            let o = MengerOptions { thickness: t, ..Default::default() };
+            let o = MengerOptions { thickness: t, ..merged() };
             let m = menger_iterated(&primitives::tetrahedron(), 3, &o).unwrap();
             m.validate().unwrap();
             assert_eq!(count_self_intersections(&m), 0, "thickness {t}");
         }
-        let m = menger_iterated(&primitives::dodecahedron(), 3, &MengerOptions::default()).unwrap();
+        let m = menger_iterated(&primitives::dodecahedron(), 3, &merged()).unwrap();
         let n = count_self_intersections(&m);
         assert!(n < 1500, "{n} crossing pairs");
     }
@@ -114,7 +123,7 @@ mod intersection_tests {
     /// remaining crossing pair has a triangle of a reported vertex).
     #[test]
     fn checked_reports_remaining_crossings() {
-        let o = MengerOptions::default();
+        let o = merged();
         for (m0, clean) in [(primitives::tetrahedron(), true), (primitives::cube(), true), (primitives::dodecahedron(), false)] {
             let input = menger_iterated(&m0, 2, &o).unwrap();
             let (m, left) = menger_checked(&input, &o).unwrap();
@@ -131,7 +140,7 @@ mod intersection_tests {
     /// built without it, and flags nothing on a crossing-free one.
     #[test]
     fn local_check_matches_global_scan() {
-        let o = MengerOptions::default();
+        let o = merged();
         let t2 = menger_iterated(&primitives::tetrahedron(), 2, &o).unwrap();
         let (b, mesh) = build_once(&t2, &o, &vec![false; t2.n_vertices()], None).unwrap();
         let (tris, p) = triangles_with_points(&mesh);
@@ -186,7 +195,7 @@ mod intersection_tests {
     #[ignore]
     fn crossing_report() {
         for t in [1.0 / 3.0, 0.25] {
-            let o = MengerOptions { thickness: t, ..Default::default() };
+            let o = MengerOptions { thickness: t, ..merged() };
             for (name, m0, n) in [("cube", primitives::cube(), 4), ("tetrahedron", primitives::tetrahedron(), 4), ("dodecahedron", primitives::dodecahedron(), 3)] {
                 let mut m = m0;
                 for k in 1..=n {
@@ -205,7 +214,7 @@ mod intersection_tests {
 
     #[test]
     fn no_self_intersections() {
-        let o = MengerOptions::default();
+        let o = merged();
         let mut m = primitives::cube();
         for _ in 0..3 {
             m = menger(&m, &o).unwrap();
@@ -264,7 +273,8 @@ mod per_face {
         // every edge of the cube is right-angled: the per-face corners of
         // a corner coincide and are welded, as the merged ones are
         let a = run(&primitives::cube(), 2);
-        let b = menger_iterated(&primitives::cube(), 2, &MengerOptions::default()).unwrap();
+        let merged = MengerOptions { offset: Offset::Merged, ..Default::default() };
+        let b = menger_iterated(&primitives::cube(), 2, &merged).unwrap();
         let (m, r) = &a[1];
         assert_eq!((m.n_vertices(), m.n_edges(), m.n_faces(), m.genus()), (b.n_vertices(), b.n_edges(), b.n_faces(), 81));
         assert!((m.signed_volume() - 8.0 * (20.0f64 / 27.0).powi(2)).abs() < 1e-9);
@@ -309,7 +319,8 @@ mod per_face {
                 assert_eq!(crate::geometry::crossing::mesh_crossing_pairs(&m, true).len(), 0);
             }
         }
-        let o2 = menger_iterated(&primitives::octahedron(), 2, &MengerOptions::default()).unwrap();
+        let merged = MengerOptions { offset: Offset::Merged, ..Default::default() };
+        let o2 = menger_iterated(&primitives::octahedron(), 2, &merged).unwrap();
         let plain = MengerOptions { offset: Offset::PerFace, reduce_thickness: false, ..Default::default() };
         let (m, r) = menger_reported(&o2, &plain).unwrap();
         assert_eq!(r.crossing_pairs, None);
@@ -328,7 +339,7 @@ mod per_face {
 /// ([`super::diagnose::rejection_check`]; larger cases there).
 #[test]
 fn side_plane_rejection_keeps_every_answer() {
-    let o = MengerOptions { reduce_thickness: false, ..Default::default() };
+    let o = MengerOptions { reduce_thickness: false, offset: Offset::Merged, ..Default::default() };
     let pf = MengerOptions { offset: Offset::PerFace, ..o };
     let t2 = menger_iterated(&crate::primitives::tetrahedron(), 2, &o).unwrap();
     let o1 = menger(&crate::primitives::octahedron(), &o).unwrap();
