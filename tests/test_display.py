@@ -268,6 +268,16 @@ def test_explore_input_dropdown_and_bad_values():
     ex.close()
 
 
+def test_explore_menger_construction_dropdown():
+    """The Menger panel offers both constructions; collapse_angle, which only
+    the merged one reads, gets no slider unless a range is passed."""
+    ex = topomesh.explore(topomesh.tetrahedron(), "menger", iterations=1)
+    assert "collapse_angle" not in ex.widgets and ex.mesh.n_faces == 46  # per-face corners, the default
+    ex.widgets["offset"].value = "merged"
+    assert ex.mesh.n_faces == 36  # the dissertation's collapses (VII.4)
+    ex.close()
+
+
 def test_explore_compare_two_values_side_by_side():
     ex = topomesh.explore(topomesh.dodecahedron(), "honeycomb", compare={"t": 0.2}, window_size=(600, 300))
     left, right = ex.meshes

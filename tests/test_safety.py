@@ -268,7 +268,7 @@ def _base_calls():
         },
         "Mesh.honeycomb": (cube.honeycomb, {"iterations": 1, "t": 0.5, "tension": 0.5}),
         "Mesh.vertex_truncation": (cube.vertex_truncation, {"iterations": 1, "mode": "polyhedral", "ratio": 0.3}),
-        "Mesh.menger": (cube.menger, {"iterations": 1, "thickness": 0.3, "collapse_angle": 90.0}),
+        "Mesh.menger": (cube.menger, {"iterations": 1, "thickness": 0.3, "collapse_angle": 90.0, "offset": "merged"}),
         # --- TopMod remeshing and extrusions (issue 16) ---
         **{f"Mesh.{s}": (getattr(cube, s), {"iterations": 1}) for s in ("stellate_edge_removal", "linear_vertex_insertion", "root3", "dual_loop", "doo_sabin_bc")},
         "Mesh.stellate": (cube.stellate, {"iterations": 1, "offset": 0.1}),
@@ -432,7 +432,21 @@ def test_menger_absolute_thickness_is_bounded():
 @pytest.mark.parametrize("angle", [math.nan, math.inf, -1.0, 181.0])
 def test_menger_collapse_angle_range(angle):
     with pytest.raises(MeshError, match=r"collapse_angle = .* must be a finite angle in \[0, 180\]"):
-        topomesh.cube().menger(1, collapse_angle=angle)
+        topomesh.cube().menger(1, collapse_angle=angle, offset="merged")
+
+
+def test_menger_collapse_angle_is_refused_where_it_does_not_apply():
+    """The per-face construction (the default) collapses no edge: an angle
+    passed with it is an error naming the construction it belongs to, not a
+    silently ignored keyword; with offset="merged" it still works."""
+    with pytest.raises(MeshError, match=r'collapse_angle = 120 applies to offset="merged" only'):
+        topomesh.dodecahedron().menger(1, collapse_angle=120.0)
+    with pytest.raises(MeshError, match=r'collapse_angle = 90 applies to offset="merged" only'):
+        topomesh.cube().menger(1, 1 / 3, False, 90.0)  # positionally too
+    d = topomesh.dodecahedron()
+    wide = d.menger(1, collapse_angle=120.0, offset="merged")  # every dodecahedron edge (116.6°) collapses
+    assert wide.n_faces < d.menger(1, offset="merged").n_faces
+    assert d.menger(1, offset="merged", collapse_angle=90.0) == d.menger(1, offset="merged")
 
 
 def test_peeling_every_face_is_refused():

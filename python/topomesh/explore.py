@@ -28,7 +28,9 @@ SCHEMES: dict[str, dict[str, tuple[Any, Any]]] = {
     "honeycomb": {"t": (0.5, (0.05, 0.95, 0.05)), "tension": (None, (0.05, 1.0, 0.05))},
     "vertex_truncation": {"mode": ("chaikin", ["chaikin", "polyhedral"]), "ratio": (0.25, (0.05, 0.5, 0.01))},
     "sierpinski": {},
-    "menger": {"thickness": (1.0 / 3.0, (0.05, 0.45, 0.01)), "collapse_angle": (90.0, (0.0, 180.0, 5.0))},
+    # collapse_angle applies to offset="merged" only: a slider only when a range is passed
+    "menger": {"thickness": (1.0 / 3.0, (0.05, 0.45, 0.01)), "offset": ("per_face", ["per_face", "merged"]),
+               "collapse_angle": (None, (0.0, 180.0, 5.0))},
 }
 _CACHE_SIZE = 16
 

@@ -64,9 +64,11 @@ impl PyMesh {
     ///     its centroid to its nearest side; the side of a square), below 1/2;
     ///     with ``absolute=True`` a length.
     /// absolute : bool, default False
-    /// collapse_angle : float, default 90
-    ///     Edges with an interior dihedral angle up to this (degrees) collapse
-    ///     (``offset="merged"`` only).
+    /// collapse_angle : float, optional
+    ///     ``offset="merged"`` only: edges with an interior dihedral angle up
+    ///     to this (degrees) collapse; default 90 (VII.4). Passed with the
+    ///     per-face construction, which collapses no edge, it is refused
+    ///     (``MeshError``) rather than ignored.
     /// progress : bool, default False
     /// correspondence : bool, default False, keyword-only
     ///     Also return a :class:`topomesh.Correspondence`: parent faces and
@@ -147,7 +149,7 @@ impl PyMesh {
     ///     pairs (their count, from the exact whole-output check). With
     ///     ``reduce_thickness=False``, when the per-vertex check left
     ///     vertices crossing (that check alone can miss pairs).
-    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = 90.0, progress = false, *, correspondence = false, reduce_thickness = true, report = false, offset = "per_face"))]
+    #[pyo3(signature = (iterations = 1, thickness = 1.0 / 3.0, absolute = false, collapse_angle = None, progress = false, *, correspondence = false, reduce_thickness = true, report = false, offset = "per_face"))]
     #[allow(clippy::too_many_arguments)]
     fn menger<'py>(
         &self,
@@ -155,7 +157,7 @@ impl PyMesh {
         #[pyo3(from_py_with = big_int)] iterations: i128,
         thickness: f64,
         absolute: bool,
-        collapse_angle: f64,
+        collapse_angle: Option<f64>,
         progress: bool,
         correspondence: bool,
         reduce_thickness: bool,
@@ -169,6 +171,12 @@ impl PyMesh {
                 return Err(super::err(crate::error::MeshError::InvalidArgument(format!("menger: offset = {other:?} is not a construction; use \"per_face\" (the default) or \"merged\""))))
             }
         };
+        if let (mg::Offset::PerFace, Some(a)) = (offset, collapse_angle) {
+            return Err(super::err(crate::error::MeshError::InvalidArgument(format!(
+                "menger: collapse_angle = {a} applies to offset=\"merged\" only (the dissertation's edge collapses, VII.4); the per-face construction, the default, collapses no edge"
+            ))));
+        }
+        let collapse_angle = collapse_angle.unwrap_or(mg::MengerOptions::default().collapse_angle);
         let o = mg::MengerOptions { thickness, relative: !absolute, collapse_angle, reduce_thickness, offset };
         // every iteration's report, in order
         let reports = std::sync::Mutex::new(Vec::<mg::MengerReport>::new());
