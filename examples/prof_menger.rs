@@ -2,6 +2,7 @@
 //! catalog row, issue 16): `RAYON_NUM_THREADS=1 cargo run --release
 //! --example prof_menger [MAJOR MINOR [CALLS]]` (default the 400×250 torus,
 //! 3 calls; the first pays for fresh memory, compare the later ones).
+//! `NOREDUCE=1`: without the thickness reduction (the construction alone).
 use std::time::Instant;
 use topomesh::primitives;
 use topomesh::schemes::menger::{menger_reported, MengerOptions};
@@ -21,7 +22,8 @@ fn main() {
     let t = primitives::torus(major, minor, 1.0, 0.4).unwrap();
     for _ in 0..calls {
         let (t0, c0) = (Instant::now(), cpu_secs());
-        let (out, r) = menger_reported(&t, &MengerOptions::default()).unwrap();
+        let o = MengerOptions { reduce_thickness: std::env::var("NOREDUCE").is_err(), ..Default::default() };
+        let (out, r) = menger_reported(&t, &o).unwrap();
         let (s, c) = (t0.elapsed().as_secs_f64(), cpu_secs() - c0);
         println!("torus {major}x{minor}: {} faces out in {:.1} ms ({:.2} M faces/s; CPU {:.0} ms), pairs {:?}, rounds {}", out.n_faces(), s * 1e3, out.n_faces() as f64 / s / 1e6, c * 1e3, r.crossing_pairs, r.rounds);
     }

@@ -247,18 +247,30 @@ fn build_per_face(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, 
     let base = super::offset::per_face_depth(m);
     let mut best: Option<((Built, Mesh), MengerReport)> = None;
     let mut scale = 1.0;
+    // per-face corners have no full collapse to fall back on, so the
+    // per-vertex check only reports (`crossing_vertices`): it runs where
+    // the whole-output scan does not (no reduction) or found pairs (a
+    // crossing-free output has no crossing vertex either: the check tests a
+    // subset of the scan's pairs with the same predicate)
+    let all_apart = vec![false; m.n_vertices()];
+    let vertices = |cur: &(Built, Mesh), tri: &Tris| local_crossings(&tri.p, &tri.t.tris, &cur.0.owner, cur.0.first_inner, None).len();
     for rounds in 0..=PER_FACE_ROUNDS {
         let red = Reduction { depth: vec![base * scale; m.n_faces()] };
-        let ((b, mesh), vertices, scanned) = build_valid(m, o, Some(&red))?;
-        let mut report = MengerReport { face_factor: b.depth_factor.clone(), rounds, crossing_pairs: None, crossing_vertices: vertices, nominal: base };
+        let cur = build_once(m, o, &all_apart, Some(&red))?;
+        let tri = Tris::of(&cur.1);
+        let mut report = MengerReport { face_factor: cur.0.depth_factor.clone(), rounds, crossing_pairs: None, crossing_vertices: 0, nominal: base };
         if !reduce {
-            return Ok(((b, mesh), report));
+            report.crossing_vertices = vertices(&cur, &tri);
+            crate::cancel::check()?;
+            return Ok((cur, report));
         }
-        let n = match scanned {
-            Scan::Pairs(p) => p.len(),
-            Scan::Tris(t) => output_crossings(&t, b.first_inner).len(),
-        };
+        let n = output_crossings(&tri, cur.0.first_inner).len();
         crate::cancel::check()?;
+        if n > 0 {
+            report.crossing_vertices = vertices(&cur, &tri);
+        }
+        drop(tri);
+        let (b, mesh) = cur;
         report.crossing_pairs = Some(n);
         if best.as_ref().map_or(true, |(_, r)| r.crossing_pairs.is_some_and(|x| n < x)) {
             best = Some(((b, mesh), report));

@@ -247,7 +247,9 @@
 //!    the torus's second, none without);
 //! 5. a vertex face with no planar split is a cone from an apex *below
 //!    every face around the vertex* by the smallest depth there (the centre
-//!    of the normals' spherical cap, `below_every_face`), not from the
+//!    of the normals' spherical cap, `below_every_face`: the nearest point
+//!    `x` with every `n·x ≥ 1`, solved exactly over active sets of at most
+//!    three normals, `min_norm_above`), not from the
 //!    centroid of its corners: where the normals lie in an open hemisphere
 //!    the vertex's neighbourhood is star-shaped from that apex, so as the
 //!    depth shrinks each cone triangle stays under the faces while its base
