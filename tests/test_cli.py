@@ -99,6 +99,21 @@ def test_scheme_commands(tmp_path, capsys, args, check):
     assert check(topomesh.load(dst, allow_multi_edges=True))
 
 
+def test_menger_command_constructions(tmp_path):
+    """`topomesh menger` builds per-face corners by default and the
+    dissertation's merged ones with --offset merged (the tetrahedron's
+    first iteration: 46 and 36 faces, both genus 3)."""
+    src = tmp_path / "tet.obj"
+    topomesh.tetrahedron().save(src)
+    got = {}
+    for extra in ([], ["--offset", "merged"]):
+        dst = tmp_path / f"out{len(extra)}.ply"
+        assert cli.main(["menger", str(src), str(dst), *extra]) == 0
+        m = topomesh.load(dst, allow_multi_edges=True)
+        got[tuple(extra)] = (m.n_faces, m.genus)
+    assert got == {(): (46, 3), ("--offset", "merged"): (36, 3)}
+
+
 def _run_cli(*args: str, timeout: float = 120) -> "subprocess.CompletedProcess[str]":
     import subprocess
     import sys
