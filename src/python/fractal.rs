@@ -136,8 +136,7 @@ impl PyMesh {
     /// -----
     /// The result is always a valid oriented manifold, and free of
     /// geometric self-intersections where measured so (exact predicate,
-    /// confirmed by CGAL's test except on the dodecahedron's fourth
-    /// iteration): the cube's, the tetrahedron's and the
+    /// confirmed by CGAL's test): the cube's, the tetrahedron's and the
     /// dodecahedron's iterations 1-4, the octahedron's and icosahedron's
     /// 1-3, the torus's and the genus-2 surface's 1-2. Elsewhere the
     /// thickness is halved while crossings remain and any left are warned
