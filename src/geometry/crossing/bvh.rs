@@ -20,6 +20,8 @@ use glam::DVec3;
 const LEAF: usize = 8;
 /// Traversal depth below which node pairs are split across threads.
 const PAR_DEPTH: u32 = 10;
+/// Subtrees of at least this many triangles are built on two threads.
+const PAR_BUILD: usize = 1 << 15;
 
 /// A triangle: its bounding box, its index, whether it is focused.
 #[derive(Clone, Copy)]
@@ -56,10 +58,12 @@ fn overlap(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
 impl Bvh {
     /// The hierarchy over `items` (reordered into leaf order).
     pub fn new(mut items: Vec<Item>) -> Bvh {
-        let mut nodes = Vec::with_capacity(2 * items.len() / LEAF + 1);
-        if !items.is_empty() {
-            build(&mut nodes, &mut items, 0);
+        if items.is_empty() {
+            return Bvh { items, nodes: Vec::new() };
         }
+        let empty = Node { lo: DVec3::ZERO, hi: DVec3::ZERO, a: 0, b: 0, leaf: true, focus: false };
+        let mut nodes = vec![empty; node_counts(items.len()).0];
+        build(&mut nodes, 0, &mut items, 0);
         Bvh { items, nodes }
     }
 
@@ -148,9 +152,28 @@ impl Bvh {
     }
 }
 
-/// Builds the node of `items` (which start at `first` in the final order)
-/// and returns its index.
-fn build(nodes: &mut Vec<Node>, items: &mut [Item], first: usize) -> u32 {
+/// The number of nodes of the hierarchy over `n` triangles and over
+/// `n + 1` (median splits: a subtree's shape depends on its size only,
+/// and the two halves of sizes `n` and `n + 1` have sizes within
+/// `{⌊n/2⌋, ⌊n/2⌋ + 1}`), in O(log n).
+fn node_counts(n: usize) -> (usize, usize) {
+    if n < LEAF {
+        return (1, 1);
+    }
+    let (x, y) = node_counts(n / 2);
+    let c = |m: usize, (x, y): (usize, usize)| if m <= LEAF { 1 } else if m % 2 == 0 { 1 + 2 * if m / 2 == n / 2 { x } else { y } } else { 1 + x + y };
+    (c(n, (x, y)), c(n + 1, (x, y)))
+}
+
+/// Builds the subtree of `items` (which start at `first` in the final
+/// order) into `nodes`, its `node_counts` slots in preorder, the root at
+/// index `base`: the order a sequential depth-first build pushes them in,
+/// so the tree (and every traversal of it) does not depend on the threads.
+/// Subtrees of [`PAR_BUILD`] triangles or more are built on two threads
+/// (the median selections are a seventh of a per-face Menger iteration's
+/// scan on one thread).
+fn build(nodes: &mut [Node], base: u32, items: &mut [Item], first: usize) {
+    debug_assert_eq!(nodes.len(), node_counts(items.len()).0);
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     // centroids doubled (lo + hi): the same order, one multiplication less
     let (mut clo, mut chi) = (lo, hi);
@@ -162,25 +185,86 @@ fn build(nodes: &mut Vec<Node>, items: &mut [Item], first: usize) -> u32 {
         chi = chi.max(b.lo + b.hi);
         focus |= b.focus;
     }
-    let k = nodes.len() as u32;
-    nodes.push(Node { lo, hi, a: first as u32, b: (first + items.len()) as u32, leaf: true, focus });
+    nodes[0] = Node { lo, hi, a: first as u32, b: (first + items.len()) as u32, leaf: true, focus };
     if items.len() > LEAF {
         // split at the median centroid along the centroids' longest axis
         let ext = chi - clo;
         let axis = if ext.x >= ext.y && ext.x >= ext.z { 0 } else if ext.y >= ext.z { 1 } else { 2 };
         let mid = items.len() / 2;
         items.select_nth_unstable_by(mid, |x, y| (x.lo[axis] + x.hi[axis]).total_cmp(&(y.lo[axis] + y.hi[axis])));
+        let par = items.len() >= PAR_BUILD;
         let (l, r) = items.split_at_mut(mid);
-        let a = build(nodes, l, first);
-        let b = build(nodes, r, first + mid);
-        nodes[k as usize] = Node { lo, hi, a, b, leaf: false, focus };
+        let cl = node_counts(mid).0;
+        let (head, rest) = nodes.split_at_mut(1);
+        let (ln, rn) = rest.split_at_mut(cl);
+        let (a, b) = (base + 1, base + 1 + cl as u32);
+        if par {
+            rayon::join(|| build(ln, a, l, first), || build(rn, b, r, first + mid));
+        } else {
+            build(ln, a, l, first);
+            build(rn, b, r, first + mid);
+        }
+        head[0] = Node { lo, hi, a, b, leaf: false, focus };
     }
-    k
 }
 
 #[inline]
 fn leaf_pair(x: &Item, y: &Item, test: &(impl Fn(u32, u32) -> bool + Sync), out: &mut Vec<(u32, u32)>) {
     if (x.focus || y.focus) && overlap((x.lo, x.hi), (y.lo, y.hi)) && test(x.id, y.id) {
         out.push((x.id.min(y.id), x.id.max(y.id)));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `node_counts` is the recursion it shortcuts, for every size up to
+    /// 4,096 and some large ones.
+    #[test]
+    fn node_counts_match_the_recursion() {
+        fn count(n: usize) -> usize {
+            if n <= LEAF { 1 } else { 1 + count(n / 2) + count(n - n / 2) }
+        }
+        for n in (0..4096).chain([65_535, 65_536, 100_001, 1 << 20]) {
+            assert_eq!(node_counts(n), (count(n), count(n + 1)), "{n}");
+        }
+    }
+
+    /// The tree is the same whatever the threads: built on one thread and
+    /// on two (subtrees above `PAR_BUILD` split across them), every node
+    /// and the leaf order of the triangles are equal.
+    #[test]
+    fn build_does_not_depend_on_the_threads() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let items: Vec<Item> = (0..3 * PAR_BUILD as u32 + 17)
+            .map(|id| {
+                let c = DVec3::new(rnd(), rnd(), rnd() * 0.1);
+                let e = DVec3::new(rnd(), rnd(), rnd()) * 0.01;
+                Item { lo: c - e, hi: c + e, id, focus: id % 3 != 0 }
+            })
+            .collect();
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| Bvh::new(items.clone()))
+        };
+        let (a, b) = (on(1), on(2));
+        let key = |n: &Node| (n.lo.to_array(), n.hi.to_array(), n.a, n.b, n.leaf, n.focus);
+        assert_eq!(a.nodes.len(), node_counts(items.len()).0);
+        assert!(a.nodes.iter().map(key).eq(b.nodes.iter().map(key)));
+        assert!(a.items.iter().map(|x| x.id).eq(b.items.iter().map(|x| x.id)));
+        // every leaf holds at most LEAF triangles, and the leaves cover them once
+        let mut covered = vec![0u8; items.len()];
+        for n in a.nodes.iter().filter(|n| n.leaf) {
+            assert!(n.b - n.a <= LEAF as u32 && n.b > n.a);
+            (n.a..n.b).for_each(|i| covered[i as usize] += 1);
+        }
+        assert!(covered.iter().all(|&c| c == 1));
     }
 }
