@@ -16,6 +16,8 @@ pub mod primitives;
 pub mod repair;
 pub mod schemes;
 mod union_find;
+#[cfg(test)]
+mod test_rng;
 
 #[cfg(feature = "python")]
 mod python;

@@ -428,13 +428,8 @@ mod tests {
     #[test]
     fn random_peels_double_the_rest() {
         // peeling any set S of faces gives the double of M = mesh − S: χ = 2χ(M)
-        let mut seed = 0x9e3779b97f4a7c15u64;
-        let mut rnd = move |n: usize| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % n as u64) as usize
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x9e3779b97f4a7c15);
+        let mut rnd = move |n: usize| (rng.next_u64() % n as u64) as usize;
         for src in [grid_cube(3), primitives::torus(6, 4, 1.0, 0.4).unwrap(), primitives::cube()] {
             let nf = src.n_faces();
             for _ in 0..40 {

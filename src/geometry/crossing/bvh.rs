@@ -236,13 +236,8 @@ mod tests {
     /// and the leaf order of the triangles are equal.
     #[test]
     fn build_does_not_depend_on_the_threads() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1d);
+        let mut rnd = || rng.unit();
         let items: Vec<Item> = (0..3 * PAR_BUILD as u32 + 17)
             .map(|id| {
                 let c = DVec3::new(rnd(), rnd(), rnd() * 0.1);

@@ -332,13 +332,8 @@ mod tests {
     /// wireframe (thin tubes, dense), with and without a focus, both modes.
     #[test]
     fn hierarchy_equals_grid() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut rnd = || rng.unit();
         let mut p = Vec::new();
         let mut tris = Vec::new();
         for t in 0..3000u32 {

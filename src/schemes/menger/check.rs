@@ -270,10 +270,9 @@ fn build_per_face(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, 
             report.crossing_vertices = vertices(&cur, &tri);
         }
         drop(tri);
-        let (b, mesh) = cur;
         report.crossing_pairs = Some(n);
         if best.as_ref().map_or(true, |(_, r)| r.crossing_pairs.is_some_and(|x| n < x)) {
-            best = Some(((b, mesh), report));
+            best = Some((cur, report));
         }
         if n == 0 {
             break;

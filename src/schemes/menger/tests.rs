@@ -177,13 +177,8 @@ mod intersection_tests {
     /// fine torus, theirs stop up to 1e-4 farther).
     #[test]
     fn exact_point_below_matches_projections() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut rnd = || rng.unit() * 2.0 - 1.0;
         let (mut found, mut none, mut nearer) = (0, 0, 0);
         for case in 0..3000 {
             let k = 1 + case % 8;
