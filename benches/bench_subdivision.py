@@ -223,6 +223,10 @@ def run_case(tool, scheme, inp, levels, threads, runs, quick):
             env[k] = "1"
         else:
             env.pop(k, None)
+    # No timed call uses dense BLAS, but OpenBLAS's threads spin for a while
+    # after the input's NumPy work and took a core from two-thread runs (8 %
+    # of a Loop run's samples under `perf`).
+    env["OPENBLAS_NUM_THREADS"] = "1"
     cmd = [sys.executable, __file__, "--worker", "--tool", tool, "--scheme", scheme, "--input", inp,
            "--levels", str(levels), "--runs", str(runs)] + (["--quick"] if quick else [])
     p = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=3600)

@@ -60,9 +60,14 @@ fn main() {
     let mut nf = 0;
     for _ in 0..reps {
         let t0 = Instant::now();
-        let r = run(&input);
+        // TOPOMESH_PROF_SPAWN=1: on a fresh non-pool thread, as the extension runs its work
+        let r = if std::env::var("TOPOMESH_PROF_SPAWN").is_ok() { std::thread::scope(|s| s.spawn(|| run(&input)).join().unwrap()) } else { run(&input) };
         t.push(t0.elapsed().as_secs_f64() * 1e3);
         nf = r.n_faces();
+    }
+    if std::env::var("TOPOMESH_PROF_ALL").is_ok() {
+        // every call in order: does a warm call cost what the first did?
+        println!("{}", t.iter().map(|x| format!("{x:.0}")).collect::<Vec<_>>().join(" "));
     }
     t.sort_by(f64::total_cmp);
     let med = t[t.len() / 2];

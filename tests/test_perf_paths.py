@@ -154,3 +154,32 @@ def test_triangles_fast_path_is_the_faces():
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0.2]], float)
     o = topomesh.Mesh.from_polygons(v, [[0, 1, 2], [1, 3, 2]])
     np.testing.assert_array_equal(o.triangles(), [[0, 1, 2], [1, 3, 2]])
+
+
+def _exports(m):
+    return m.vertices.copy(), m.face_indices.copy(), m.edges.copy()
+
+
+def test_block_cache_reuse_gives_the_same_meshes():
+    # With the cache on, a freed block serves a later request of half its size
+    # or more (src/python/alloc.rs); what comes back must be what a fresh
+    # block gives, call after call, at sizes that do and do not fit.
+    calls = [
+        lambda: topomesh.cube().catmull_clark(6),
+        lambda: topomesh.torus(200, 100).loop(2),
+        lambda: topomesh.menger_sponge(3),
+        lambda: topomesh.cube().catmull_clark(5),  # smaller than the blocks cached above
+        lambda: topomesh.torus(200, 100).loop(1),
+    ]
+    want = [_exports(c()) for c in calls]
+    old = topomesh.set_block_cache(256 << 20)
+    try:
+        for _ in range(2):
+            for c, w in zip(calls, want):
+                got = _exports(c())
+                for a, b in zip(got, w):
+                    np.testing.assert_array_equal(a, b)
+        assert topomesh.block_cache()[1] > 0  # the cache took blocks back
+    finally:
+        topomesh.set_block_cache(old)
+

@@ -1,0 +1,102 @@
+//! Peak heap bytes of `iterations = L` in the core, per output face and as a
+//! multiple of the exported arrays (issue 19's `× export`: float64 vertices,
+//! int64 face sizes and indices): `cargo run --release --example peak_levels
+//! -- catmull_clark|loop|midpoint|doo_sabin [LEVELS]` (`TOPOMESH_PROF_INPUT=torus`:
+//! the 100k-quad torus, else the 82k-triangle sphere). Counts what Rust
+//! allocates (a counting global allocator), not the RSS.
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use topomesh::schemes::{catmull_clark::catmull_clark, doo_sabin::doo_sabin, loop_subdivision::loop_subdivision, midpoint::midpoint};
+use topomesh::{primitives, Mesh};
+
+struct Counting;
+static NOW: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+/// TOPOMESH_PROF_LOG: print every block of 1 MB or more as it comes and goes.
+static LOG: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+fn log(what: &str, size: usize) {
+    if size >= 1 << 20 && LOG.load(Relaxed) {
+        // no allocation here: a fixed buffer written to stderr
+        use std::io::Write;
+        let mut b = [0u8; 96];
+        let mut c = std::io::Cursor::new(&mut b[..]);
+        let _ = writeln!(c, "{what} {:.2} MB (now {:.1} MB)", size as f64 / 1e6, NOW.load(Relaxed) as f64 / 1e6);
+        let n = c.position() as usize;
+        let _ = std::io::stderr().write_all(&b[..n]);
+    }
+}
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        let n = NOW.fetch_add(l.size(), Relaxed) + l.size();
+        PEAK.fetch_max(n, Relaxed);
+        log("alloc", l.size());
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn alloc_zeroed(&self, l: Layout) -> *mut u8 {
+        let n = NOW.fetch_add(l.size(), Relaxed) + l.size();
+        PEAK.fetch_max(n, Relaxed);
+        log("zeroed", l.size());
+        unsafe { System.alloc_zeroed(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        NOW.fetch_sub(l.size(), Relaxed);
+        log("free", l.size());
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, new: usize) -> *mut u8 {
+        log("realloc", new);
+        if new > l.size() {
+            let n = NOW.fetch_add(new - l.size(), Relaxed) + new - l.size();
+            PEAK.fetch_max(n, Relaxed);
+        } else {
+            NOW.fetch_sub(l.size() - new, Relaxed);
+        }
+        unsafe { System.realloc(p, l, new) }
+    }
+}
+#[global_allocator]
+static A: Counting = Counting;
+
+fn main() {
+    let a: Vec<String> = std::env::args().collect();
+    let scheme = a.get(1).map_or("catmull_clark", |s| s.as_str());
+    let levels: usize = a.get(2).map_or(3, |s| s.parse().unwrap());
+    let step: fn(&Mesh) -> topomesh::Result<Mesh> = match scheme {
+        "loop" => loop_subdivision,
+        "midpoint" => midpoint,
+        "doo_sabin" => doo_sabin,
+        _ => catmull_clark,
+    };
+    let input = if std::env::var("TOPOMESH_PROF_INPUT").is_ok_and(|s| s == "torus") {
+        primitives::torus(400, 250, 3.0, 1.0).unwrap()
+    } else {
+        let mut s = primitives::icosahedron();
+        for _ in 0..6 {
+            s = loop_subdivision(&s).unwrap();
+        }
+        s
+    };
+    LOG.store(std::env::var("TOPOMESH_PROF_LOG").is_ok(), Relaxed);
+    for l in 1..=levels {
+        let base = NOW.load(Relaxed);
+        PEAK.store(base, Relaxed);
+        let mut cur: Option<Mesh> = None;
+        for _ in 0..l {
+            let next = step(cur.as_ref().unwrap_or(&input)).unwrap();
+            cur = Some(next);
+        }
+        let m = cur.unwrap();
+        let grow = (PEAK.load(Relaxed) - base) as f64;
+        let held = (NOW.load(Relaxed) - base) as f64;
+        let export = (24 * m.n_vertices() + 8 * m.n_faces() + 16 * m.n_edges()) as f64;
+        let nf = m.n_faces() as f64;
+        println!(
+            "{scheme} L{l}: {} faces, peak {:.1} B/face ({:.2}x export), mesh {:.1} B/face ({:.2}x)",
+            m.n_faces(),
+            grow / nf,
+            grow / export,
+            held / nf,
+            held / export
+        );
+    }
+}
