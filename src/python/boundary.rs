@@ -78,7 +78,7 @@ impl PyMesh {
     ///     beside it). Each loop starts at its lowest vertex index; the loops
     ///     are sorted by it. Empty for a closed mesh.
     fn boundary_loops<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray1<i64>>> {
-        let loops = py.detach(|| self.inner.boundary_loops());
+        let loops = super::detach(py, || self.inner.boundary_loops());
         loops.iter().map(|l| i64_array(py, l.iter().map(|v| v.0 as i64))).collect()
     }
 
@@ -86,7 +86,7 @@ impl PyMesh {
     /// in its face, loop after loop in the order of :meth:`boundary_loops`.
     /// ``(0, 2)`` for a closed mesh.
     fn boundary_edges<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
-        let e = py.detach(|| self.inner.boundary_edges());
+        let e = super::detach(py, || self.inner.boundary_edges());
         u32_rows(py, &e)
     }
 

@@ -71,12 +71,13 @@ pub(crate) fn finite_output(op: &str, input: &crate::Mesh, out: &crate::Mesh) ->
     use rayon::prelude::*;
     // overflow and underflow need coordinates far from 1: only then is the
     // output scanned (a pass over its positions is ~4 % of a fast operator)
-    let (low, top) = crate::geometry::coordinate_range(input.positions());
+    // in this process's pool, never rayon's global one (`pool` module docs)
+    let (low, top) = super::pool::run(|| crate::geometry::coordinate_range(input.positions()));
     if top <= 2f64.powi(100) && low >= 2f64.powi(-100) {
         return Ok(());
     }
     let finite = |c: &[glam::DVec3]| c.iter().fold(true, |ok, p| ok & p.is_finite());
-    if out.positions().par_chunks(1 << 14).all(finite) {
+    if super::pool::run(|| out.positions().par_chunks(1 << 14).all(finite)) {
         return Ok(());
     }
     let v = out.positions().iter().position(|p| !p.is_finite()).unwrap_or(0);
@@ -285,7 +286,7 @@ impl PyMesh {
         let angle = super::finite_in("mark_creases", "angle", angle, 0.0, 180.0)?;
         let s = sharpness_value("mark_creases", "the given edges", sharpness)?;
         let m = &self.inner;
-        let edges = py.detach(|| edges_sharper_than(m, angle.to_radians()));
+        let edges = super::detach(py, || edges_sharper_than(m, angle.to_radians()));
         let mut data = self.data.clone_ref(py);
         let c = data.creases.get_or_insert_with(|| Creases { edge: vec![0.0; m.n_edges()], vertex: vec![0.0; m.n_vertices()] });
         for e in edges {

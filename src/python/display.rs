@@ -78,7 +78,7 @@ impl PyMesh {
     /// Connected-component label of every vertex, int64 (V,), numbered in
     /// order of first vertex (the order of :attr:`component_genera`).
     fn _vertex_components<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        let (c, _) = py.detach(|| self.inner.vertex_components());
+        let (c, _) = super::detach(py, || self.inner.vertex_components());
         i64_array(py, c.iter().map(|&x| x as i64))
     }
 }

@@ -72,7 +72,7 @@ fn _write_obj(
     let mt = materials.as_ref().map(|(i, names)| i.as_slice().map(|i| (i, names.as_slice()))).transpose()?;
     let attrs = crate::io::ObjAttributes { texcoords: t.zip(tk), normals: n, groups: g, materials: mt };
     let m = &mesh.inner;
-    py.detach(|| {
+    super::detach(py, || {
         let f = std::fs::File::create(&path).map_err(|e| crate::MeshError::Io(format!("{}: {e}", path.display())))?;
         crate::io::write_obj(m, &attrs, f)
     })
@@ -99,7 +99,7 @@ fn _ply_split_records<'py>(
         .into_iter()
         .map(|(c, s, v)| crate::io::ply::Property { count: (c > 0).then_some((c, s)), value_size: v })
         .collect();
-    let cols = py.detach(|| crate::io::ply::split_records(data, start, n, &props, element)).map_err(super::err)?;
+    let cols = super::detach(py, || crate::io::ply::split_records(data, start, n, &props, element)).map_err(super::err)?;
     let values: Vec<Bound<'py, PyAny>> = cols.values.into_iter().map(|v| v.into_pyarray(py).into_any()).collect();
     let counts: Vec<Option<Bound<'py, PyAny>>> = props
         .iter()
@@ -126,7 +126,7 @@ fn _ply_join_records<'py>(
         .iter()
         .map(|(c, per, vs, d)| Ok(crate::io::ply::Field { count: *c, per: *per, value_size: *vs, data: d.as_slice()? }))
         .collect::<PyResult<Vec<_>>>()?;
-    let body = py.detach(|| crate::io::ply::join_records(sizes, &cols)).map_err(super::err)?;
+    let body = super::detach(py, || crate::io::ply::join_records(sizes, &cols)).map_err(super::err)?;
     Ok(body.into_pyarray(py))
 }
 

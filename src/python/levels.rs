@@ -179,7 +179,7 @@ pub(crate) fn run<'py>(
             } else {
                 let (ids, table) = dedupe(a.as_slice()?, k);
                 let cr = if spec.uses_creases { slf.data.creases.as_ref() } else { None };
-                corners.push(Corner::Mesh(py.detach(|| FaceVarying::new(input, &ids, &table, k, cr)).map_err(super::err)?));
+                corners.push(Corner::Mesh(super::detach(py, || FaceVarying::new(input, &ids, &table, k, cr)).map_err(super::err)?));
             }
             corner_shapes.push(shape.len());
         }
@@ -333,7 +333,7 @@ pub(crate) fn run<'py>(
         let (v, k) = match c {
             Corner::Linear(v, k) => (v, k),
             Corner::Mesh(fv) => {
-                let rows = py.detach(|| fv.corner_rows()).map_err(super::err)?;
+                let rows = super::detach(py, || fv.corner_rows()).map_err(super::err)?;
                 let k = fv.k;
                 let mut v = Vec::with_capacity(rows.len() * k);
                 for r in rows {

@@ -59,7 +59,7 @@ impl PyMesh {
     fn polygons(&self, py: Python<'_>) -> &(Vec<i64>, Vec<i64>) {
         self.cache.polygons.get_or_init(|| {
             // written as int64 in parallel, then viewed (never copied) by the getters
-            py.detach(|| self.inner.polygons_i64())
+            super::detach(py, || self.inner.polygons_i64())
         })
     }
 
@@ -78,7 +78,7 @@ impl PyMesh {
     }
 
     fn twins(&self, py: Python<'_>) -> &Vec<i64> {
-        self.cache.twins.get_or_init(|| py.detach(|| self.inner.corner_twins()))
+        self.cache.twins.get_or_init(|| super::detach(py, || self.inner.corner_twins()))
     }
 
     fn face_id(&self, f: i64) -> PyResult<FaceId> {
@@ -278,7 +278,7 @@ impl PyMesh {
     /// :meth:`from_polygons` of the exports (with ``allow_multi_edges=True``,
     /// and ``close_boundaries=True`` if it has holes) gives it back.
     fn _polygons_are_lossless(&self, py: Python<'_>) -> bool {
-        py.detach(|| self.inner.polygons_are_lossless())
+        super::detach(py, || self.inner.polygons_are_lossless())
     }
 
     /// ``pickle`` support: rebuilt exactly from the lossless flat arrays,
@@ -299,7 +299,7 @@ impl PyMesh {
     /// Faces in pyvista/VTK layout ``[n, i0, ..., n, ...]``, int64.
     #[getter]
     fn padded_faces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
-        let p = py.detach(|| self.inner.to_padded_faces());
+        let p = super::detach(py, || self.inner.to_padded_faces());
         i64_array(py, p.iter().map(|&s| s as i64))
     }
 
@@ -345,7 +345,7 @@ impl PyMesh {
     /// capped by a disk.
     #[getter]
     fn genus(&self, py: Python<'_>) -> i64 {
-        *self.cache.genus.get_or_init(|| py.detach(|| self.inner.genus()))
+        *self.cache.genus.get_or_init(|| super::detach(py, || self.inner.genus()))
     }
     /// Genus of each connected component, as a list.
     #[getter]
@@ -355,7 +355,7 @@ impl PyMesh {
     /// Number of connected components (computed once).
     #[getter]
     fn n_components(&self, py: Python<'_>) -> usize {
-        *self.cache.n_components.get_or_init(|| py.detach(|| self.inner.n_components()))
+        *self.cache.n_components.get_or_init(|| super::detach(py, || self.inner.n_components()))
     }
     /// Edges whose two ends are the same vertex.
     #[getter]
@@ -375,20 +375,20 @@ impl PyMesh {
     /// Mean of each face's corner positions, float64 (F, 3), holes included.
     #[getter]
     fn face_centroids<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let c = py.detach(|| self.inner.face_centroids());
+        let c = super::detach(py, || self.inner.face_centroids());
         vec3_array(py, &c)
     }
     /// Unit face normals by Newell's method, float64 (F, 3); zero rows for
     /// degenerate faces.
     #[getter]
     fn face_normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let c = py.detach(|| self.inner.face_normals());
+        let c = super::detach(py, || self.inner.face_normals());
         vec3_array(py, &c)
     }
     /// Area-weighted unit vertex normals, float64 (V, 3).
     #[getter]
     fn vertex_normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let c = py.detach(|| self.inner.vertex_normals());
+        let c = super::detach(py, || self.inner.vertex_normals());
         vec3_array(py, &c)
     }
     /// Signed enclosed volume; positive when faces are oriented outward.
@@ -417,7 +417,7 @@ impl PyMesh {
                 use numpy::PyArrayMethods;
                 let mut rw = arr.readwrite();
                 let out = rw.as_slice_mut().map_err(|e| arg_err(e.to_string()))?;
-                py.detach(|| self.inner.write_triangle_faces_if_plain(out))
+                super::detach(py, || self.inner.write_triangle_faces_if_plain(out))
             };
             if !plain {
                 return self.triangles_general(py, return_faces);
@@ -467,7 +467,7 @@ impl PyMesh {
     /// Check every structural invariant; raise :class:`MeshError` naming the
     /// first one broken. A mesh made by topomesh always passes.
     fn validate(&self, py: Python<'_>) -> PyResult<()> {
-        py.detach(|| self.inner.validate()).map_err(err)
+        super::detach(py, || self.inner.validate()).map_err(err)
     }
 
     // ------------------------------------------------ fundamental operators
@@ -574,7 +574,7 @@ impl PyMesh {
             "off" => crate::io::TextFormat::Off,
             _ => return Err(arg_err(format!("unknown text format {format:?}"))),
         };
-        py.detach(|| {
+        super::detach(py, || {
             let f = std::fs::File::create(&path)
                 .map_err(|e| crate::MeshError::Io(format!("{}: {e}", path.display())))?;
             crate::io::write_text(&self.inner, fmt, f)

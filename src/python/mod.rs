@@ -25,6 +25,7 @@ mod perf;
 mod primitives;
 mod printing;
 mod smooth;
+mod pool;
 
 pyo3::create_exception!(
     topomesh,
@@ -102,6 +103,12 @@ pub(crate) fn finite_in(call: &str, name: &str, x: f64, lo: f64, hi: f64) -> PyR
     }
 }
 
+/// `py.detach(f)` with `f` run in this process's thread pool ([`pool`]):
+/// every parallel loop the extension starts must run there.
+pub(crate) fn detach<T: Send>(py: Python<'_>, f: impl FnOnce() -> T + Send) -> T {
+    py.detach(|| pool::run(f))
+}
+
 /// How often the calling thread takes the GIL back to look for Ctrl-C.
 const POLL: std::time::Duration = std::time::Duration::from_millis(50);
 
@@ -124,7 +131,8 @@ pub(crate) fn run_interruptible_with<T: Send>(
     let done = AtomicBool::new(false);
     std::thread::scope(|s| {
         let worker = s.spawn(|| {
-            let r = work();
+            // in topomesh's pool, never rayon's global one (`pool` module docs)
+            let r = pool::run(work);
             done.store(true, Ordering::Release);
             caller.unpark();
             r
@@ -220,7 +228,7 @@ pub(crate) fn iterate_with<S: Send>(
     use std::sync::atomic::{AtomicU64, Ordering};
     let n = int_in(name, "iterations", iterations, 0, i64::MAX)? as u64;
     let start = Counts::of(mesh);
-    py.detach(|| budget::check_levels(name, &start, n, predict)).map_err(err)?;
+    detach(py, || budget::check_levels(name, &start, n, predict)).map_err(err)?;
     let bar = if progress {
         let kw = pyo3::types::PyDict::new(py);
         kw.set_item("total", n)?;

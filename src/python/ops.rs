@@ -59,7 +59,7 @@ impl PyMesh {
         super::data::warn_dropped(&self.data, "delete_edge_with_cleanup")?;
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
-        py.detach(|| m.delete_edge_with_cleanup(e)).map_err(err)?;
+        super::detach(py, || m.delete_edge_with_cleanup(e)).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -105,7 +105,7 @@ impl PyMesh {
         let c1 = corner_of(&self.inner, face1, position1)?;
         let c2 = corner_of(&self.inner, face2, position2)?;
         let mut m = self.inner.clone();
-        py.detach(|| m.create_pipe(c1, c2)).map_err(err)?;
+        super::detach(py, || m.create_pipe(c1, c2)).map_err(err)?;
         warn_new_crossings(py, "create_pipe", &self.inner, &m)?;
         Ok(PyMesh::wrap(m))
     }
@@ -150,7 +150,7 @@ impl PyMesh {
         super::data::warn_dropped(&self.data, "collapse_edge")?;
         let e = edge_of(&self.inner, edge)?;
         let mut m = self.inner.clone();
-        let c = py.detach(|| m.collapse_edge(e)).map_err(err)?;
+        let c = super::detach(py, || m.collapse_edge(e)).map_err(err)?;
         Ok((PyMesh::wrap(m), c.vertex.idx()))
     }
 
@@ -240,7 +240,7 @@ impl PyMesh {
         };
         let c2 = if corners.1.is_none() { m0.aligned_handle_corner(c1, c2, w1, w2).map_err(err)? } else { c2 };
         let mut m = m0.clone();
-        py.detach(|| m.add_handle_shaped(c1, c2, segments as usize, w1, w2, shape)).map_err(err)?;
+        super::detach(py, || m.add_handle_shaped(c1, c2, segments as usize, w1, w2, shape)).map_err(err)?;
         warn_new_crossings(py, "add_handle", m0, &m)?;
         Ok(PyMesh::wrap(m))
     }
@@ -281,7 +281,7 @@ impl PyMesh {
     ///     (named); a mesh with point-spheres.
     fn rind(&self, py: Python<'_>, thickness: f64) -> PyResult<PyRind> {
         super::data::warn_dropped(&self.data, "rind")?;
-        let r = py.detach(|| self.inner.rind(thickness)).map_err(err)?;
+        let r = super::detach(py, || self.inner.rind(thickness)).map_err(err)?;
         Ok(PyRind { inner: r })
     }
 }
@@ -359,7 +359,7 @@ impl PyRind {
     fn punch(&self, py: Python<'_>, faces: &Bound<'_, PyAny>) -> PyResult<PyRind> {
         let fs = face_list(faces)?;
         let mut r = self.inner.clone();
-        py.detach(|| r.punch(&fs)).map_err(err)?;
+        super::detach(py, || r.punch(&fs)).map_err(err)?;
         Ok(PyRind { inner: r })
     }
     /// Peel each outer face of ``faces``: punch it, then delete the
@@ -370,7 +370,7 @@ impl PyRind {
     fn peel(&self, py: Python<'_>, faces: &Bound<'_, PyAny>) -> PyResult<PyRind> {
         let fs = face_list(faces)?;
         let mut r = self.inner.clone();
-        py.detach(|| r.peel(&fs)).map_err(err)?;
+        super::detach(py, || r.peel(&fs)).map_err(err)?;
         Ok(PyRind { inner: r })
     }
     fn __repr__(&self) -> String {

@@ -8,27 +8,32 @@ use pyo3::prelude::*;
 /// Regular tetrahedron at alternate corners of the cube [-1, 1]³.
 #[pyfunction]
 fn tetrahedron() -> PyMesh {
-    PyMesh::wrap(primitives::tetrahedron())
+    // in topomesh's pool, never rayon's global one (`pool` module docs)
+    PyMesh::wrap(super::pool::run(primitives::tetrahedron))
 }
 /// The cube [-1, 1]³ (8 vertices, 12 edges, 6 quads).
 #[pyfunction]
 fn cube() -> PyMesh {
-    PyMesh::wrap(primitives::cube())
+    // in topomesh's pool, never rayon's global one (`pool` module docs)
+    PyMesh::wrap(super::pool::run(primitives::cube))
 }
 /// Octahedron with vertices (±1, 0, 0), (0, ±1, 0), (0, 0, ±1).
 #[pyfunction]
 fn octahedron() -> PyMesh {
-    PyMesh::wrap(primitives::octahedron())
+    // in topomesh's pool, never rayon's global one (`pool` module docs)
+    PyMesh::wrap(super::pool::run(primitives::octahedron))
 }
 /// Dodecahedron with circumradius √3 (20 vertices, 12 pentagons).
 #[pyfunction]
 fn dodecahedron() -> PyMesh {
-    PyMesh::wrap(primitives::dodecahedron())
+    // in topomesh's pool, never rayon's global one (`pool` module docs)
+    PyMesh::wrap(super::pool::run(primitives::dodecahedron))
 }
 /// Icosahedron with vertices (0, ±1, ±φ) and cyclic permutations.
 #[pyfunction]
 fn icosahedron() -> PyMesh {
-    PyMesh::wrap(primitives::icosahedron())
+    // in topomesh's pool, never rayon's global one (`pool` module docs)
+    PyMesh::wrap(super::pool::run(primitives::icosahedron))
 }
 /// Quad torus around the z axis: ``major`` segments around the axis, ``minor``
 /// around the tube. V = major·minor, F = V, genus 1.

@@ -15,7 +15,7 @@ use pyo3::types::PyDict;
 /// Warns with `GeometryWarning` when closed components of `m` are inside out
 /// (negative signed volume); called by `Mesh.from_polygons` / `from_flat`.
 pub(crate) fn warn_inside_out(py: Python<'_>, m: &Mesh) -> PyResult<()> {
-    let bad = py.detach(|| inside_out_components(m));
+    let bad = super::detach(py, || inside_out_components(m));
     if bad.is_empty() {
         return Ok(());
     }
@@ -114,7 +114,7 @@ impl PyMesh {
         if let Some(v) = pos.iter().position(|p| !p.is_finite()) {
             return Err(err(crate::MeshError::NonFinite { vertex: v }));
         }
-        let (uniq, cluster) = py.detach(|| merge_vertices(&pos, tolerance));
+        let (uniq, cluster) = super::detach(py, || merge_vertices(&pos, tolerance));
         Ok((vec3_array(py, &uniq), i64_array(py, cluster.iter().map(|&c| c as i64))))
     }
 

@@ -78,7 +78,7 @@ impl PyMesh {
     /// The largest distance of a vertex to the least-squares plane of one
     /// of its faces (0 for triangles): the residual :meth:`planarize` reports.
     fn planarity_residual(&self, py: Python<'_>) -> f64 {
-        py.detach(|| self.inner.planarity_residual())
+        super::detach(py, || self.inner.planarity_residual())
     }
 
     /// Spherize (TopMod's object tool): every vertex moved along the ray
@@ -107,7 +107,7 @@ impl PyMesh {
     /// would empty a face (the two-gon sphere keeps one), stay.
     fn remove_valence2_vertices(&self, py: Python<'_>) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "remove_valence2_vertices")?;
-        let (m, _) = py.detach(|| self.inner.remove_valence2_vertices()).map_err(err)?;
+        let (m, _) = super::detach(py, || self.inner.remove_valence2_vertices()).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -116,7 +116,7 @@ impl PyMesh {
     /// unchanged). A component made only of two-gons keeps two of them.
     fn cleanup_two_gons(&self, py: Python<'_>) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "cleanup_two_gons")?;
-        let (m, _) = py.detach(|| self.inner.cleanup_two_gons()).map_err(err)?;
+        let (m, _) = super::detach(py, || self.inner.cleanup_two_gons()).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -128,7 +128,7 @@ impl PyMesh {
     fn split_valence2_vertices(&self, py: Python<'_>, offset: Option<f64>) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "split_valence2_vertices")?;
         let mut m = self.inner.clone();
-        py.detach(|| m.split_valence2_vertices(offset)).map_err(err)?;
+        super::detach(py, || m.split_valence2_vertices(offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -140,7 +140,7 @@ impl PyMesh {
     fn subdivide_all_edges(&self, py: Python<'_>, #[pyo3(from_py_with = super::big_int)] n: i128) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "subdivide_all_edges")?;
         let n = super::usize_in("subdivide_all_edges", "n", n, 1, 1 << 20)?;
-        let m = py.detach(|| self.inner.subdivide_all_edges(n)).map_err(err)?;
+        let m = super::detach(py, || self.inner.subdivide_all_edges(n)).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -184,7 +184,7 @@ impl PyMesh {
         if let Some(w) = width {
             super::finite_in("wireframe", "width", w, f64::MIN_POSITIVE, MAX_LENGTH)?;
         }
-        let m = py.detach(|| self.inner.wireframe(thickness, width)).map_err(err)?;
+        let m = super::detach(py, || self.inner.wireframe(thickness, width)).map_err(err)?;
         if check_crossings {
             super::ops::warn_new_crossings(py, "wireframe", &Mesh::new(), &m)?;
         }
@@ -237,14 +237,13 @@ impl PyMesh {
         super::finite_in("multi_face_handle", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
         super::finite_in("multi_face_handle", "extrude", extrude, -MAX_LENGTH, MAX_LENGTH)?;
         let m = match algorithm {
-            "convex_hull" => py
-                .detach(|| self.inner.multi_face_handle(&fs, scale, extrude))
+            "convex_hull" => super::detach(py, || self.inner.multi_face_handle(&fs, scale, extrude))
                 .map_err(|e| match e {
                     // the hub is built from the moved face corners: name the parameters that moved them
                     crate::MeshError::Interrupted => err(e),
                     e => arg_err(format!("multi_face_handle (scale = {scale}, extrude = {extrude}): {e}")),
                 })?,
-            "closest_edge" => py.detach(|| self.inner.multi_face_handle_edges(&fs)).map_err(err)?.0,
+            "closest_edge" => super::detach(py, || self.inner.multi_face_handle_edges(&fs)).map_err(err)?.0,
             a => return Err(arg_err(format!("multi_face_handle: algorithm = {a:?} is not 'convex_hull' or 'closest_edge'"))),
         };
         super::ops::warn_new_crossings(py, "multi_face_handle", &self.inner, &m)?;
@@ -297,8 +296,8 @@ impl PyMesh {
         let n = super::usize_in("wireframe_columns", "segments", segments, 3, 100)?;
         let out = Counts::plain(2 * n as u64 * self.inner.n_edges() as u64, 6 * n as u64 * self.inner.n_edges() as u64, 4 * n as u64 * self.inner.n_edges() as u64);
         let need = crate::budget::level_bytes(&Counts::of(&self.inner), &out);
-        py.detach(|| crate::budget::check("wireframe_columns", "the output", need)).map_err(err)?;
-        let m = py.detach(|| self.inner.wireframe_columns(thickness, n)).map_err(err)?;
+        super::detach(py, || crate::budget::check("wireframe_columns", "the output", need)).map_err(err)?;
+        let m = super::detach(py, || self.inner.wireframe_columns(thickness, n)).map_err(err)?;
         if check_crossings {
             super::ops::warn_new_crossings(py, "wireframe_columns", &Mesh::new(), &m)?;
         }
@@ -313,7 +312,7 @@ impl PyMesh {
     fn rind_by_scaling(&self, py: Python<'_>, scale: f64) -> PyResult<super::ops::PyRind> {
         super::data::warn_dropped(&self.data, "rind_by_scaling")?;
         super::finite_in("rind_by_scaling", "scale", scale, f64::MIN_POSITIVE, MAX_LENGTH)?;
-        let r = py.detach(|| self.inner.rind_by_scaling(scale)).map_err(err)?;
+        let r = super::detach(py, || self.inner.rind_by_scaling(scale)).map_err(err)?;
         Ok(super::ops::PyRind { inner: r })
     }
 
@@ -333,7 +332,7 @@ impl PyMesh {
     fn cut_vertices(&self, py: Python<'_>, vertices: &Bound<'_, PyAny>, offset: f64) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "cut_vertices")?;
         let vs = index_list("cut_vertices", "vertex", vertices)?;
-        let (m, _) = py.detach(|| self.inner.cut_vertices(&vs, offset)).map_err(err)?;
+        let (m, _) = super::detach(py, || self.inner.cut_vertices(&vs, offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -346,7 +345,7 @@ impl PyMesh {
     fn cut_edges(&self, py: Python<'_>, edges: &Bound<'_, PyAny>, offset: f64) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "cut_edges")?;
         let es = index_list("cut_edges", "edge", edges)?;
-        let (m, _) = py.detach(|| self.inner.cut_edges(&es, offset)).map_err(err)?;
+        let (m, _) = super::detach(py, || self.inner.cut_edges(&es, offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 
@@ -358,7 +357,7 @@ impl PyMesh {
     fn cut_faces(&self, py: Python<'_>, faces: &Bound<'_, PyAny>, offset: f64) -> PyResult<PyMesh> {
         super::data::warn_dropped(&self.data, "cut_faces")?;
         let fs = index_list("cut_faces", "face", faces)?;
-        let (m, _) = py.detach(|| self.inner.cut_faces(&fs, offset)).map_err(err)?;
+        let (m, _) = super::detach(py, || self.inner.cut_faces(&fs, offset)).map_err(err)?;
         Ok(PyMesh::wrap(m))
     }
 }
@@ -383,7 +382,7 @@ fn hull_points(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Vec<DVec3>> {
 #[pyfunction]
 pub fn convex_hull(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<PyMesh> {
     let p = hull_points(py, points)?;
-    let (m, _) = py.detach(|| crate::ops::tools::hull::convex_hull(&p)).map_err(err)?;
+    let (m, _) = super::detach(py, || crate::ops::tools::hull::convex_hull(&p)).map_err(err)?;
     Ok(PyMesh::wrap(m))
 }
 
@@ -394,7 +393,7 @@ pub fn convex_hull(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<PyMesh
 #[pyfunction]
 pub fn dual_convex_hull(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<PyMesh> {
     let p = hull_points(py, points)?;
-    let m = py.detach(|| crate::ops::tools::hull::dual_convex_hull(&p)).map_err(err)?;
+    let m = super::detach(py, || crate::ops::tools::hull::dual_convex_hull(&p)).map_err(err)?;
     Ok(PyMesh::wrap(m))
 }
 

@@ -69,7 +69,7 @@ fn faces_arg(call: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
 /// Budget check of a one-step operation with known output counts.
 fn check_once(py: Python<'_>, call: &str, m: &crate::Mesh, out: Counts) -> PyResult<()> {
     let need = budget::level_bytes(&Counts::of(m), &out);
-    py.detach(|| budget::check(call, "the output", need)).map_err(err)
+    super::detach(py, || budget::check(call, "the output", need)).map_err(err)
 }
 
 #[pymethods]

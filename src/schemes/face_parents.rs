@@ -177,9 +177,19 @@ pub(crate) fn via_origins(
 /// `None` when some step of the chain did not record (see the module docs).
 /// No build at all gives the identity when the output has `m`'s counts.
 pub fn traced(m: &Mesh, build: impl FnOnce() -> Result<Mesh>) -> Result<(Mesh, Option<Vec<u32>>)> {
-    let saved = TRACE.with(|t| t.replace(Some(Vec::new())));
+    /// Puts the caller's trace back even if `build` unwinds: the thread may
+    /// be a long-lived worker that runs later, untraced calls.
+    struct Restore(Option<Option<Vec<Option<Step>>>>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            if let Some(saved) = self.0.take() {
+                TRACE.with(|t| t.replace(saved));
+            }
+        }
+    }
+    let mut restore = Restore(Some(TRACE.with(|t| t.replace(Some(Vec::new())))));
     let out = build();
-    let steps = TRACE.with(|t| t.replace(saved)).unwrap_or_default();
+    let steps = TRACE.with(|t| t.replace(restore.0.take().flatten())).unwrap_or_default();
     let out = out?;
     let step = if steps.is_empty() { Some(identity(m)) } else { chain(steps) };
     let parents = step.filter(|s| s.in_f == m.n_faces() && s.in_v == m.n_vertices() && s.face.len() == out.n_faces() && s.vertex.len() == out.n_vertices()).map(|s| {
