@@ -45,6 +45,17 @@ SCRIPT = textwrap.dedent(
             topomesh.load(p)
         topomesh.menger_sponge(2); topomesh.conway("dtkC"); m.sierpinski()
         c.wall_thickness(); c.printable(0.01); m.menger(report=True); m.rind(0.05)
+        # every method that runs without arguments, except those handing the mesh
+        # to other libraries (VTK, Mesa, TBB start threads of their own)
+        for name in dir(topomesh.Mesh):
+            if name.startswith(("__", "_repr", "to_", "from_")) or name in ("explore", "show", "plot", "save"):
+                continue
+            try:
+                a = getattr(topomesh.torus(12, 8), name)
+                if callable(a):
+                    a()
+            except Exception:
+                pass
         return len(out)
 
     workload(topomesh.torus(40, 24))

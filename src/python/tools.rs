@@ -96,7 +96,7 @@ impl PyMesh {
             super::finite_in("spherize", "radius", r, f64::MIN_POSITIVE, MAX_LENGTH)?;
         }
         let mut m = self.inner.clone();
-        m.spherize(c, radius).map_err(err)?;
+        super::detach(py, || m.spherize(c, radius)).map_err(err)?;
         // only positions move: every attribute and crease stays valid
         Ok(PyMesh::with_data(m, self.data.clone_ref(py)))
     }
