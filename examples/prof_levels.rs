@@ -5,7 +5,9 @@
 //! Level L times one step on the output of L − 1 steps; `iter` as a 4th
 //! argument times `L` steps from the sphere instead (what `iterations=L` does),
 //! `counts` the budget's `Counts::of` on the level's input. Prints the median
-//! wall time per call and per output face. Deterministic counts for A/B runs:
+//! wall time per call and per output face (`TOPOMESH_PROF_ALL=1`: every
+//! call's time in order; `TOPOMESH_PROF_SPAWN=1`: each call on a fresh
+//! thread, as the extension runs its work). Deterministic counts for A/B runs:
 //! `valgrind --tool=cachegrind --cache-sim=yes --LL=33554432,16,64` on it.
 use std::time::Instant;
 use topomesh::schemes::{catmull_clark::catmull_clark, loop_subdivision::loop_subdivision};
