@@ -130,13 +130,17 @@ pub(crate) fn run_interruptible_with<T: Send>(
     // slept a whole poll interval on every short call
     let done = AtomicBool::new(false);
     std::thread::scope(|s| {
-        let worker = s.spawn(|| {
+        // named, so that a stray thread it started would show (tests/test_threads.py)
+        let worker = std::thread::Builder::new().name("topomesh-call".into()).spawn_scoped(s, || {
             // in topomesh's pool, never rayon's global one (`pool` module docs)
             let r = pool::run(work);
             done.store(true, Ordering::Release);
             caller.unpark();
             r
         });
+        let Ok(worker) = worker else {
+            return Err(err(crate::error::MeshError::Memory("could not start a worker thread".into())));
+        };
         loop {
             // park_timeout may wake early (the unpark token, spuriously): only
             // the flag decides

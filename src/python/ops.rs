@@ -230,15 +230,16 @@ impl PyMesh {
             (m0.n_faces() as u64).saturating_add(ring),
         );
         crate::budget::check("add_handle", &format!("segments = {segments}"), crate::budget::build_bytes(&c)).map_err(err)?;
+        // in topomesh's pool, never rayon's global one (`pool` module docs)
         let (w1, w2) = match weights {
             Some(w) => w,
             None => {
-                let c = m0.face_centroids();
+                let c = super::pool::run(|| m0.face_centroids());
                 let d = (c[face_a as usize] - c[face_b as usize]).length();
                 (d, d)
             }
         };
-        let c2 = if corners.1.is_none() { m0.aligned_handle_corner(c1, c2, w1, w2).map_err(err)? } else { c2 };
+        let c2 = if corners.1.is_none() { super::pool::run(|| m0.aligned_handle_corner(c1, c2, w1, w2)).map_err(err)? } else { c2 };
         let mut m = m0.clone();
         super::detach(py, || m.add_handle_shaped(c1, c2, segments as usize, w1, w2, shape)).map_err(err)?;
         warn_new_crossings(py, "add_handle", m0, &m)?;

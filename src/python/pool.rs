@@ -9,7 +9,8 @@
 //! pool of its own, made on first use in each process (again in a forked
 //! child) with rayon's own defaults (`RAYON_NUM_THREADS`, else one thread
 //! per core): the worker of every interruptible call, every `detach`, and
-//! the few calls that hold the GIL (the Platonic solids, the output check).
+//! the few calls that hold the GIL (the Platonic solids, the output check,
+//! `spherize`, `add_handle`'s corner choice).
 //! `tests/test_threads.py` checks that a broad workload leaves no thread of
 //! rayon's global pool and runs it again in a forked child.
 
