@@ -26,8 +26,8 @@ fn pool() -> Option<Arc<ThreadPool>> {
     match p.as_ref() {
         Some((owner, pool)) if *owner == pid => Some(pool.clone()),
         _ => {
-            // a parent's pool (after fork) has no threads here: dropping it
-            // would wait on them, so it is forgotten
+            // a parent's pool (after fork): its threads do not exist here,
+            // so it is forgotten rather than asked to shut them down
             if let Some(old) = p.take() {
                 std::mem::forget(old);
             }
