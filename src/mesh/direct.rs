@@ -43,6 +43,15 @@ impl Columns {
             f_hole: vec![false; n_faces],
         }
     }
+
+    /// [`Columns::new`] for `n_points` vertices whose positions the caller
+    /// sets later (`pos` left empty, nothing allocated for it): builders
+    /// that compute positions after freeing their temporaries.
+    pub fn for_points(n_points: usize, n_halfedges: usize, n_faces: usize) -> Columns {
+        let mut c = Columns::new(Vec::new(), n_halfedges, n_faces);
+        c.v_out = vec![0; n_points];
+        c
+    }
 }
 
 /// `n` points at the origin from zeroed (calloc) memory: a fresh block's

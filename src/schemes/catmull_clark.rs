@@ -27,7 +27,7 @@
 //! keep the direct computation above (the same weights, tested equal).
 
 use super::creases::{EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, face_centroids, primal_host, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids_walk, primal_host_late, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -44,19 +44,19 @@ pub fn catmull_clark(m: &Mesh) -> Result<Mesh> {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("catmull_clark", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
     let fl = FaceLayout::new(m)?;
-    let pos = smooth_positions(m, &fl)?;
     let face_point: Vec<u32> = (0..m.n_faces() as u32).collect();
-    primal_host(m, &fl, &face_point, pos)
+    // positions last, once the builder's temporaries are gone (issue 19: peak memory)
+    primal_host_late(m, fl, face_point, m.n_vertices() + m.n_edges() + m.n_faces(), || smooth_positions(m))
 }
 
 /// The closed-surface masks computed directly (no hole, no crease).
-fn smooth_positions(m: &Mesh, fl: &FaceLayout) -> Result<Vec<DVec3>> {
+fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, face) = m.halfedge_columns();
     let mut pos = crate::mesh::zeroed_points(nv + ne + nf);
     let (vp, rest) = pos.split_at_mut(nv);
     let (ep, fp) = rest.split_at_mut(ne);
-    face_centroids(m, &fl, fp);
+    face_centroids_walk(m, fp);
     crate::cancel::check()?;
     let fp = &*fp;
     let p = &m.pos;
@@ -122,7 +122,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     }
     let ls = LevelSharpness::new(m, req.creases, req.options);
     let stencils = if !smooth || req.stencils { Some(stencils(m, &fl, &ls, req, &real)?) } else { None };
-    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, || smooth_positions(m, &fl))?;
+    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, || smooth_positions(m))?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(FACE).take(real.len())));

@@ -317,6 +317,31 @@ pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
     });
 }
 
+/// [`face_centroids`] without a [`FaceLayout`]: each face's cycle walked
+/// through `next` from its first half-edge, the same sums in the same
+/// order (so the same bits). Point-sphere faces are not allowed.
+pub(crate) fn face_centroids_walk(m: &Mesh, out: &mut [DVec3]) {
+    let (next, vert, _) = m.halfedge_columns();
+    out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
+        // cancelled: leave the rest, callers poll right after
+        if crate::cancel::requested() {
+            return;
+        }
+        let s0 = m.f_start[f];
+        debug_assert!(s0 & POINT == 0, "face_centroids_walk: point-sphere face {f}");
+        let (mut h, mut s, mut n) = (s0, DVec3::ZERO, 0usize);
+        loop {
+            s += m.pos[vert[h as usize] as usize];
+            n += 1;
+            h = next[h as usize];
+            if h == s0 {
+                break;
+            }
+        }
+        *c = s / n as f64;
+    });
+}
+
 /// Every face with other than three corners fanned into triangles around a
 /// new vertex at its centroid (the "extended" triangle schemes' first step).
 ///
@@ -351,6 +376,14 @@ pub(crate) const HOLE: u32 = NONE - 1;
 /// Returns the output mesh with the new points `pos` laid out as above.
 pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>) -> Result<Mesh> {
     primal_host_sides(m, fl, face_point, pos, false).map(|r| r.0)
+}
+
+/// [`primal_host`] with the positions computed last, by `pos` (which must
+/// return `n_points` points), after `fl`, `face_point` and the builder's
+/// temporaries are freed: a lower peak (see
+/// [`super::primal_columns::primal_columns_late`]), the same mesh.
+pub(crate) fn primal_host_late(m: &Mesh, fl: FaceLayout, face_point: Vec<u32>, n_points: usize, pos: impl FnOnce() -> Result<Vec<DVec3>>) -> Result<Mesh> {
+    super::primal_columns::primal_columns_late(m, fl, face_point, n_points, pos)
 }
 
 /// [`primal_host`], and on request, per output edge, the input half-edge

@@ -34,7 +34,7 @@
 //! vertex sharpness to pin it.
 
 use super::creases::{Creases, EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, fan_triangulate, primal_host, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, fan_triangulate, primal_host_late, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -61,9 +61,9 @@ pub fn loop_beta(n: usize) -> f64 {
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("loop", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges())?;
     let fl = FaceLayout::new(m)?;
-    let pos = smooth_positions(m)?;
     let face_point = vec![NONE; m.n_faces()];
-    primal_host(m, &fl, &face_point, pos)
+    // positions last, once the builder's temporaries are gone (issue 19: peak memory)
+    primal_host_late(m, fl, face_point, m.n_vertices() + m.n_edges(), || smooth_positions(m))
 }
 
 /// The closed-surface masks computed directly (no hole, no crease).

@@ -37,7 +37,8 @@ const Q: u8 = 0;
 const T: u8 = 1;
 const H: u8 = 2;
 
-/// Per input face: where its output starts.
+/// Per input face: where its output starts (24 bytes: the face-point
+/// entry doubles as the kind, so no padding).
 #[derive(Clone, Copy, Default)]
 struct FaceInfo {
     /// First input corner (FaceLayout index).
@@ -50,13 +51,22 @@ struct FaceInfo {
     fbase: u32,
     /// Number of output edges whose first corner lies before `base`.
     ebase: u32,
-    kind: u8,
+    /// The face's `face_point` entry: its point's index, [`NONE`] or [`HOLE`].
+    fp: u32,
 }
 
 impl FaceInfo {
     #[inline]
+    fn kind(&self) -> u8 {
+        match self.fp {
+            NONE => T,
+            HOLE => H,
+            _ => Q,
+        }
+    }
+    #[inline]
     fn stride(&self) -> u32 {
-        match self.kind {
+        match self.kind() {
             Q => 4,
             T => 3,
             _ => 2,
@@ -69,11 +79,27 @@ impl FaceInfo {
     #[inline]
     fn edge_point_corner(&self, k: u32) -> u32 {
         let k1 = (k + 1) % self.n;
-        match self.kind {
+        match self.kind() {
             Q => (4 * k + 1).min(4 * k1 + 3),
             T => (3 * k + 1).min(3 * k1 + 2),
             // b(next h) is the second corner of h's own sub-block
             _ => 2 * k + 1,
+        }
+    }
+}
+
+/// Calls `f(k, h)` for the corners of the face whose first half-edge is
+/// `s`, in cycle order (the order of [`FaceLayout::corners`], without its
+/// corner list: the late build frees that list before the columns).
+#[inline]
+fn each_corner(next: &[u32], s: u32, mut f: impl FnMut(u32, u32)) {
+    let (mut h, mut k) = (s, 0u32);
+    loop {
+        f(k, h);
+        k += 1;
+        h = next[h as usize];
+        if h == s {
+            break;
         }
     }
 }
@@ -116,7 +142,7 @@ impl Ctx<'_> {
     /// Output corner index of `b(h)`, from [`Self::loc`] of `h`.
     #[inline]
     fn pos_b(&self, (fi, k, _): (&FaceInfo, u32, u32)) -> u32 {
-        match fi.kind {
+        match fi.kind() {
             Q => fi.base + 4 * k + 3,
             T => fi.base + 3 * k + 2,
             _ => fi.base + 2 * ((k + fi.n - 1) % fi.n) + 1,
@@ -141,7 +167,7 @@ impl Ctx<'_> {
     /// Sub-block (input corner) and slot of `b(h)`.
     #[inline]
     fn slot_b(fi: &FaceInfo, k: u32, c: u32) -> (u32, u32) {
-        match fi.kind {
+        match fi.kind() {
             Q => (c, 3),
             T => (c, 2),
             _ => (fi.off + (k + fi.n - 1) % fi.n, 1),
@@ -179,16 +205,57 @@ impl Ctx<'_> {
 /// Faces of 2²⁵ corners or more (whose ranks would not fit the packed
 /// 28 bits) go through [`super::hosts::primal_host_twins`].
 pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
-    let (next, vert, face) = m.halfedge_columns();
-    let prev = &m.he_prev;
-    let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
-    // pass 0: output corner and face bases (sequential, per input face)
+    let Some(fi) = layout(fl, face_point)? else {
+        return super::hosts::primal_host_twins(m, fl, face_point, pos, want_sides);
+    };
+    let (mut cols, sides) = fill(m, &fl.cidx, fi, pos.len(), want_sides)?;
+    cols.pos = pos;
+    let out = Mesh::from_columns(cols)?;
+    Ok((out, want_sides.then_some(sides)))
+}
+
+/// [`primal_columns`] (no side map) with the positions computed last, by
+/// `pos` (which must return `n_points` points): the face layout, the face
+/// points and the builder's records are freed before it runs, and the
+/// layout's corner list and offsets before the columns are allocated
+/// (issue 19: a level's peak is then the input, the output's connectivity
+/// and its positions, without the temporaries; 141 → about 121 B per output
+/// quad, 101 → about 84 B per output triangle, `examples/peak_levels.rs`).
+/// Same mesh as [`primal_columns`].
+pub(crate) fn primal_columns_late(
+    m: &Mesh,
+    fl: FaceLayout,
+    face_point: Vec<u32>,
+    n_points: usize,
+    pos: impl FnOnce() -> Result<Vec<DVec3>>,
+) -> Result<Mesh> {
+    let Some(fi) = layout(&fl, &face_point)? else {
+        let p = pos()?;
+        return super::hosts::primal_host_twins(m, &fl, &face_point, p, false).map(|r| r.0);
+    };
+    let FaceLayout { fh, off, cidx } = fl;
+    drop((fh, off, face_point));
+    let (mut cols, _) = fill(m, &cidx, fi, n_points, false)?;
+    drop(cidx);
+    let p = pos()?;
+    if p.len() != n_points {
+        return Err(MeshError::Invariant(format!("primal host: {} points for {n_points} output vertices", p.len())));
+    }
+    cols.pos = p;
+    Mesh::from_columns(cols)
+}
+
+/// Pass 0: every input face's output corner and face bases (sequential);
+/// `None` when a face has 2²⁵ corners or more.
+fn layout(fl: &FaceLayout, face_point: &[u32]) -> Result<Option<Vec<FaceInfo>>> {
+    let nf = face_point.len();
     let mut fi = Vec::with_capacity(nf);
     let (mut b, mut fb) = (0u32, 0u32);
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let n = fl.degree(f) as u32;
-        let kind = match face_point[f] {
+        let fp = face_point[f];
+        let kind = match fp {
             NONE => T,
             HOLE => H,
             _ => Q,
@@ -197,9 +264,9 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
             return Err(MeshError::Invariant(format!("primal host: face {f} of degree {n} has no layout")));
         }
         if n >= 1 << 25 {
-            return super::hosts::primal_host_twins(m, fl, face_point, pos, want_sides);
+            return Ok(None);
         }
-        fi.push(FaceInfo { off: fl.off[f], n, base: b, fbase: fb, ebase: 0, kind });
+        fi.push(FaceInfo { off: fl.off[f], n, base: b, fbase: fb, ebase: 0, fp });
         let (len, nfo) = match kind {
             Q => (4 * n, n),
             T => (12, 4),
@@ -208,8 +275,26 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         b += len;
         fb += nfo;
     }
-    let (nc, nfo) = (b as usize, fb as usize);
-    let mut ctx = Ctx { prev, face, cidx: &fl.cidx, fi, rm: vec![0; m.n_halfedges()] };
+    Ok(Some(fi))
+}
+
+/// Passes 1–3: the connectivity columns (positions left empty) for
+/// `n_points` output vertices, and the side map when asked for. Walks each
+/// face's corners through `next` (see [`each_corner`]); the records `fi`
+/// and the ranks are freed on return.
+fn fill(m: &Mesh, cidx: &[u32], fi: Vec<FaceInfo>, n_points: usize, want_sides: bool) -> Result<(Columns, Vec<u32>)> {
+    let (next, vert, face) = m.halfedge_columns();
+    let prev = &m.he_prev;
+    let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
+    let (nc, nfo) = fi.last().map_or((0, 0), |l| {
+        let (len, n_out) = match l.kind() {
+            Q => (4 * l.n, l.n),
+            T => (12, 4),
+            _ => (2 * l.n, 1),
+        };
+        ((l.base + len) as usize, (l.fbase + n_out) as usize)
+    });
+    let mut ctx = Ctx { prev, face, cidx, fi, rm: vec![0; m.n_halfedges()] };
     // pass 1: first corners, per input corner and per face
     let cnt: Vec<u32> = {
         let rmp = SyncPtr(ctx.rm.as_mut_ptr());
@@ -222,14 +307,12 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
                     return 0;
                 }
                 let fi = &ctx.fi[f];
-                let hs = fl.corners(f);
                 let n = fi.n;
                 let mut r = 0u32;
-                for (k, &h) in hs.iter().enumerate() {
-                    let k = k as u32;
+                each_corner(next, m.f_start[f], |k, h| {
                     let pa = fi.base + fi.stride() * k;
                     let first_a = ctx.pos_b(ctx.loc_next(h ^ 1)) > pa;
-                    let mask = match fi.kind {
+                    let mask = match fi.kind() {
                         Q => {
                             let pb = pa + 3;
                             first_a as u32
@@ -244,7 +327,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
                     // SAFETY: input corner fi.off + k belongs to face f only.
                     unsafe { *rmp.get().add((fi.off + k) as usize) = r << 4 | mask };
                     r += mask.count_ones();
-                }
+                });
                 r
             })
             .collect()
@@ -259,7 +342,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
     if nh != nc {
         return Err(MeshError::Invariant(format!("primal host: {nc} corners but {nh} half-edges")));
     }
-    let mut cols = Columns::new(pos, nh, nfo);
+    let mut cols = Columns::for_points(n_points, nh, nfo);
     let ne_out = acc as usize;
     let mut sides = if want_sides { vec![NONE; ne_out] } else { Vec::new() };
     let ctx = &ctx;
@@ -279,14 +362,15 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
             return;
         }
         let fi = &ctx.fi[f];
-        let hs = fl.corners(f);
+        let s = m.f_start[f];
         let n = fi.n as usize;
         // per corner of the block: (id, vertex, face, side)
         buf.clear();
-        let fp = (nv + ne).wrapping_add(face_point[f]); // used by Q faces only
-        match fi.kind {
+        let fp = (nv + ne).wrapping_add(fi.fp); // used by Q faces only
+        match fi.kind() {
             Q => {
-                for (k, &h) in hs.iter().enumerate() {
+                each_corner(next, s, |k, h| {
+                    let k = k as usize;
                     let c = fi.off + k as u32;
                     let p = prev[h as usize];
                     let of = fi.fbase + k as u32;
@@ -300,32 +384,33 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
                     buf.push([i1, nv + (h >> 1), of, NONE]);
                     buf.push([i2, fp, of, NONE]);
                     buf.push([ctx.id_b(h), nv + (p >> 1), of, p ^ 1]);
-                }
+                });
             }
             T => {
-                for (k, &h) in hs.iter().enumerate() {
-                    let c = fi.off + k as u32;
+                each_corner(next, s, |k, h| {
+                    let c = fi.off + k;
                     let p = prev[h as usize];
-                    let of = fi.fbase + k as u32;
+                    let of = fi.fbase + k;
                     buf.push([ctx.id_a(h), vert[h as usize], of, h]);
                     buf.push([ctx.first_id(fi, c, 1), nv + (h >> 1), of, NONE]);
                     buf.push([ctx.id_b(h), nv + (p >> 1), of, p ^ 1]);
-                }
-                for (k, &h) in hs.iter().enumerate() {
-                    let c1 = fi.off + ((k + 1) % 3) as u32;
+                });
+                each_corner(next, s, |k, h| {
+                    let c1 = fi.off + (k + 1) % 3;
                     buf.push([ctx.first_id(fi, c1, 1) + 1, nv + (h >> 1), fi.fbase + 3, NONE]);
-                }
+                });
             }
             _ => {
-                for (k, &h) in hs.iter().enumerate() {
+                // hs[(k + 1) % n] of the corner list is next[h]
+                each_corner(next, s, |_, h| {
                     buf.push([ctx.id_a(h), vert[h as usize], fi.fbase, h]);
-                    buf.push([ctx.id_b(hs[(k + 1) % n]), nv + (h >> 1), fi.fbase, h ^ 1]);
-                }
+                    buf.push([ctx.id_b(next[h as usize]), nv + (h >> 1), fi.fbase, h ^ 1]);
+                });
             }
         }
         let len = buf.len();
         // size of the output faces of this block
-        let fsize = match fi.kind {
+        let fsize = match fi.kind() {
             Q => 4,
             T => 3,
             _ => len,
@@ -349,7 +434,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
                     }
                 }
             }
-            match fi.kind {
+            match fi.kind() {
                 Q => *po.get().add(fp as usize) = buf[2][0],
                 H => *fhole.get().add(fi.fbase as usize) = true,
                 _ => {}
@@ -366,7 +451,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         let mut h = s;
         let mut best = s;
         loop {
-            if fl.cidx[h as usize] < fl.cidx[best as usize] {
+            if cidx[h as usize] < cidx[best as usize] {
                 best = h;
             }
             h = prev[h as usize] ^ 1;
@@ -391,7 +476,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         };
         let (s0, s1) = (side(2 * e as u32), side(2 * e as u32 + 1));
         let (_, fi, k, c, j, h) = if s0.0 < s1.0 { s0 } else { s1 };
-        *o = if fi.kind != H && j == fi.stride() * k + 1 {
+        *o = if fi.kind() != H && j == fi.stride() * k + 1 {
             // slot 1 of h's sub-block
             if ctx.is_first(c, 1) {
                 ctx.first_id(fi, c, 1)
@@ -403,8 +488,7 @@ pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos:
         };
     });
     crate::cancel::check()?;
-    let out = Mesh::from_columns(cols)?;
-    Ok((out, want_sides.then_some(sides)))
+    Ok((cols, sides))
 }
 
 #[cfg(test)]

@@ -96,23 +96,8 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let prev = &m.he_prev;
     let p = &m.pos;
 
-    // --- positions: per face Σx, C, S, then per corner
-    let sums: Vec<[DVec3; 3]> = crate::cancel::par_collect(nf, |f| {
-        let mut s = [DVec3::ZERO; 3];
-        let hs = fl.corners(f);
-        let n = hs.len();
-        let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
-        let (mut cs, mut sn) = (1.0, 0.0);
-        for &h in hs {
-            let x = p[vert[h as usize] as usize];
-            s[0] += x;
-            s[1] += x * cs;
-            s[2] += x * sn;
-            // (cos, sin) of the next multiple of 2π/n
-            (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
-        }
-        s
-    })?;
+    // --- positions: per face Σx, C, S, then per corner (in one task per
+    // face: no per-face table of sums, 72 B per input face, alive at the peak)
     let mut pos = crate::mesh::zeroed_points(nh);
     // corner c belongs to the face whose range holds it: walk faces in parallel
     // by splitting the buffer along face offsets
@@ -134,8 +119,21 @@ fn step(m: &Mesh) -> Result<Mesh> {
             out[0] = p[vert[hs[0] as usize] as usize];
             return;
         }
+        let [s, c, sn] = {
+            let mut s = [DVec3::ZERO; 3];
+            let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
+            let (mut cs, mut sn) = (1.0, 0.0);
+            for &h in hs {
+                let x = p[vert[h as usize] as usize];
+                s[0] += x;
+                s[1] += x * cs;
+                s[2] += x * sn;
+                // (cos, sin) of the next multiple of 2π/n
+                (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
+            }
+            s
+        };
         let nf64 = n as f64;
-        let [s, c, sn] = sums[f];
         let base = s * (0.75 / nf64);
         let (ds, dc) = (std::f64::consts::TAU / nf64).sin_cos();
         let (mut ck, mut sk) = (1.0, 0.0);
@@ -156,8 +154,11 @@ fn step(m: &Mesh) -> Result<Mesh> {
     // edges nh + 2e, nh + 2e + 1 the V-sides of E-face e; the V-face corner
     // at x has half-edge 2(nh + r) + 1, r = rotate(x) = twin(prev x).
     let (hu, eu, fu) = (nh as u32, ne as u32, nf as u32);
+    // the corner list is done with: freed before the columns (issue 19: peak)
+    let FaceLayout { fh, off, cidx } = fl;
+    drop(fh);
     let mut cols = Columns::new(pos, 4 * nh, nf + ne + nv);
-    let cidx = &fl.cidx;
+    let cidx = &cidx;
     let v_id = |x: usize| 2 * (hu + (prev[x] ^ 1)) + 1;
     {
         let cp = |c: &mut Vec<u32>| SyncPtr(c.as_mut_ptr());
@@ -175,7 +176,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
             if crate::cancel::requested() {
                 return; // the check after the loops reports it
             }
-            let (s, e) = (fl.off[f], fl.off[f + 1]);
+            let (s, e) = (off[f], off[f + 1]);
             unsafe { *ps.get().add(f) = 2 * s };
             for c in s..e {
                 put(2 * c, 2 * if c + 1 == e { s } else { c + 1 }, c, f as u32);
