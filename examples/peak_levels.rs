@@ -4,6 +4,9 @@
 //! -- catmull_clark|loop|midpoint|doo_sabin [LEVELS]` (`TOPOMESH_PROF_INPUT=torus`:
 //! the 100k-quad torus, else the 82k-triangle sphere). Counts what Rust
 //! allocates (a counting global allocator), not the RSS.
+//!
+//! `TOPOMESH_PROF_SMALL=1` takes inputs 16–25× smaller; `TOPOMESH_PEAK_MAX=2` makes it a check (`.ci/run` runs it): it exits
+//! with status 1 when a level's peak exceeds that multiple of the export.
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use topomesh::schemes::{catmull_clark::catmull_clark, doo_sabin::doo_sabin, loop_subdivision::loop_subdivision, midpoint::midpoint};
@@ -67,16 +70,20 @@ fn main() {
         "doo_sabin" => doo_sabin,
         _ => catmull_clark,
     };
+    // TOPOMESH_PROF_SMALL: inputs 16-25x smaller (CI runs the debug build)
+    let small = std::env::var("TOPOMESH_PROF_SMALL").is_ok();
     let input = if std::env::var("TOPOMESH_PROF_INPUT").is_ok_and(|s| s == "torus") {
-        primitives::torus(400, 250, 3.0, 1.0).unwrap()
+        if small { primitives::torus(80, 50, 3.0, 1.0) } else { primitives::torus(400, 250, 3.0, 1.0) }.unwrap()
     } else {
         let mut s = primitives::icosahedron();
-        for _ in 0..6 {
+        for _ in 0..if small { 4 } else { 6 } {
             s = loop_subdivision(&s).unwrap();
         }
         s
     };
     LOG.store(std::env::var("TOPOMESH_PROF_LOG").is_ok(), Relaxed);
+    let max: Option<f64> = std::env::var("TOPOMESH_PEAK_MAX").ok().map(|s| s.parse().expect("TOPOMESH_PEAK_MAX: a number"));
+    let mut over = false;
     for l in 1..=levels {
         let base = NOW.load(Relaxed);
         PEAK.store(base, Relaxed);
@@ -98,5 +105,12 @@ fn main() {
             held / nf,
             held / export
         );
+        if max.is_some_and(|x| grow / export > x) {
+            println!("{scheme} L{l}: peak {:.2}x the export is over TOPOMESH_PEAK_MAX = {}", grow / export, max.unwrap());
+            over = true;
+        }
+    }
+    if over {
+        std::process::exit(1);
     }
 }
