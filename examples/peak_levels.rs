@@ -1,7 +1,7 @@
 //! Peak heap bytes of `iterations = L` in the core, per output face and as a
 //! multiple of the exported arrays (issue 19's `× export`: float64 vertices,
 //! int64 face sizes and indices): `cargo run --release --example peak_levels
-//! -- catmull_clark|loop|midpoint|doo_sabin [LEVELS]` (`TOPOMESH_PROF_INPUT=torus`:
+//! -- catmull_clark|loop|midpoint|doo_sabin|sqrt3|simplest|dual|honeycomb|vertex_truncation [LEVELS]` (`TOPOMESH_PROF_INPUT=torus`:
 //! the 100k-quad torus, else the 82k-triangle sphere). Counts what Rust
 //! allocates (a counting global allocator), not the RSS.
 //!
@@ -10,6 +10,7 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use topomesh::schemes::{catmull_clark::catmull_clark, doo_sabin::doo_sabin, loop_subdivision::loop_subdivision, midpoint::midpoint};
+use topomesh::schemes::{dual::dual, honeycomb::honeycomb, simplest::simplest, sqrt3::sqrt3, vertex_truncation::{vertex_truncation, Truncation}};
 use topomesh::{primitives, Mesh};
 
 struct Counting;
@@ -68,6 +69,11 @@ fn main() {
         "loop" => loop_subdivision,
         "midpoint" => midpoint,
         "doo_sabin" => doo_sabin,
+        "sqrt3" => sqrt3,
+        "simplest" => simplest,
+        "dual" => dual,
+        "honeycomb" => |m| honeycomb(m, 0.5, None),
+        "vertex_truncation" => |m| vertex_truncation(m, Truncation::Chaikin),
         _ => catmull_clark,
     };
     // TOPOMESH_PROF_SMALL: inputs 16-25x smaller (CI runs the debug build)
