@@ -121,8 +121,11 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     let ls = LevelSharpness::new(m, req.creases, req.options);
-    let stencils = if !smooth || req.stencils { Some(stencils(m, &fl, &ls, req, &real)?) } else { None };
-    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, || smooth_positions(m))?;
+    // stencils only when asked for: otherwise the positions of an open or
+    // creased level are applied row by row, without storing the rows
+    let stencils = if req.stencils { Some(stencils(m, &fl, &ls, req, &real)?) } else { None };
+    let direct = || if smooth { smooth_positions(m) } else { stencil_points(m, &fl, &ls, req, &real) };
+    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, direct)?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(FACE).take(real.len())));
@@ -205,6 +208,24 @@ fn smooth_apply(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f6
 /// The level's stencils: rows `[vertex points | edge points | face points
 /// of the real faces]` over the input vertices.
 fn stencils(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real: &[u32]) -> Result<Stencils> {
+    stencil_rows(m, fl, ls, req, real, |n, n_cols, fill| Stencils::build(n, n_cols, fill))
+}
+
+/// The positions [`stencils`] gives, row by row without storing the rows
+/// (bit for bit the same: [`Stencils::apply_rows_points`]).
+fn stencil_points(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real: &[u32]) -> Result<Vec<DVec3>> {
+    stencil_rows(m, fl, ls, req, real, |n, _, fill| Stencils::apply_rows_points(n, &m.pos, fill))
+}
+
+/// Hands the level's row filler (row count, column count, filler) to `run`.
+fn stencil_rows<T>(
+    m: &Mesh,
+    fl: &FaceLayout,
+    ls: &LevelSharpness,
+    req: &Request,
+    real: &[u32],
+    run: impl FnOnce(usize, usize, &(dyn Fn(usize, &mut Row) + Sync)) -> T,
+) -> T {
     let (nv, ne) = (m.n_vertices(), m.n_edges());
     let (_, vert, face) = m.halfedge_columns();
     let face_row = |f: usize, w: f64, row: &mut Row| {
@@ -232,7 +253,7 @@ fn stencils(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real:
         }
         Rule::Corner => row.add(v as u32, w),
     };
-    Stencils::build(nv + ne + real.len(), nv, |i, row| {
+    let fill: &(dyn Fn(usize, &mut Row) + Sync) = &|i, row| {
         if i < nv {
             let r = ls.vertex_rule(m, i, req.options.crease_method);
             match r.child {
@@ -259,7 +280,8 @@ fn stencils(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real:
         } else {
             face_row(real[i - nv - ne] as usize, 1.0, row);
         }
-    })
+    };
+    run(nv + ne + real.len(), nv, fill)
 }
 
 #[cfg(test)]

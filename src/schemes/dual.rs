@@ -371,7 +371,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     crate::cancel::check()?;
-    let stencils = Stencils::build(n_out, nv, |i, row| {
+    let fill = |i: usize, row: &mut crate::schemes::stencil::Row| {
         if i < real.len() {
             let hs = fl.corners(real[i] as usize);
             let w = 1.0 / hs.len() as f64;
@@ -385,15 +385,16 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
         } else {
             row.add(bverts[i - real.len() - bedges.len()], 1.0);
         }
-    })?;
-    let pos = if m.n_holes() == 0 {
+    };
+    // the rows are stored only when asked for (issue 19: peak memory)
+    let (pos, stencils) = if m.n_holes() == 0 {
         // closed: the centroids exactly as the plain path sums them (same layout)
         let mut p = crate::mesh::zeroed_points(nf);
         face_centroids(m, &fl, &mut p);
         crate::cancel::check()?;
-        p
+        (p, if req.stencils { Some(Stencils::build(n_out, nv, fill)?) } else { None })
     } else {
-        stencils.apply_points(&m.pos)?
+        Stencils::points_and_rows(n_out, nv, &m.pos, req.stencils, fill)?
     };
     let mut mesh = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
     for f in nv..mesh.n_faces() {
@@ -416,7 +417,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         None
     };
-    Ok(Level { mesh, stencils: req.stencils.then_some(stencils), origins, creases: None })
+    Ok(Level { mesh, stencils, origins, creases: None })
 }
 
 #[cfg(test)]

@@ -128,11 +128,14 @@ pub(crate) fn primal_output(
     smooth: bool,
     direct: impl FnOnce() -> Result<Vec<glam::DVec3>>,
 ) -> Result<(Mesh, Option<Creases>)> {
-    let pos = match (stencils, smooth) {
-        (Some(s), false) => s.apply_points(&m.pos)?,
-        _ => direct()?,
+    // positions after the connectivity (issue 19: peak memory); one per
+    // input vertex, input edge and face point
+    let n_points = m.n_vertices() + m.n_edges() + face_point.iter().filter(|&&x| x != crate::mesh::NONE && x != super::hosts::HOLE).count();
+    let pos = || match (stencils, smooth) {
+        (Some(s), false) => s.apply_points(&m.pos),
+        _ => direct(),
     };
-    let (mesh, sides) = super::hosts::primal_host_sides(m, fl, face_point, pos, req.creases.is_some())?;
+    let (mesh, sides) = super::primal_columns::primal_columns_then(m, fl, face_point, n_points, req.creases.is_some(), pos)?;
     let creases = match (req.creases, &sides) {
         (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
         _ => None,

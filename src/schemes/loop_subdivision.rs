@@ -281,8 +281,11 @@ fn triangle_level(m: &Mesh, req: &Request) -> Result<Level> {
     let smooth = req.smooth_on(m);
     let face_point: Vec<u32> = m.f_hole.iter().map(|&h| if h { HOLE } else { NONE }).collect();
     let ls = LevelSharpness::new(m, req.creases, req.options);
-    let stencils = if !smooth || req.stencils { Some(stencils(m, &ls, req)?) } else { None };
-    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, || smooth_positions(m))?;
+    // stencils only when asked for: otherwise the positions of an open or
+    // creased level are applied row by row, without storing the rows
+    let stencils = if req.stencils { Some(stencils(m, &ls, req)?) } else { None };
+    let direct = || if smooth { smooth_positions(m) } else { stencil_points(m, &ls, req) };
+    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, direct)?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)));
@@ -300,6 +303,17 @@ fn triangle_level(m: &Mesh, req: &Request) -> Result<Level> {
 
 /// Rows `[vertex points | edge points]` over the input vertices.
 fn stencils(m: &Mesh, ls: &LevelSharpness, req: &Request) -> Result<Stencils> {
+    stencil_rows(m, ls, req, |n, n_cols, fill| Stencils::build(n, n_cols, fill))
+}
+
+/// The positions [`stencils`] gives, row by row without storing the rows
+/// (bit for bit the same: [`Stencils::apply_rows_points`]).
+fn stencil_points(m: &Mesh, ls: &LevelSharpness, req: &Request) -> Result<Vec<DVec3>> {
+    stencil_rows(m, ls, req, |n, _, fill| Stencils::apply_rows_points(n, &m.pos, fill))
+}
+
+/// Hands the level's row filler (row count, column count, filler) to `run`.
+fn stencil_rows<T>(m: &Mesh, ls: &LevelSharpness, req: &Request, run: impl FnOnce(usize, usize, &(dyn Fn(usize, &mut Row) + Sync)) -> T) -> T {
     let (nv, ne) = (m.n_vertices(), m.n_edges());
     let (_, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -320,7 +334,7 @@ fn stencils(m: &Mesh, ls: &LevelSharpness, req: &Request) -> Result<Stencils> {
         }
         Rule::Corner => row.add(v as u32, w),
     };
-    Stencils::build(nv + ne, nv, |i, row| {
+    let fill: &(dyn Fn(usize, &mut Row) + Sync) = &|i, row| {
         if i < nv {
             let r = ls.vertex_rule(m, i, req.options.crease_method);
             match r.child {
@@ -345,7 +359,8 @@ fn stencils(m: &Mesh, ls: &LevelSharpness, req: &Request) -> Result<Stencils> {
                 row.add(vert[prev[b] as usize], wo);
             }
         }
-    })
+    };
+    run(nv + ne, nv, fill)
 }
 
 #[cfg(test)]

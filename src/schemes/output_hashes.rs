@@ -120,6 +120,25 @@ fn table() -> Vec<(String, u64)> {
     out
 }
 
+/// A level keeps its stencils only when asked for, on open meshes too
+/// (issue 19: the rows of an open level cost several times its output;
+/// their positions are applied row by row instead, the same bits, which
+/// [`scheme_outputs_are_unchanged`] checks).
+#[test]
+fn levels_store_no_stencils_unless_asked() {
+    let mut checked = 0;
+    for (s, f) in schemes() {
+        for (i, m) in inputs() {
+            let Ok(lv) = f(&m, &Request::plain()) else { continue };
+            assert!(lv.stencils.is_none(), "{s}/{i}: stencils kept without a request");
+            let asked = f(&m, &Request { stencils: true, ..Request::plain() }).unwrap();
+            assert!(asked.stencils.is_some(), "{s}/{i}: stencils asked for");
+            checked += m.n_holes().min(1);
+        }
+    }
+    assert!(checked >= 2 * schemes().len(), "open inputs were not exercised: {checked}");
+}
+
 #[test]
 fn scheme_outputs_are_unchanged() {
     let got = table();

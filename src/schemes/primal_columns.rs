@@ -205,13 +205,38 @@ impl Ctx<'_> {
 /// Faces of 2²⁵ corners or more (whose ranks would not fit the packed
 /// 28 bits) go through [`super::hosts::primal_host_twins`].
 pub(crate) fn primal_columns(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Vec<DVec3>, want_sides: bool) -> Result<(Mesh, Option<Vec<u32>>)> {
+    let n = pos.len();
+    primal_columns_then(m, fl, face_point, n, want_sides, || Ok(pos))
+}
+
+/// [`primal_columns`] with the positions computed by `pos` (which must
+/// return `n_points` points) after the connectivity, once the builder's
+/// records and ranks are freed: they and the positions are never alive
+/// together. The layout and face points are the caller's, so they stay.
+pub(crate) fn primal_columns_then(
+    m: &Mesh,
+    fl: &FaceLayout,
+    face_point: &[u32],
+    n_points: usize,
+    want_sides: bool,
+    pos: impl FnOnce() -> Result<Vec<DVec3>>,
+) -> Result<(Mesh, Option<Vec<u32>>)> {
     let Some(fi) = layout(fl, face_point)? else {
-        return super::hosts::primal_host_twins(m, fl, face_point, pos, want_sides);
+        return super::hosts::primal_host_twins(m, fl, face_point, pos()?, want_sides);
     };
-    let (mut cols, sides) = fill(m, &fl.cidx, fi, pos.len(), want_sides)?;
-    cols.pos = pos;
+    let (mut cols, sides) = fill(m, &fl.cidx, fi, n_points, want_sides)?;
+    cols.pos = points(pos, n_points)?;
     let out = Mesh::from_columns(cols)?;
     Ok((out, want_sides.then_some(sides)))
+}
+
+/// `pos()`, checked to hold `n` points.
+fn points(pos: impl FnOnce() -> Result<Vec<DVec3>>, n: usize) -> Result<Vec<DVec3>> {
+    let p = pos()?;
+    if p.len() != n {
+        return Err(MeshError::Invariant(format!("primal host: {} points for {n} output vertices", p.len())));
+    }
+    Ok(p)
 }
 
 /// [`primal_columns`] (no side map) with the positions computed last, by
@@ -237,11 +262,7 @@ pub(crate) fn primal_columns_late(
     drop((fh, off, face_point));
     let (mut cols, _) = fill(m, &cidx, fi, n_points, false)?;
     drop(cidx);
-    let p = pos()?;
-    if p.len() != n_points {
-        return Err(MeshError::Invariant(format!("primal host: {} points for {n_points} output vertices", p.len())));
-    }
-    cols.pos = p;
+    cols.pos = points(pos, n_points)?;
     Mesh::from_columns(cols)
 }
 

@@ -258,7 +258,8 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     let n_out_v = ne + bverts.len();
     let bv = |w: u32| (ne as u32) + bidx[w as usize];
     let vface = |x: usize| n_real + vert[x];
-    let st = Stencils::build(n_out_v, nv, |i, row| {
+    // the rows are stored only when asked for (issue 19: peak memory)
+    let (pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, |i, row| {
         if i < ne {
             row.add(vert[2 * i], 0.5);
             row.add(vert[2 * i + 1], 0.5);
@@ -266,7 +267,6 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
             row.add(bverts[i - ne], 1.0);
         }
     })?;
-    let pos = st.apply_points(&m.pos)?;
     let mut cols = Columns::new(pos, n_out_h, (n_real + n_holes) as usize + nv);
     {
         let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
@@ -354,7 +354,7 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         None
     };
-    Ok(Level { mesh, stencils: req.stencils.then_some(st), origins, creases: None })
+    Ok(Level { mesh, stencils: st, origins, creases: None })
 }
 
 #[cfg(test)]

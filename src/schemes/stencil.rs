@@ -125,6 +125,47 @@ impl Stencils {
         Ok(out)
     }
 
+    /// `S @ p` without storing `S`: row `i` is built by `fill(i, row)` (as
+    /// for [`Stencils::build`]) in a per-thread buffer and applied at once.
+    /// The result is [`Stencils::build`] then [`Stencils::apply_points`]
+    /// bit for bit (same terms, summed in the same order), without the rows'
+    /// memory (issue 19: for open meshes and creases, about 12 bytes per
+    /// term and 8 per row, several times the output, only to place points).
+    pub fn apply_rows_points(n_rows: usize, p: &[DVec3], fill: impl Fn(usize, &mut Row) + Sync) -> Result<Vec<DVec3>> {
+        let out: Vec<DVec3> = (0..n_rows)
+            .into_par_iter()
+            .with_min_len(super::hosts::MIN_LEN)
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(col, w), i| {
+                    // cancelled: zeros, the check below reports it
+                    if crate::cancel::requested() {
+                        return DVec3::ZERO;
+                    }
+                    col.clear();
+                    w.clear();
+                    fill(i, &mut Row { col, w });
+                    col.iter().zip(w.iter()).map(|(&c, &w)| p[c as usize] * w).sum()
+                },
+            )
+            .collect();
+        crate::cancel::check()?;
+        Ok(out)
+    }
+
+    /// The points of the rows `fill` applied to `p`, and the rows when
+    /// `keep` (a level asked for its stencils): [`Stencils::build`] then
+    /// [`Stencils::apply_points`], or else [`Stencils::apply_rows_points`],
+    /// the same bits without storing the rows.
+    pub fn points_and_rows(n_rows: usize, n_cols: usize, p: &[DVec3], keep: bool, fill: impl Fn(usize, &mut Row) + Sync) -> Result<(Vec<DVec3>, Option<Stencils>)> {
+        if keep {
+            let s = Stencils::build(n_rows, n_cols, &fill)?;
+            Ok((s.apply_points(p)?, Some(s)))
+        } else {
+            Ok((Stencils::apply_rows_points(n_rows, p, &fill)?, None))
+        }
+    }
+
     /// `S @ a` for a row-major `(n_cols, k)` array.
     pub fn apply(&self, a: &[f64], k: usize) -> Result<Vec<f64>> {
         debug_assert_eq!(a.len(), self.n_cols * k);
@@ -192,6 +233,37 @@ fn merge_duplicates(row: &mut Row, start: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rows applied as they are built give the stored rows' points bit for
+    /// bit: rows of 0–40 terms, repeated and scaled columns, more rows than
+    /// one parallel task takes.
+    #[test]
+    fn rows_applied_unstored_equal_the_stored_rows() {
+        let p: Vec<DVec3> = (0..97).map(|i| DVec3::new((i as f64 * 0.37).sin(), (i as f64).sqrt() * 1e-3, 1.0 / (1.0 + i as f64))).collect();
+        let fill = |i: usize, r: &mut Row| {
+            let start = r.len();
+            for j in 0..(i * 7) % 41 {
+                r.add(((i * 31 + j * 17) % 97) as u32, 1.0 / (1.0 + j as f64) + (i as f64) * 1e-7);
+            }
+            if i % 3 == 0 {
+                r.scale_from(start, 0.3);
+            }
+        };
+        let n = 20_000;
+        let s = Stencils::build(n, p.len(), fill).unwrap();
+        let want = s.apply_points(&p).unwrap();
+        let got = Stencils::apply_rows_points(n, &p, fill).unwrap();
+        assert_eq!(got.len(), want.len());
+        for (i, (a, b)) in got.iter().zip(&want).enumerate() {
+            assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits), "row {i}");
+        }
+        let (pts, rows) = Stencils::points_and_rows(n, p.len(), &p, false, fill).unwrap();
+        assert!(rows.is_none());
+        assert_eq!(pts, want);
+        let (pts, rows) = Stencils::points_and_rows(n, p.len(), &p, true, fill).unwrap();
+        assert_eq!(rows.as_ref(), Some(&s));
+        assert_eq!(pts, want);
+    }
 
     #[test]
     fn compose_equals_applying_twice() {

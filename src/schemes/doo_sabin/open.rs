@@ -129,7 +129,7 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     // rows: corner points of real faces (Doo-Sabin), qa of hole corners, then qb
-    let stencils = Stencils::build(nh + b, nv, |i, row| {
+    let fill: &(dyn Fn(usize, &mut crate::schemes::stencil::Row) + Sync) = &|i, row| {
         if i >= nh {
             let h = holes_he[i - nh] as usize;
             row.add(vert[h], 0.25);
@@ -148,8 +148,15 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         for (j, &g) in hs.iter().enumerate() {
             row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
         }
-    })?;
-    let pos = stencils.apply_points(&m.pos)?;
+    };
+    // the rows are stored only when asked for (issue 19: peak memory); the
+    // positions are the same bits either way
+    let (pos, stencils) = if req.stencils {
+        let s = Stencils::build(nh + b, nv, fill)?;
+        (s.apply_points(&m.pos)?, Some(s))
+    } else {
+        (Stencils::apply_rows_points(nh + b, &m.pos, fill)?, None)
+    };
     // half-edge ids in closed form, the numbering `from_corner_twins` gave
     // these corners (edges by first corner, whose twin comes later): every
     // F-block corner is first (its twin lies in the E or V block), so corner
@@ -184,5 +191,5 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         None
     };
-    Ok(Level { mesh, stencils: req.stencils.then_some(stencils), origins, creases: None })
+    Ok(Level { mesh, stencils, origins, creases: None })
 }

@@ -160,13 +160,12 @@ fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::sten
     }
 }
 
-/// Builds the level from the output rows (vertex stencils), corners and
-/// per-corner edge origins.
+/// Builds the level from the output points, the rows when asked for
+/// ([`Stencils::points_and_rows`]), corners and per-corner edge origins.
 #[allow(clippy::too_many_arguments)]
 fn finish(
-    m: &Mesh,
     req: &Request,
-    st: Stencils,
+    (pos, st): (Vec<glam::DVec3>, Option<Stencils>),
     sizes: Vec<u32>,
     holes: Vec<bool>,
     cv: Vec<u32>,
@@ -175,7 +174,6 @@ fn finish(
     face_origin: Vec<(u8, u32)>,
     corner_origin: Vec<(u8, u32)>,
 ) -> Result<Level> {
-    let pos = st.apply_points(&m.pos)?;
     // the corners' half-edge ids as `from_corner_twins` numbers them (edges
     // by first corner, a parallel scan), then the columns straight from them:
     // the twins are this module's own, so the general builder's pairing
@@ -191,7 +189,7 @@ fn finish(
     } else {
         None
     };
-    Ok(Level { mesh, stencils: req.stencils.then_some(st), origins, creases: None })
+    Ok(Level { mesh, stencils: st, origins, creases: None })
 }
 
 fn odd(m: &Mesh, req: &Request) -> Result<Level> {
@@ -208,7 +206,8 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     let boundary: Vec<bool> = (0..nv).map(|v| x.hole_out(v).is_some()).collect();
-    let st = Stencils::build(nv + real.len(), nv, |i, row| {
+    // the rows are stored only when asked for (issue 19: peak memory)
+    let st = Stencils::points_and_rows(nv + real.len(), nv, &m.pos, req.stencils, |i, row| {
         if i < nv {
             if boundary[i] {
                 row.add(i as u32, 1.0);
@@ -276,7 +275,7 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         vec![]
     };
-    finish(m, req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+    finish(req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
 }
 
 fn even(m: &Mesh, req: &Request) -> Result<Level> {
@@ -319,7 +318,7 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     let n1 = |b: u32| base + 2 * side_index[b as usize];
     let n2 = |b: u32| base + 2 * side_index[b as usize] + 1;
     let hole_out: Vec<Option<u32>> = (0..nv).map(|v| x.hole_out(v)).collect();
-    let st = Stencils::build(base as usize + 2 * sides.len(), nv, |i, row| {
+    let st = Stencils::points_and_rows(base as usize + 2 * sides.len(), nv, &m.pos, req.stencils, |i, row| {
         if i < nv {
             match hole_out[i] {
                 None => kobbelt_row(m, vert, i, row),
@@ -451,5 +450,5 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         vec![]
     };
-    finish(m, req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+    finish(req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
 }
