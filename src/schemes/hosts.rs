@@ -321,25 +321,33 @@ pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
 /// through `next` from its first half-edge, the same sums in the same
 /// order (so the same bits). Point-sphere faces are not allowed.
 pub(crate) fn face_centroids_walk(m: &Mesh, out: &mut [DVec3]) {
-    let (next, vert, _) = m.halfedge_columns();
     out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
         // cancelled: leave the rest, callers poll right after
         if crate::cancel::requested() {
             return;
         }
-        let s0 = m.f_start[f];
-        debug_assert!(s0 & POINT == 0, "face_centroids_walk: point-sphere face {f}");
-        let (mut h, mut s, mut n) = (s0, DVec3::ZERO, 0usize);
-        loop {
-            s += m.pos[vert[h as usize] as usize];
-            n += 1;
-            h = next[h as usize];
-            if h == s0 {
-                break;
-            }
-        }
+        let (s, n) = face_vertex_sum(m, f);
         *c = s / n as f64;
     });
+}
+
+/// The sum of face `f`'s vertex positions along its cycle from its first
+/// half-edge, and its number of corners. Not for point-sphere faces.
+#[inline]
+pub(crate) fn face_vertex_sum(m: &Mesh, f: usize) -> (DVec3, usize) {
+    let (next, vert, _) = m.halfedge_columns();
+    let s0 = m.f_start[f];
+    debug_assert!(s0 & POINT == 0, "face_vertex_sum: point-sphere face {f}");
+    let (mut h, mut s, mut n) = (s0, DVec3::ZERO, 0usize);
+    loop {
+        s += m.pos[vert[h as usize] as usize];
+        n += 1;
+        h = next[h as usize];
+        if h == s0 {
+            break;
+        }
+    }
+    (s, n)
 }
 
 /// Every face with other than three corners fanned into triangles around a

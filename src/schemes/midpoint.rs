@@ -32,7 +32,7 @@
 //! spokes), come from their input face (a hole's image from the hole);
 //! the two halves of an edge from that edge.
 
-use super::hosts::{check_output_size, primal_host, primal_host_late, with_point_spheres, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_vertex_sum, primal_host, primal_host_late, with_point_spheres, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;
@@ -51,48 +51,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
     let (face_point, k) = face_points(m, &fl)?;
     // positions last, once the builder's temporaries are gone (issue 19: peak memory)
     let n_points = m.n_vertices() + m.n_edges() + k as usize;
-    primal_host_late(m, fl, face_point, n_points, || positions_walk(m, k))
-}
-
-/// [`positions`] without the face layout and face points (freed before it
-/// runs in [`step`]): a face gets its centroid when it is neither a hole
-/// nor a triangle, summed along its cycle from its first half-edge, the
-/// order of the layout's corners (so the same bits).
-fn positions_walk(m: &Mesh, k: u32) -> Result<Vec<DVec3>> {
-    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
-    let (next, vert, _) = m.halfedge_columns();
-    let p = &m.pos;
-    let mut pos = Vec::with_capacity(nv + ne + k as usize);
-    pos.extend_from_slice(p);
-    pos.par_extend((0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
-        // cancelled: zeros, the check below reports it
-        if crate::cancel::requested() {
-            DVec3::ZERO
-        } else {
-            (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5
-        }
-    }));
-    for f in 0..nf {
-        crate::cancel::poll(f)?;
-        if m.f_hole[f] {
-            continue;
-        }
-        let s0 = m.f_start[f];
-        let (mut h, mut s, mut n) = (s0, DVec3::ZERO, 0usize);
-        loop {
-            s += p[vert[h as usize] as usize];
-            n += 1;
-            h = next[h as usize];
-            if h == s0 {
-                break;
-            }
-        }
-        if n != 3 {
-            pos.push(s / n as f64);
-        }
-    }
-    crate::cancel::check()?;
-    Ok(pos)
+    primal_host_late(m, fl, face_point, n_points, || positions(m, k))
 }
 
 /// `face_point` of [`primal_host`]: triangles none, holes [`HOLE`], the
@@ -112,7 +71,12 @@ fn face_points(m: &Mesh, fl: &FaceLayout) -> Result<(Vec<u32>, u32)> {
     Ok((face_point, k))
 }
 
-fn positions(m: &Mesh, fl: &FaceLayout, face_point: &[u32], k: u32) -> Result<Vec<DVec3>> {
+/// Vertex points, edge midpoints, then the centroid of every face that is
+/// neither a hole nor a triangle (the faces [`face_points`] numbers), in
+/// face order. Reads the mesh only (no face layout or face points, which
+/// [`step`] frees before it runs); each centroid is summed along the
+/// face's cycle from its first half-edge, the order of the layout's corners.
+fn positions(m: &Mesh, k: u32) -> Result<Vec<DVec3>> {
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, _) = m.halfedge_columns();
     let p = &m.pos;
@@ -128,12 +92,15 @@ fn positions(m: &Mesh, fl: &FaceLayout, face_point: &[u32], k: u32) -> Result<Ve
     }));
     for f in 0..nf {
         crate::cancel::poll(f)?;
-        if face_point[f] != NONE && face_point[f] != HOLE {
-            let hs = fl.corners(f);
-            let s: DVec3 = hs.iter().map(|&h| p[vert[h as usize] as usize]).sum();
-            pos.push(s / hs.len() as f64);
+        if m.f_hole[f] {
+            continue;
+        }
+        let (s, n) = face_vertex_sum(m, f);
+        if n != 3 {
+            pos.push(s / n as f64);
         }
     }
+    crate::cancel::check()?;
     Ok(pos)
 }
 
@@ -190,7 +157,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     let fl = FaceLayout::new(m)?;
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (face_point, k) = face_points(m, &fl)?;
-    let pos = positions(m, &fl, &face_point, k)?;
+    let pos = positions(m, k)?;
     let mesh = primal_host(m, &fl, &face_point, pos)?;
     let mut centroid_of = Vec::with_capacity(k as usize);
     centroid_of.extend((0..nf as u32).filter(|&f| face_point[f as usize] != NONE && face_point[f as usize] != HOLE));

@@ -80,7 +80,6 @@ fn step(m: &Mesh) -> Result<Mesh> {
 /// vertices and the face centroids.
 pub(super) fn positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, nf) = (m.n_vertices(), m.n_faces());
-    let (next, vert, _) = m.halfedge_columns();
     let p = &m.pos;
     let mut pos = crate::mesh::zeroed_points(nv + nf);
     let (vp, fp) = pos.split_at_mut(nv);
@@ -96,24 +95,8 @@ pub(super) fn positions(m: &Mesh) -> Result<Vec<DVec3>> {
             })
         },
         || {
-            fp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, out)| {
-                if crate::cancel::requested() {
-                    return; // the check after the loop reports it
-                }
-                let s = m.f_start[f];
-                let mut h = s;
-                let mut sum = DVec3::ZERO;
-                let mut n = 0usize;
-                loop {
-                    sum += p[vert[h as usize] as usize];
-                    n += 1;
-                    h = next[h as usize];
-                    if h == s {
-                        break;
-                    }
-                }
-                *out = sum / n as f64;
-            })
+            // the check after the join reports a cancellation
+            super::hosts::face_centroids_walk(m, fp)
         },
     );
     crate::cancel::check()?;
