@@ -5,11 +5,15 @@
 //! the 100k-quad torus, else the 82k-triangle sphere). Counts what Rust
 //! allocates (a counting global allocator), not the RSS.
 //!
-//! `TOPOMESH_PROF_SMALL=1` takes inputs 16–25× smaller; `TOPOMESH_PEAK_MAX=2` makes it a check (`.ci/run` runs it): it exits
+//! `TOPOMESH_PROF_OPEN=1` removes every 997th face (schemes `catmull_clark_level`, `loop_level`: the level
+//! path open meshes take); `TOPOMESH_PROF_SMALL=1` takes inputs 16–25× smaller; `TOPOMESH_PEAK_MAX=2` makes it a check (`.ci/run` runs it): it exits
 //! with status 1 when a level's peak exceeds that multiple of the export.
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use topomesh::schemes::{catmull_clark::catmull_clark, doo_sabin::doo_sabin, loop_subdivision::loop_subdivision, midpoint::midpoint};
+use topomesh::schemes::catmull_clark::catmull_clark_level;
+use topomesh::schemes::level::Request;
+use topomesh::schemes::loop_subdivision::loop_level;
 use topomesh::schemes::{dual::dual, honeycomb::honeycomb, simplest::simplest, sqrt3::sqrt3, vertex_truncation::{vertex_truncation, Truncation}};
 use topomesh::{primitives, Mesh};
 
@@ -66,6 +70,8 @@ fn main() {
     let scheme = a.get(1).map_or("catmull_clark", |s| s.as_str());
     let levels: usize = a.get(2).map_or(3, |s| s.parse().unwrap());
     let step: fn(&Mesh) -> topomesh::Result<Mesh> = match scheme {
+        "catmull_clark_level" => |m| catmull_clark_level(m, &Request::plain()).map(|l| l.mesh),
+        "loop_level" => |m| loop_level(m, &Request::plain()).map(|l| l.mesh),
         "loop" => loop_subdivision,
         "midpoint" => midpoint,
         "doo_sabin" => doo_sabin,
@@ -86,6 +92,23 @@ fn main() {
             s = loop_subdivision(&s).unwrap();
         }
         s
+    };
+    // TOPOMESH_PROF_OPEN: every 997th face removed (open levels; the plain
+    // level request, as the extension makes it)
+    let input = if std::env::var("TOPOMESH_PROF_OPEN").is_ok() {
+        let p = input.to_polygons();
+        let (mut sizes, mut idx, mut at) = (Vec::new(), Vec::new(), 0usize);
+        for (f, &n) in p.sizes.iter().enumerate() {
+            if f % 997 != 0 {
+                sizes.push(n as i64);
+                idx.extend(p.indices[at..at + n as usize].iter().map(|&i| i as i64));
+            }
+            at += n as usize;
+        }
+        let opts = topomesh::BuildOptions { close_boundaries: true, ..Default::default() };
+        Mesh::from_polygons(input.positions().to_vec(), &sizes, &idx, opts).unwrap()
+    } else {
+        input
     };
     LOG.store(std::env::var("TOPOMESH_PROF_LOG").is_ok(), Relaxed);
     let max: Option<f64> = std::env::var("TOPOMESH_PEAK_MAX").ok().map(|s| s.parse().expect("TOPOMESH_PEAK_MAX: a number"));
