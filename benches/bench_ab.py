@@ -10,7 +10,8 @@ call, then ``--runs`` timed calls of ``iterations=level``) with
 ``PYTHONPATH=DIR``. Per case the two builds alternate ``--rounds`` times
 (old, new, old, new, ...), so a change of machine load hits both alike. The
 table gives the median wall and CPU time over all runs of each build and
-the ratio new / old of the medians (< 1: the new build is faster).
+the ratio new / old of the medians (< 1: the new build is faster), and the
+median of each process's first call (fresh memory, no allocator reuse).
 
 Before timing, both builds export every case's output (positions, face
 sizes and indices, corner twins) and the SHA-256 of the exports must agree:
@@ -86,8 +87,8 @@ def main() -> None:
                     print(f"# {scheme} {inp} L{lv}: outputs identical ({hn[:12]})", flush=True)
     print(f"# load average before: {os.getloadavg()[0]:.2f}", flush=True)
     print("| scheme | input | level | threads | output faces | old ms (median) | new ms (median) | new / old | "
-          "old CPU ms | new CPU ms | CPU new / old |")
-    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+          "old CPU ms | new CPU ms | CPU new / old | old first ms | new first ms | first new / old |")
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     saved = dict(os.environ)
     for scheme in a.schemes:
         for inp in a.inputs:
@@ -95,6 +96,7 @@ def main() -> None:
                 for th in a.threads:
                     t = {"old": [], "new": []}
                     c = {"old": [], "new": []}
+                    fc = {"old": [], "new": []}  # each process's first call
                     faces = None
                     for _ in range(a.rounds):
                         for name, d in (("old", a.old), ("new", a.new)):
@@ -106,11 +108,13 @@ def main() -> None:
                                 sys.exit(f"{name} {scheme} {inp} L{lv}: {r['error']}")
                             t[name] += r["times"]
                             c[name] += r["cpu"]
+                            fc[name].append(r["first"])
                             faces = r["faces"]
                     mo, mn = statistics.median(t["old"]) * 1e3, statistics.median(t["new"]) * 1e3
                     co, cn = statistics.median(c["old"]) * 1e3, statistics.median(c["new"]) * 1e3
+                    fo, fn = statistics.median(fc["old"]) * 1e3, statistics.median(fc["new"]) * 1e3
                     print(f"| {scheme} | {inp} | {lv} | {th} | {faces:,} | {mo:.1f} | {mn:.1f} | {mn / mo:.2f} | "
-                          f"{co:.1f} | {cn:.1f} | {cn / co:.2f} |", flush=True)
+                          f"{co:.1f} | {cn:.1f} | {cn / co:.2f} | {fo:.1f} | {fn:.1f} | {fn / fo:.2f} |", flush=True)
     print(f"# load average after: {os.getloadavg()[0]:.2f}", flush=True)
 
 
