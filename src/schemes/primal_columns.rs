@@ -64,6 +64,15 @@ impl FaceInfo {
             _ => Q,
         }
     }
+    /// Output corners and output faces of this face's block.
+    #[inline]
+    fn block(&self) -> (u32, u32) {
+        match self.kind() {
+            Q => (4 * self.n, self.n),
+            T => (12, 4),
+            _ => (2 * self.n, 1),
+        }
+    }
     #[inline]
     fn stride(&self) -> u32 {
         match self.kind() {
@@ -275,24 +284,15 @@ fn layout(fl: &FaceLayout, face_point: &[u32]) -> Result<Option<Vec<FaceInfo>>> 
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let n = fl.degree(f) as u32;
-        let fp = face_point[f];
-        let kind = match fp {
-            NONE => T,
-            HOLE => H,
-            _ => Q,
-        };
-        if n == 0 || (kind == T && n != 3) {
+        let info = FaceInfo { off: fl.off[f], n, base: b, fbase: fb, ebase: 0, fp: face_point[f] };
+        if n == 0 || (info.kind() == T && n != 3) {
             return Err(MeshError::Invariant(format!("primal host: face {f} of degree {n} has no layout")));
         }
         if n >= 1 << 25 {
             return Ok(None);
         }
-        fi.push(FaceInfo { off: fl.off[f], n, base: b, fbase: fb, ebase: 0, fp });
-        let (len, nfo) = match kind {
-            Q => (4 * n, n),
-            T => (12, 4),
-            _ => (2 * n, 1),
-        };
+        let (len, nfo) = info.block();
+        fi.push(info);
         b += len;
         fb += nfo;
     }
@@ -308,11 +308,7 @@ fn fill(m: &Mesh, cidx: &[u32], fi: Vec<FaceInfo>, n_points: usize, want_sides: 
     let prev = &m.he_prev;
     let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
     let (nc, nfo) = fi.last().map_or((0, 0), |l| {
-        let (len, n_out) = match l.kind() {
-            Q => (4 * l.n, l.n),
-            T => (12, 4),
-            _ => (2 * l.n, 1),
-        };
+        let (len, n_out) = l.block();
         ((l.base + len) as usize, (l.fbase + n_out) as usize)
     });
     let mut ctx = Ctx { prev, face, cidx, fi, rm: vec![0; m.n_halfedges()] };

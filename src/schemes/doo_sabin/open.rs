@@ -129,7 +129,9 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     // rows: corner points of real faces (Doo-Sabin), qa of hole corners, then qb
-    let fill: &(dyn Fn(usize, &mut crate::schemes::stencil::Row) + Sync) = &|i, row| {
+    // the rows are stored only when asked for (issue 19: peak memory); the
+    // positions are the same bits either way
+    let (pos, stencils) = Stencils::points_and_rows(nh + b, nv, &m.pos, req.stencils, |i, row| {
         if i >= nh {
             let h = holes_he[i - nh] as usize;
             row.add(vert[h], 0.25);
@@ -148,15 +150,7 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         for (j, &g) in hs.iter().enumerate() {
             row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
         }
-    };
-    // the rows are stored only when asked for (issue 19: peak memory); the
-    // positions are the same bits either way
-    let (pos, stencils) = if req.stencils {
-        let s = Stencils::build(nh + b, nv, fill)?;
-        (s.apply_points(&m.pos)?, Some(s))
-    } else {
-        (Stencils::apply_rows_points(nh + b, &m.pos, fill)?, None)
-    };
+    })?;
     // half-edge ids in closed form, the numbering `from_corner_twins` gave
     // these corners (edges by first corner, whose twin comes later): every
     // F-block corner is first (its twin lies in the E or V block), so corner
