@@ -27,7 +27,7 @@
 //! keep the direct computation above (the same weights, tested equal).
 
 use super::creases::{EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, face_centroids_walk, primal_host_late, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids_walk, face_degree, primal_host_late, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -113,25 +113,31 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     let fl = FaceLayout::new(m)?;
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let mut face_point = vec![HOLE; nf];
-    let mut real = Vec::with_capacity(nf);
+    // the hole faces, not the real ones: 4 bytes per hole instead of per
+    // face at the level's peak ([`RealFaces`])
+    let mut holes = Vec::new();
     for f in 0..nf {
-        if !m.f_hole[f] {
-            face_point[f] = real.len() as u32;
-            real.push(f as u32);
+        if m.f_hole[f] {
+            holes.push(f as u32);
+        } else {
+            face_point[f] = (f - holes.len()) as u32;
         }
     }
+    let real = RealFaces { holes, n: nf };
     let ls = LevelSharpness::new(m, req.creases, req.options);
     // stencils only when asked for: otherwise the positions of an open or
     // creased level are applied row by row, without storing the rows
-    let stencils = if req.stencils { Some(stencils(m, &fl, &ls, req, &real)?) } else { None };
-    let direct = || if smooth { smooth_positions(m) } else { stencil_points(m, &fl, &ls, req, &real) };
-    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, direct)?;
+    let stencils = if req.stencils { Some(stencils(m, &ls, req, &real)?) } else { None };
+    let direct = || if smooth { smooth_positions(m) } else { stencil_points(m, &ls, req, &real) };
+    // the layout and face points go to the host, which frees them before
+    // the output's columns (issue 19: an open level's peak)
+    let (mesh, creases) = super::level::primal_output(m, fl, face_point, &ls, req, stencils.as_ref(), smooth, direct)?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(FACE).take(real.len())));
-        o.vertex.extend((0..nv as u32).chain(0..ne as u32).chain(real.iter().copied()));
+        o.vertex.extend((0..nv as u32).chain(0..ne as u32).chain((0..nf as u32).filter(|&f| !m.f_hole[f as usize])));
         for f in 0..nf {
-            let k = if m.f_hole[f] { 1 } else { fl.degree(f) };
+            let k = if m.f_hole[f] { 1 } else { face_degree(m, f) };
             o.face_kind.extend(std::iter::repeat(FACE).take(k));
             o.face.extend(std::iter::repeat(f as u32).take(k));
         }
@@ -207,32 +213,65 @@ fn smooth_apply(m: &Mesh, fl: &FaceLayout, a: &[f64], k: usize) -> Result<Vec<f6
 
 /// The level's stencils: rows `[vertex points | edge points | face points
 /// of the real faces]` over the input vertices.
-fn stencils(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real: &[u32]) -> Result<Stencils> {
-    stencil_rows(m, fl, ls, req, real, |n, n_cols, fill| Stencils::build(n, n_cols, fill))
+fn stencils(m: &Mesh, ls: &LevelSharpness, req: &Request, real: &RealFaces) -> Result<Stencils> {
+    stencil_rows(m, ls, req, real, |n, n_cols, fill| Stencils::build(n, n_cols, fill))
 }
 
 /// The positions [`stencils`] gives, row by row without storing the rows
 /// (bit for bit the same: [`Stencils::apply_rows_points`]).
-fn stencil_points(m: &Mesh, fl: &FaceLayout, ls: &LevelSharpness, req: &Request, real: &[u32]) -> Result<Vec<DVec3>> {
-    stencil_rows(m, fl, ls, req, real, |n, _, fill| Stencils::apply_rows_points(n, &m.pos, fill))
+fn stencil_points(m: &Mesh, ls: &LevelSharpness, req: &Request, real: &RealFaces) -> Result<Vec<DVec3>> {
+    stencil_rows(m, ls, req, real, |n, _, fill| Stencils::apply_rows_points(n, &m.pos, fill))
+}
+
+/// The real (not hole) faces in order, held as the sorted hole faces.
+struct RealFaces {
+    holes: Vec<u32>,
+    /// All faces, holes included.
+    n: usize,
+}
+
+impl RealFaces {
+    fn len(&self) -> usize {
+        self.n - self.holes.len()
+    }
+    /// The `j`-th real face: `j` plus the holes before it. Hole `i` precedes
+    /// it exactly when `holes[i] - i <= j` (a nondecreasing sequence).
+    fn face(&self, j: usize) -> usize {
+        let (mut lo, mut hi) = (0, self.holes.len());
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if self.holes[mid] as usize - mid <= j {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        j + lo
+    }
 }
 
 /// Hands the level's row filler (row count, column count, filler) to `run`.
 fn stencil_rows<T>(
     m: &Mesh,
-    fl: &FaceLayout,
     ls: &LevelSharpness,
     req: &Request,
-    real: &[u32],
+    real: &RealFaces,
     run: impl FnOnce(usize, usize, &(dyn Fn(usize, &mut Row) + Sync)) -> T,
 ) -> T {
     let (nv, ne) = (m.n_vertices(), m.n_edges());
-    let (_, vert, face) = m.halfedge_columns();
+    let (next, vert, face) = m.halfedge_columns();
+    // each face's cycle walked from its first corner, as a face layout
+    // lists it (same terms in the same order: the same bits)
     let face_row = |f: usize, w: f64, row: &mut Row| {
-        let hs = fl.corners(f);
-        let k = w / hs.len() as f64;
-        for &h in hs {
+        let k = w / face_degree(m, f) as f64;
+        let s = m.f_start[f];
+        let mut h = s;
+        loop {
             row.add(vert[h as usize], k);
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
         }
     };
     let head = |h: u32| vert[(h ^ 1) as usize];
@@ -278,7 +317,7 @@ fn stencil_rows<T>(
                 face_row(face[2 * e + 1] as usize, wf, row);
             }
         } else {
-            face_row(real[i - nv - ne] as usize, 1.0, row);
+            face_row(real.face(i - nv - ne), 1.0, row);
         }
     };
     run(nv + ne + real.len(), nv, fill)
@@ -288,6 +327,21 @@ fn stencil_rows<T>(
 mod tests {
     use super::*;
     use crate::schemes::hosts::test_meshes::*;
+
+    #[test]
+    fn real_faces_from_the_holes_list_every_real_face_in_order() {
+        let mut rng = crate::test_rng::Xorshift::new(7);
+        for n in [0usize, 1, 2, 5, 40] {
+            for _ in 0..50 {
+                let hole: Vec<bool> = (0..n).map(|_| rng.next_u64() % 3 == 0).collect();
+                let holes: Vec<u32> = (0..n as u32).filter(|&f| hole[f as usize]).collect();
+                let want: Vec<usize> = (0..n).filter(|&f| !hole[f]).collect();
+                let r = RealFaces { holes, n };
+                assert_eq!(r.len(), want.len());
+                assert_eq!((0..r.len()).map(|j| r.face(j)).collect::<Vec<_>>(), want, "{hole:?}");
+            }
+        }
+    }
 
     #[test]
     fn counts_and_validity_on_corpus() {

@@ -126,8 +126,12 @@ pub struct LevelSharpness {
     pub edge: Vec<f64>,
     /// Effective sharpness per vertex.
     pub vertex: Vec<f64>,
-    /// Child sharpness of edge `h >> 1` at the tail of half-edge `h`.
-    pub child: Vec<f64>,
+    /// Child sharpness of edge `h >> 1` at the tail of half-edge `h`, stored
+    /// only where the Chaikin method makes the two ends differ; otherwise
+    /// empty and [`Self::child`] is the edge's sharpness decremented (8
+    /// bytes per input half-edge that an open level no longer holds at its
+    /// peak, issue 19).
+    child: Vec<f64>,
     /// Whether any sharpness is nonzero (otherwise every rule is smooth).
     pub any: bool,
 }
@@ -179,47 +183,52 @@ impl LevelSharpness {
             })
             .collect();
         let any = edge.iter().chain(&vertex).any(|&s| s > 0.0);
-        let mut child = vec![0.0; m.n_halfedges()];
-        if any {
-            for (h, c) in child.iter_mut().enumerate() {
-                *c = decrement(edge[h >> 1]);
-            }
-            if opts.crease_method == CreaseMethod::Chaikin {
-                for v in 0..m.n_vertices() {
-                    let o = m.v_out[v];
-                    if o & POINT != 0 {
-                        continue;
-                    }
-                    let ring: Vec<u32> = ring(m, o).collect();
-                    let semi: Vec<f64> = ring.iter().map(|&h| edge[(h >> 1) as usize]).filter(|&s| is_semi_sharp(s)).collect();
-                    if ring.len() < 2 || semi.is_empty() {
-                        if ring.len() >= 2 {
-                            // no semi-sharp edge: OpenSubdiv keeps the parent values
-                            for &h in &ring {
-                                child[h as usize] = edge[(h >> 1) as usize];
-                            }
+        let mut child = Vec::new();
+        if any && opts.crease_method == CreaseMethod::Chaikin {
+            child = (0..m.n_halfedges()).map(|h| decrement(edge[h >> 1])).collect();
+            for v in 0..m.n_vertices() {
+                let o = m.v_out[v];
+                if o & POINT != 0 {
+                    continue;
+                }
+                let ring: Vec<u32> = ring(m, o).collect();
+                let semi: Vec<f64> = ring.iter().map(|&h| edge[(h >> 1) as usize]).filter(|&s| is_semi_sharp(s)).collect();
+                if ring.len() < 2 || semi.is_empty() {
+                    if ring.len() >= 2 {
+                        // no semi-sharp edge: OpenSubdiv keeps the parent values
+                        for &h in &ring {
+                            child[h as usize] = edge[(h >> 1) as usize];
                         }
-                        continue;
                     }
-                    let sum: f64 = semi.iter().sum();
-                    for &h in &ring {
-                        let p = edge[(h >> 1) as usize];
-                        child[h as usize] = if p <= 0.0 {
-                            0.0
-                        } else if is_infinite(p) {
-                            INFINITE
-                        } else if semi.len() == 1 {
-                            decrement(p)
-                        } else {
-                            let other = (sum - p) / (semi.len() - 1) as f64;
-                            let c = 0.75 * p + 0.25 * other - 1.0;
-                            c.max(0.0)
-                        };
-                    }
+                    continue;
+                }
+                let sum: f64 = semi.iter().sum();
+                for &h in &ring {
+                    let p = edge[(h >> 1) as usize];
+                    child[h as usize] = if p <= 0.0 {
+                        0.0
+                    } else if is_infinite(p) {
+                        INFINITE
+                    } else if semi.len() == 1 {
+                        decrement(p)
+                    } else {
+                        let other = (sum - p) / (semi.len() - 1) as f64;
+                        let c = 0.75 * p + 0.25 * other - 1.0;
+                        c.max(0.0)
+                    };
                 }
             }
         }
         LevelSharpness { edge, vertex, child, any }
+    }
+
+    /// Child sharpness of edge `h >> 1` at the tail of half-edge `h`.
+    #[inline]
+    pub fn child(&self, h: u32) -> f64 {
+        match self.child.get(h as usize) {
+            Some(&c) => c,
+            None => decrement(self.edge[(h >> 1) as usize]),
+        }
     }
 
     /// The rules of vertex `v` (not a point-sphere) in this level and the
@@ -241,7 +250,7 @@ impl LevelSharpness {
         }
         for h in ring(m, o) {
             let p = self.edge[(h >> 1) as usize];
-            let c = self.child[h as usize];
+            let c = self.child(h);
             if p > 0.0 {
                 if n_sharp < 2 {
                     ends[n_sharp] = h;
@@ -284,7 +293,7 @@ impl LevelSharpness {
         let s = self.edge[e];
         if s <= 0.0 {
             EdgeRule::Smooth
-        } else if self.child[2 * e] > 0.0 && self.child[2 * e + 1] > 0.0 {
+        } else if self.child(2 * e as u32) > 0.0 && self.child(2 * e as u32 + 1) > 0.0 {
             EdgeRule::Crease
         } else {
             EdgeRule::Blend(s)
@@ -308,7 +317,7 @@ impl LevelSharpness {
                 if m.f_hole[face[2 * e] as usize] || m.f_hole[face[2 * e + 1] as usize] {
                     decrement(user.map_or(0.0, |c| c.edge(e)))
                 } else {
-                    self.child[h as usize]
+                    self.child(h)
                 }
             })
             .collect();

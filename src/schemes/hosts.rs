@@ -331,6 +331,22 @@ pub(crate) fn face_centroids_walk(m: &Mesh, out: &mut [DVec3]) {
     });
 }
 
+/// Number of corners of face `f`, its cycle walked from its first
+/// half-edge (what [`FaceLayout::degree`] gives, without a layout). Not for
+/// point-sphere faces.
+#[inline]
+pub(crate) fn face_degree(m: &Mesh, f: usize) -> usize {
+    let next = &m.he_next;
+    let s = m.f_start[f];
+    debug_assert!(s & POINT == 0, "face_degree: point-sphere face {f}");
+    let (mut h, mut n) = (next[s as usize], 1usize);
+    while h != s {
+        n += 1;
+        h = next[h as usize];
+    }
+    n
+}
+
 /// The sum of face `f`'s vertex positions along its cycle from its first
 /// half-edge, and its number of corners. Not for point-sphere faces.
 #[inline]
@@ -391,7 +407,7 @@ pub(crate) fn primal_host(m: &Mesh, fl: &FaceLayout, face_point: &[u32], pos: Ve
 /// temporaries are freed: a lower peak (see
 /// [`super::primal_columns::primal_columns_late`]), the same mesh.
 pub(crate) fn primal_host_late(m: &Mesh, fl: FaceLayout, face_point: Vec<u32>, n_points: usize, pos: impl FnOnce() -> Result<Vec<DVec3>>) -> Result<Mesh> {
-    super::primal_columns::primal_columns_late(m, fl, face_point, n_points, pos)
+    super::primal_columns::primal_columns_late(m, fl, face_point, n_points, false, pos).map(|r| r.0)
 }
 
 /// [`primal_host`], and on request, per output edge, the input half-edge

@@ -120,8 +120,8 @@ impl Request<'_> {
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn primal_output(
     m: &Mesh,
-    fl: &super::hosts::FaceLayout,
-    face_point: &[u32],
+    fl: super::hosts::FaceLayout,
+    face_point: Vec<u32>,
     ls: &super::creases::LevelSharpness,
     req: &Request,
     stencils: Option<&Stencils>,
@@ -135,7 +135,7 @@ pub(crate) fn primal_output(
         (Some(s), false) => s.apply_points(&m.pos),
         _ => direct(),
     };
-    let (mesh, sides) = super::primal_columns::primal_columns_then(m, fl, face_point, n_points, req.creases.is_some(), pos)?;
+    let (mesh, sides) = super::primal_columns::primal_columns_late(m, fl, face_point, n_points, req.creases.is_some(), pos)?;
     let creases = match (req.creases, &sides) {
         (Some(c), Some(sd)) => Some(ls.child_creases(m, Some(c), sd, mesh.n_vertices())),
         _ => None,

@@ -285,7 +285,7 @@ fn triangle_level(m: &Mesh, req: &Request) -> Result<Level> {
     // creased level are applied row by row, without storing the rows
     let stencils = if req.stencils { Some(stencils(m, &ls, req)?) } else { None };
     let direct = || if smooth { smooth_positions(m) } else { stencil_points(m, &ls, req) };
-    let (mesh, creases) = super::level::primal_output(m, &fl, &face_point, &ls, req, stencils.as_ref(), smooth, direct)?;
+    let (mesh, creases) = super::level::primal_output(m, fl, face_point, &ls, req, stencils.as_ref(), smooth, direct)?;
     let origins = req.origins.then(|| {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)));

@@ -248,31 +248,34 @@ fn points(pos: impl FnOnce() -> Result<Vec<DVec3>>, n: usize) -> Result<Vec<DVec
     Ok(p)
 }
 
-/// [`primal_columns`] (no side map) with the positions computed last, by
+/// [`primal_columns`] (the side map only when `want_sides`) with the
+/// positions computed last, by
 /// `pos` (which must return `n_points` points): the face layout, the face
 /// points and the builder's records are freed before it runs, and the
 /// layout's corner list and offsets before the columns are allocated
 /// (issue 19: a level's peak is then the input, the output's connectivity
 /// and its positions, without the temporaries; 141 → about 121 B per output
 /// quad, 101 → about 84 B per output triangle, `examples/peak_levels.rs`).
-/// Same mesh as [`primal_columns`].
+/// The open and creased levels pass their layout here too. Same mesh as
+/// [`primal_columns`].
 pub(crate) fn primal_columns_late(
     m: &Mesh,
     fl: FaceLayout,
     face_point: Vec<u32>,
     n_points: usize,
+    want_sides: bool,
     pos: impl FnOnce() -> Result<Vec<DVec3>>,
-) -> Result<Mesh> {
+) -> Result<(Mesh, Option<Vec<u32>>)> {
     let Some(fi) = layout(&fl, &face_point)? else {
         let p = pos()?;
-        return super::hosts::primal_host_twins(m, &fl, &face_point, p, false).map(|r| r.0);
+        return super::hosts::primal_host_twins(m, &fl, &face_point, p, want_sides);
     };
     let FaceLayout { fh, off, cidx } = fl;
     drop((fh, off, face_point));
-    let (mut cols, _) = fill(m, &cidx, fi, n_points, false)?;
+    let (mut cols, sides) = fill(m, &cidx, fi, n_points, want_sides)?;
     drop(cidx);
     cols.pos = points(pos, n_points)?;
-    Mesh::from_columns(cols)
+    Ok((Mesh::from_columns(cols)?, want_sides.then_some(sides)))
 }
 
 /// Pass 0: every input face's output corner and face bases (sequential);
