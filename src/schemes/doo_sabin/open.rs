@@ -1,16 +1,247 @@
 //! Doo-Sabin's step on open meshes: the Chaikin boundary of the module docs
-//! (`super`), half-edge ids in closed form.
+//! (`super`), its corners and half-edge ids in closed form, written straight
+//! into the output's columns (issue 19: no corner lists at the peak).
 
 use super::*;
+
+/// The output corners of an open level, each with its tail vertex and twin
+/// corner in closed form. Corner blocks: `[F-faces and holes (2 per hole
+/// corner) in face order | E-faces, 4 per edge | V-faces, per rotation slot
+/// (2 per hole slot)]`. Output vertices: `p(h)`, the corner point of input
+/// half-edge `h` (its face layout index), then `qb(h)`, the Chaikin point
+/// near the head of hole half-edge `h`.
+struct Corners<'a> {
+    m: &'a Mesh,
+    fl: &'a FaceLayout,
+    vl: VertexLayout,
+    /// `qb(h)` is vertex `nh + hidx[h]`.
+    hidx: Vec<u32>,
+    /// First corner of each F-face (and hole).
+    fb: Vec<u32>,
+    /// First corner of each V-face rotation slot.
+    vb: Vec<u32>,
+    /// First E-face corner.
+    eb: u32,
+}
+
+impl Corners<'_> {
+    #[inline]
+    fn hole(&self, h: usize) -> bool {
+        self.m.f_hole[self.m.he_face[h] as usize]
+    }
+    #[inline]
+    fn qb(&self, h: usize) -> u32 {
+        self.m.n_halfedges() as u32 + self.hidx[h]
+    }
+    /// The corner of half-edge `h` in its F-face (or the first of its two in its hole).
+    #[inline]
+    fn fcorner(&self, h: usize) -> u32 {
+        let f = self.m.he_face[h];
+        let k = self.fl.local(h as u32, f) as u32;
+        self.fb[f as usize] + if self.m.f_hole[f as usize] { 2 * k } else { k }
+    }
+    #[inline]
+    fn vfirst(&self, x: usize) -> u32 {
+        self.vb[self.vl.vidx[x] as usize]
+    }
+    #[inline]
+    fn vlast(&self, x: usize) -> u32 {
+        self.vb[self.vl.vidx[x] as usize + 1] - 1
+    }
+    #[inline]
+    fn e_side(&self, h: usize) -> u32 {
+        self.eb + 4 * (h >> 1) as u32 + 2 * (h & 1) as u32
+    }
+    fn n_corners(&self) -> usize {
+        self.vb[self.m.n_halfedges()] as usize
+    }
+    fn n_faces(&self) -> usize {
+        self.m.n_faces() + self.m.n_edges() + self.m.n_vertices()
+    }
+
+    /// Output face `f`'s corners in cycle order, as `(corner, vertex, twin
+    /// corner, origin)`.
+    fn corners(&self, f: usize, mut emit: impl FnMut(u32, u32, u32, (u8, u32))) {
+        let m = self.m;
+        let (nf, ne) = (m.n_faces(), m.n_edges());
+        let (next, vert, face) = m.halfedge_columns();
+        let (prev, cidx) = (&m.he_prev, &self.fl.cidx);
+        if f < nf {
+            for &h in self.fl.corners(f) {
+                let (h, c) = (h as usize, self.fcorner(h as usize));
+                if self.hole(h) {
+                    // Chaikin points of boundary edge h, then the cut at head(h)
+                    emit(c, cidx[h], self.e_side(h), (EDGE, (h >> 1) as u32));
+                    emit(c + 1, self.qb(h), self.vfirst(next[h] as usize), (VERTEX, vert[h ^ 1]));
+                } else {
+                    emit(c, cidx[h], self.e_side(h), (FACE, face[h]));
+                }
+            }
+        } else if f < nf + ne {
+            // [p(na), p(a), p(nb), p(b)], a hole side's p(n·) replaced by its qb
+            let e = f - nf;
+            let (a, b) = (2 * e, 2 * e + 1);
+            let (na, nb) = (next[a] as usize, next[b] as usize);
+            let c = self.eb + 4 * e as u32;
+            let eo = (EDGE, e as u32);
+            let side = |x: usize, nx: usize| if self.hole(x) { (self.qb(x), eo) } else { (cidx[nx], (FACE, face[x])) };
+            let (va, oa) = side(a, na);
+            let (vb, ob) = side(b, nb);
+            emit(c, va, self.fcorner(a), oa);
+            emit(c + 1, cidx[a], self.vlast(nb), eo);
+            emit(c + 2, vb, self.fcorner(b), ob);
+            emit(c + 3, cidx[b], self.vlast(na), eo);
+        } else {
+            // V-face slot of h: p(h), or for a hole corner qa(h) then qb(prev h)
+            let v = f - nf - ne;
+            for h in super::super::creases::ring(m, m.v_out[v]) {
+                let h = h as usize;
+                let s = self.vfirst(h);
+                let r = (prev[h] ^ 1) as usize;
+                let to_e = self.eb + 4 * (r >> 1) as u32 + 1 + 2 * (r & 1) as u32;
+                if self.hole(h) {
+                    let p = prev[h] as usize;
+                    emit(s, cidx[h], self.fcorner(p) + 1, (VERTEX, vert[h]));
+                    emit(s + 1, self.qb(p), to_e, (EDGE, (r >> 1) as u32));
+                } else {
+                    emit(s, cidx[h], to_e, (EDGE, (r >> 1) as u32));
+                }
+            }
+        }
+    }
+
+    /// Corner `c`'s half-edge id given its twin `t`: the numbering
+    /// `from_corner_twins` gave these corners (edges by first corner, whose
+    /// twin comes later). Every F-block corner is first (its twin lies in the
+    /// E or V block), so corner c < eb gets 2c; an E-face's sides 1 and 3
+    /// (towards the V block) are first, ranked 2e and 2e + 1 after the F
+    /// block; every other corner's twin comes earlier, and it gets that
+    /// twin's id + 1.
+    #[inline]
+    fn id(&self, c: u32, t: u32) -> u32 {
+        let first = |c: u32| {
+            if c < self.eb {
+                2 * c
+            } else {
+                let (e, j) = ((c - self.eb) / 4, (c - self.eb) % 4);
+                2 * (self.eb + 2 * e + (j == 3) as u32)
+            }
+        };
+        if t > c {
+            first(c)
+        } else {
+            first(t) + 1
+        }
+    }
+}
 
 /// Doo-Sabin on a mesh with holes, with the Chaikin boundary of the module
 /// docs. Positions are `S · P`.
 pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
+    let fl = FaceLayout::new(m)?;
+    let (k, holes_he) = corners(m, &fl)?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
-    let (next, vert, face) = m.halfedge_columns();
-    let prev = &m.he_prev;
+    let (_, vert, face) = m.halfedge_columns();
+    let (nc, n_out) = (k.n_corners(), k.n_faces());
+    let b = holes_he.len();
+    let mut cols = Columns::new(Vec::new(), nc, n_out);
+    cols.v_out = vec![0; nh + b];
+    cols.f_hole[..nf].copy_from_slice(&m.f_hole);
+    let mut co = if req.origins { vec![(EDGE, 0u32); nc] } else { Vec::new() };
+    {
+        let cp = |c: &mut Vec<u32>| SyncPtr(c.as_mut_ptr());
+        let (pn, pp, pv, pf, ps, po) =
+            (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face), cp(&mut cols.f_start), cp(&mut cols.v_out));
+        let pco = SyncPtr(co.as_mut_ptr());
+        let k = &k;
+        (0..n_out).into_par_iter().with_min_len(MIN_LEN).for_each_init(Vec::new, |buf: &mut Vec<(u32, u32)>, f| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
+            buf.clear();
+            k.corners(f, |c, v, t, o| {
+                let id = k.id(c, t);
+                buf.push((id, v));
+                // SAFETY: every corner belongs to one face, written by one task
+                if req.origins {
+                    unsafe { *pco.get().add(c as usize) = o };
+                }
+                // every output vertex first shows up in the F block (p(h) at
+                // h's corner, qb(h) right after it), where `from_corner_ids`
+                // took its v_out; the F-block corners are all first-of-edge
+                if f < nf {
+                    unsafe { *po.get().add(v as usize) = id };
+                }
+            });
+            // SAFETY: the ids are a bijection from the output corners onto
+            // 0..nc (`Corners::id`), each face is written by one task, so
+            // every entry is written once.
+            unsafe {
+                *ps.get().add(f) = buf[0].0;
+                for (i, &(id, v)) in buf.iter().enumerate() {
+                    let idn = buf[if i + 1 == buf.len() { 0 } else { i + 1 }].0;
+                    *pn.get().add(id as usize) = idn;
+                    *pp.get().add(idn as usize) = id;
+                    *pv.get().add(id as usize) = v;
+                    *pf.get().add(id as usize) = f as u32;
+                }
+            }
+        });
+    }
+    crate::cancel::check()?;
+    // the rotation slots, bases and corner index are done with before the
+    // positions (issue 19: the level's peak)
+    drop(k);
+    let FaceLayout { fh, off, cidx } = fl;
+    drop(cidx);
+    // rows: corner points of real faces (Doo-Sabin), qa of hole corners, then qb
+    // the rows are stored only when asked for (issue 19: peak memory); the
+    // positions are the same bits either way
     let hole = |h: usize| m.f_hole[face[h] as usize];
-    // qb(h), the Chaikin point near the head of hole half-edge h, is vertex nh + hidx[h]
+    let (pos, stencils) = Stencils::points_and_rows(nh + b, nv, &m.pos, req.stencils, |i, row| {
+        if i >= nh {
+            let h = holes_he[i - nh] as usize;
+            row.add(vert[h], 0.25);
+            row.add(vert[h ^ 1], 0.75);
+            return;
+        }
+        let h = fh[i] as usize;
+        if hole(h) {
+            row.add(vert[h], 0.75);
+            row.add(vert[h ^ 1], 0.25);
+            return;
+        }
+        let f = face[h] as usize;
+        let hs = &fh[off[f] as usize..off[f + 1] as usize];
+        let (n, k) = (hs.len(), i - off[f] as usize);
+        for (j, &g) in hs.iter().enumerate() {
+            row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
+        }
+    })?;
+    cols.pos = pos;
+    let mesh = Mesh::from_columns(cols)?;
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(nh + b, mesh.n_edges(), nf + ne + nv);
+        o.vertex_kind.extend(fh.iter().map(|&h| if hole(h as usize) { EDGE } else { FACE }));
+        o.vertex.extend(fh.iter().map(|&h| if hole(h as usize) { h >> 1 } else { face[h as usize] }));
+        o.vertex_kind.extend(std::iter::repeat(EDGE).take(b));
+        o.vertex.extend(holes_he.iter().map(|&h| h >> 1));
+        o.face_kind.extend(std::iter::repeat(FACE).take(nf).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(VERTEX).take(nv)));
+        o.face.extend((0..nf as u32).chain(0..ne as u32).chain(0..nv as u32));
+        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
+        Some(o)
+    } else {
+        None
+    };
+    Ok(Level { mesh, stencils, origins, creases: None })
+}
+
+/// The level's corners, and the hole half-edges in order (their `qb` points
+/// follow the corner points). Refuses an edge with holes on both sides.
+fn corners<'a>(m: &'a Mesh, fl: &'a FaceLayout) -> Result<(Corners<'a>, Vec<u32>)> {
+    let (nf, nh) = (m.n_faces(), m.n_halfedges());
+    let face = &m.he_face;
+    let hole = |h: usize| m.f_hole[face[h] as usize];
     let mut hidx = vec![u32::MAX; nh];
     let mut holes_he = Vec::new();
     for h in 0..nh {
@@ -28,12 +259,7 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
     }
     let b = holes_he.len();
     check_output_size("doo_sabin", 4 * nh + 4 * b, nh + b)?;
-    let fl = FaceLayout::new(m)?;
     let vl = VertexLayout::new(m)?;
-    let cidx = &fl.cidx;
-    let hu = nh as u32;
-    let qb = |h: usize| hu + hidx[h];
-    // corner bases: [F-faces and holes (2 per hole corner) in face order | E-faces | V-faces (2 per hole slot)]
     let mut fb = Vec::with_capacity(nf + 1);
     fb.push(0u32);
     for f in 0..nf {
@@ -45,145 +271,30 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
     for h in 0..nh {
         vb[vl.vidx[h] as usize + 1] = if hole(h) { 2 } else { 1 };
     }
-    vb[0] = eb + 4 * ne as u32;
+    vb[0] = eb + 4 * m.n_edges() as u32;
     for s in 0..nh {
         vb[s + 1] += vb[s];
     }
-    let nc = vb[nh] as usize;
-    // the corner of half-edge h in its F-face (or the first of its two in its hole)
-    let fcorner = |h: usize| {
-        let f = face[h] as usize;
-        let k = fl.local(h as u32, face[h]) as u32;
-        fb[f] + if m.f_hole[f] { 2 * k } else { k }
-    };
-    let vfirst = |x: usize| vb[vl.vidx[x] as usize];
-    let vlast = |x: usize| vb[vl.vidx[x] as usize + 1] - 1;
-    let mut sizes = Vec::with_capacity(nf + ne + nv);
-    sizes.extend((0..nf).map(|f| fb[f + 1] - fb[f]));
-    sizes.extend(std::iter::repeat(4u32).take(ne));
-    sizes.extend((0..nv).map(|v| vb[vl.off[v + 1] as usize] - vb[vl.off[v] as usize]));
-    let mut cv = vec![0u32; nc];
-    let mut tw = vec![0u32; nc];
-    let mut co = if req.origins { vec![(EDGE, 0u32); nc] } else { Vec::new() };
-    let e_side = |h: usize| eb + 4 * (h >> 1) as u32 + 2 * (h & 1) as u32;
-    for h in 0..nh {
-        crate::cancel::poll(h)?;
-        let c = fcorner(h) as usize;
-        if hole(h) {
-            // Chaikin points of boundary edge h, then the cut at head(h)
-            cv[c] = cidx[h];
-            tw[c] = e_side(h);
-            cv[c + 1] = qb(h);
-            tw[c + 1] = vfirst(next[h] as usize);
-            if req.origins {
-                co[c] = (EDGE, (h >> 1) as u32);
-                co[c + 1] = (VERTEX, vert[h ^ 1]);
-            }
-        } else {
-            cv[c] = cidx[h];
-            tw[c] = e_side(h);
-            if req.origins {
-                co[c] = (FACE, face[h]);
-            }
-        }
-        // V-face slot of h: p(h), or for a hole corner qa(h) then qb(prev h)
-        let s = vfirst(h) as usize;
-        let r = (prev[h] ^ 1) as usize;
-        let to_e = eb + 4 * (r >> 1) as u32 + 1 + 2 * (r & 1) as u32;
-        cv[s] = cidx[h];
-        if hole(h) {
-            let p = prev[h] as usize;
-            tw[s] = fcorner(p) + 1;
-            cv[s + 1] = qb(p);
-            tw[s + 1] = to_e;
-            if req.origins {
-                co[s] = (VERTEX, vert[h]);
-                co[s + 1] = (EDGE, (r >> 1) as u32);
-            }
-        } else {
-            tw[s] = to_e;
-            if req.origins {
-                co[s] = (EDGE, (r >> 1) as u32);
-            }
-        }
+    Ok((Corners { m, fl, vl, hidx, fb, vb, eb }, holes_he))
+}
+
+/// The level's corner lists (face sizes, tail vertices, twin corners, hole
+/// flags), for the test that builds them with the general builder.
+#[cfg(test)]
+pub(super) fn corner_lists(m: &Mesh) -> (Vec<u32>, Vec<u32>, Vec<u32>, Vec<bool>) {
+    let fl = FaceLayout::new(m).unwrap();
+    let (k, _) = corners(m, &fl).unwrap();
+    let (mut sizes, mut cv, mut tw) = (Vec::new(), vec![0u32; k.n_corners()], vec![0u32; k.n_corners()]);
+    for f in 0..k.n_faces() {
+        let mut n = 0;
+        k.corners(f, |c, v, t, _| {
+            cv[c as usize] = v;
+            tw[c as usize] = t;
+            n += 1;
+        });
+        sizes.push(n);
     }
-    for e in 0..ne {
-        crate::cancel::poll(e)?;
-        let (a, bb) = (2 * e, 2 * e + 1);
-        let (na, nb) = (next[a] as usize, next[bb] as usize);
-        let c = (eb + 4 * e as u32) as usize;
-        // [p(na), p(a), p(nb), p(b)], a hole side's p(n·) replaced by its qb
-        cv[c] = if hole(a) { qb(a) } else { cidx[na] };
-        cv[c + 1] = cidx[a];
-        cv[c + 2] = if hole(bb) { qb(bb) } else { cidx[nb] };
-        cv[c + 3] = cidx[bb];
-        tw[c] = fcorner(a);
-        tw[c + 1] = vlast(nb);
-        tw[c + 2] = fcorner(bb);
-        tw[c + 3] = vlast(na);
-        if req.origins {
-            co[c] = if hole(a) { (EDGE, e as u32) } else { (FACE, face[a]) };
-            co[c + 1] = (EDGE, e as u32);
-            co[c + 2] = if hole(bb) { (EDGE, e as u32) } else { (FACE, face[bb]) };
-            co[c + 3] = (EDGE, e as u32);
-        }
-    }
-    // rows: corner points of real faces (Doo-Sabin), qa of hole corners, then qb
-    // the rows are stored only when asked for (issue 19: peak memory); the
-    // positions are the same bits either way
-    let (pos, stencils) = Stencils::points_and_rows(nh + b, nv, &m.pos, req.stencils, |i, row| {
-        if i >= nh {
-            let h = holes_he[i - nh] as usize;
-            row.add(vert[h], 0.25);
-            row.add(vert[h ^ 1], 0.75);
-            return;
-        }
-        let h = fl.fh[i] as usize;
-        if hole(h) {
-            row.add(vert[h], 0.75);
-            row.add(vert[h ^ 1], 0.25);
-            return;
-        }
-        let f = face[h] as usize;
-        let hs = fl.corners(f);
-        let (n, k) = (hs.len(), i - fl.off[f] as usize);
-        for (j, &g) in hs.iter().enumerate() {
-            row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
-        }
-    })?;
-    // half-edge ids in closed form, the numbering `from_corner_twins` gave
-    // these corners (edges by first corner, whose twin comes later): every
-    // F-block corner is first (its twin lies in the E or V block), so corner
-    // c < eb gets 2c; an E-face's sides 1 and 3 (towards the V block) are
-    // first, ranked 2e and 2e + 1 after the F block; every other corner's
-    // twin comes earlier, and it gets that twin's id + 1
-    let first_id = |c: usize| {
-        if c < eb as usize {
-            2 * c as u32
-        } else {
-            let (e, j) = ((c - eb as usize) / 4, (c - eb as usize) % 4);
-            2 * (eb + 2 * e as u32 + (j == 3) as u32)
-        }
-    };
-    let ids: Vec<u32> = (0..nc).into_par_iter().with_min_len(MIN_LEN).map(|c| {
-        let t = tw[c] as usize;
-        if t > c { first_id(c) } else { first_id(t) + 1 }
-    }).collect();
     let mut holes = vec![false; sizes.len()];
-    holes[..nf].copy_from_slice(&m.f_hole);
-    let mesh = Mesh::from_corner_ids(pos, &sizes, &cv, &ids, holes)?;
-    let origins = if req.origins {
-        let mut o = Origins::with_capacity(nh + b, mesh.n_edges(), nf + ne + nv);
-        o.vertex_kind.extend(fl.fh.iter().map(|&h| if hole(h as usize) { EDGE } else { FACE }));
-        o.vertex.extend(fl.fh.iter().map(|&h| if hole(h as usize) { h >> 1 } else { face[h as usize] }));
-        o.vertex_kind.extend(std::iter::repeat(EDGE).take(b));
-        o.vertex.extend(holes_he.iter().map(|&h| h >> 1));
-        o.face_kind.extend(std::iter::repeat(FACE).take(nf).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(VERTEX).take(nv)));
-        o.face.extend((0..nf as u32).chain(0..ne as u32).chain(0..nv as u32));
-        edge_origins_by_corner(&mesh, &mut o, |c| co[c])?;
-        Some(o)
-    } else {
-        None
-    };
-    Ok(Level { mesh, stencils, origins, creases: None })
+    holes[..m.n_faces()].copy_from_slice(&m.f_hole);
+    (sizes, cv, tw, holes)
 }

@@ -148,3 +148,21 @@ fn handle_self_loop_opens() {
         }
     }
 }
+
+/// The open level's columns, written in closed form, are what the general
+/// builder makes of the same corner lists (twins paired and checked, edges
+/// numbered by first corner, each vertex's first corner as its v_out).
+#[test]
+fn open_columns_equal_the_general_builder() {
+    let plain = crate::schemes::level::Request::plain();
+    for (name, m) in open_meshes() {
+        let mut cur = m;
+        for level in 0..2 {
+            let lv = doo_sabin_level(&cur, &plain).unwrap();
+            let (sizes, cv, tw, holes) = super::open::corner_lists(&cur);
+            let want = Mesh::from_corner_twins_with_holes(lv.mesh.positions().to_vec(), &sizes, &cv, &tw, holes).unwrap();
+            assert_eq!(lv.mesh, want, "{name} level {level}");
+            cur = lv.mesh;
+        }
+    }
+}
