@@ -134,57 +134,35 @@ impl Mesh {
     /// its numbering (edges by first corner), without pairing, numbering or
     /// checking twins; no point-spheres. Checked as [`Mesh::from_columns`].
     pub fn from_corner_ids(pos: Vec<DVec3>, sizes: &[u32], cv: &[u32], ids: &[u32], holes: Vec<bool>) -> Result<Mesh> {
-        let (nc, nf, nv) = (cv.len(), sizes.len(), pos.len());
-        let bad = |what: &str| Err(MeshError::Invariant(format!("direct build: {what}")));
-        if ids.len() != nc || holes.len() != nf || nc % 2 != 0 || nc > super::MAX_ELEMENTS || nf > super::MAX_ELEMENTS {
-            return bad("corner, id and face counts disagree");
-        }
-        let mut off = Vec::with_capacity(nf + 1);
-        let mut acc = 0usize;
-        off.push(0u32);
-        for &k in sizes {
-            acc += k as usize;
-            if k == 0 || acc > nc {
-                return bad("face sizes do not cover the corners");
-            }
-            off.push(acc as u32);
-        }
-        if acc != nc || !in_range(ids, nc, None) || !in_range(cv, nv, None) {
-            return bad("a corner's id or vertex is out of range");
-        }
-        let mut c = Columns::new(pos, nc, nf);
-        c.f_hole = holes;
-        {
-            let sp = |v: &mut Vec<u32>| crate::schemes::hosts::SyncPtr(v.as_mut_ptr());
-            let (pn, pp, pv, pf, ps) = (sp(&mut c.he_next), sp(&mut c.he_prev), sp(&mut c.he_vert), sp(&mut c.he_face), sp(&mut c.f_start));
-            (0..nf).into_par_iter().with_min_len(1024).for_each(|f| {
-                let (a, b) = (off[f] as usize, off[f + 1] as usize);
-                // SAFETY: `ids` is a bijection (the caller's contract; a
-                // duplicate would leave another id unwritten, which the
-                // debug validation reports), so every half-edge and face is
-                // written by one task.
-                unsafe {
-                    *ps.get().add(f) = ids[a];
-                    for k in a..b {
-                        let (i, n) = (ids[k], ids[if k + 1 == b { a } else { k + 1 }]);
-                        *pn.get().add(i as usize) = n;
-                        *pp.get().add(n as usize) = i;
-                        *pv.get().add(i as usize) = cv[k];
-                        *pf.get().add(i as usize) = f as u32;
-                    }
-                }
-            });
-        }
-        // every vertex's first corner, as `from_corner_twins` picks it
-        let mut seen = vec![false; nv];
-        for (k, &v) in cv.iter().enumerate() {
-            if !seen[v as usize] {
-                seen[v as usize] = true;
-                c.v_out[v as usize] = ids[k];
-            }
-        }
-        if let Some(v) = seen.iter().position(|&s| !s) {
-            return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
+        let mut c = Columns::new(pos, cv.len(), sizes.len());
+        fill_corner_ids(&mut c, sizes, cv, ids, holes)?;
+        Mesh::from_columns(c)
+    }
+
+    /// A mesh from faces listed as corners (`sizes`, tail vertices `cv`)
+    /// whose `twins` the caller made in closed form, so they are trusted
+    /// (not paired nor checked, as [`Mesh::from_corner_ids`]): numbered here
+    /// as [`Mesh::from_corner_twins`] numbers them (edges by first corner),
+    /// in place of the twins. The lists are freed before `pos` computes the
+    /// `n_points` positions (issue 19: an open level's peak holds the
+    /// output's columns and the lists, or the columns and the positions,
+    /// never all three). `holes` marks faces; no point-spheres.
+    pub(crate) fn from_trusted_twins(
+        n_points: usize,
+        sizes: Vec<u32>,
+        cv: Vec<u32>,
+        mut twins: Vec<u32>,
+        holes: Vec<bool>,
+        pos: impl FnOnce() -> Result<Vec<DVec3>>,
+    ) -> Result<Mesh> {
+        number_in_place(&mut twins)?;
+        let mut c = Columns::new(Vec::new(), cv.len(), sizes.len());
+        c.v_out = vec![0; n_points];
+        fill_corner_ids(&mut c, &sizes, &cv, &twins, holes)?;
+        drop((sizes, cv, twins));
+        c.pos = pos()?;
+        if c.pos.len() != n_points {
+            return Err(MeshError::Invariant(format!("direct build: {} points for {n_points} vertices", c.pos.len())));
         }
         Mesh::from_columns(c)
     }
@@ -204,10 +182,142 @@ impl Mesh {
     }
 }
 
+/// The columns of [`Mesh::from_corner_ids`] (its checks included), into
+/// `c`, whose `v_out` holds one entry per vertex.
+fn fill_corner_ids(c: &mut Columns, sizes: &[u32], cv: &[u32], ids: &[u32], holes: Vec<bool>) -> Result<()> {
+    let (nc, nf, nv) = (cv.len(), sizes.len(), c.v_out.len());
+    let bad = |what: &str| Err(MeshError::Invariant(format!("direct build: {what}")));
+    if ids.len() != nc || holes.len() != nf || nc % 2 != 0 || nc > super::MAX_ELEMENTS || nf > super::MAX_ELEMENTS {
+        return bad("corner, id and face counts disagree");
+    }
+    let mut off = Vec::with_capacity(nf + 1);
+    let mut acc = 0usize;
+    off.push(0u32);
+    for &k in sizes {
+        acc += k as usize;
+        if k == 0 || acc > nc {
+            return bad("face sizes do not cover the corners");
+        }
+        off.push(acc as u32);
+    }
+    if acc != nc || !in_range(ids, nc, None) || !in_range(cv, nv, None) {
+        return bad("a corner's id or vertex is out of range");
+    }
+    c.f_hole = holes;
+    {
+        let sp = |v: &mut Vec<u32>| crate::schemes::hosts::SyncPtr(v.as_mut_ptr());
+        let (pn, pp, pv, pf, ps) = (sp(&mut c.he_next), sp(&mut c.he_prev), sp(&mut c.he_vert), sp(&mut c.he_face), sp(&mut c.f_start));
+        (0..nf).into_par_iter().with_min_len(1024).for_each(|f| {
+            let (a, b) = (off[f] as usize, off[f + 1] as usize);
+            // SAFETY: `ids` is a bijection (the caller's contract; a
+            // duplicate would leave another id unwritten, which the
+            // debug validation reports), so every half-edge and face is
+            // written by one task.
+            unsafe {
+                *ps.get().add(f) = ids[a];
+                for k in a..b {
+                    let (i, n) = (ids[k], ids[if k + 1 == b { a } else { k + 1 }]);
+                    *pn.get().add(i as usize) = n;
+                    *pp.get().add(n as usize) = i;
+                    *pv.get().add(i as usize) = cv[k];
+                    *pf.get().add(i as usize) = f as u32;
+                }
+            }
+        });
+    }
+    // every vertex's first corner, as `from_corner_twins` picks it
+    let mut seen = vec![false; nv];
+    for (k, &v) in cv.iter().enumerate() {
+        if !seen[v as usize] {
+            seen[v as usize] = true;
+            c.v_out[v as usize] = ids[k];
+        }
+    }
+    if let Some(v) = seen.iter().position(|&s| !s) {
+        return Err(MeshError::InvalidArgument(format!("vertex {v} is not used by any face")));
+    }
+    Ok(())
+}
+
+/// [`super::build::number_halfedges`] written over the twins themselves:
+/// each corner's twin index becomes its half-edge id (a bitmap of the
+/// first corners, 1 bit per corner, instead of two id lists of 4 bytes).
+/// Twins must all be set (no point-sphere corners). Cancellable.
+pub(crate) fn number_in_place(twin: &mut [u32]) -> Result<()> {
+    const CHUNK: usize = 1 << 14; // a multiple of 64: chunks own whole words
+    let n = twin.len();
+    if twin.contains(&NONE) {
+        return Err(MeshError::Invariant("direct build: a corner has no twin".into()));
+    }
+    let is_first = |c: usize| twin[c] as usize > c;
+    let mut first = vec![0u64; n.div_ceil(64)];
+    first.par_iter_mut().with_min_len(256).enumerate().for_each(|(w, bits)| {
+        for i in 0..64.min(n - 64 * w) {
+            *bits |= (is_first(64 * w + i) as u64) << i;
+        }
+    });
+    let bit = |c: usize| first[c / 64] >> (c % 64) & 1 == 1;
+    let words = CHUNK / 64;
+    let mut base: Vec<u32> = first.chunks(words).map(|w| w.iter().map(|x| x.count_ones()).sum()).collect();
+    let mut acc = 0u32;
+    for b in base.iter_mut() {
+        (*b, acc) = (acc, acc + *b);
+    }
+    // firsts: 2e, counted in corner order
+    twin.par_chunks_mut(CHUNK).enumerate().for_each(|(k, chunk)| {
+        if crate::cancel::requested() {
+            return; // the check below reports it
+        }
+        let mut e = base[k];
+        for (i, s) in chunk.iter_mut().enumerate() {
+            if bit(k * CHUNK + i) {
+                *s = 2 * e;
+                e += 1;
+            }
+        }
+    });
+    crate::cancel::check()?;
+    // seconds: their twin's id + 1 (twins are firsts, not written here)
+    let p = crate::schemes::hosts::SyncPtr(twin.as_mut_ptr());
+    (0..n).into_par_iter().with_min_len(CHUNK).for_each(|c| {
+        if !bit(c) {
+            // SAFETY: slot c (a second) is written by this task only; slot
+            // t (a first) is only read in this pass
+            unsafe {
+                let t = *p.get().add(c) as usize;
+                *p.get().add(c) = *p.get().add(t) + 1;
+            }
+        }
+    });
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::primitives;
+
+    /// The in-place numbering gives the two-list numbering's ids, on random
+    /// pairings across chunk and word boundaries.
+    #[test]
+    fn numbering_in_place_equals_the_scan() {
+        let mut rng = crate::test_rng::Xorshift::new(11);
+        for n in [2usize, 64, 130, 40_002] {
+            let mut order: Vec<u32> = (0..n as u32).collect();
+            for i in (1..n).rev() {
+                order.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
+            }
+            let mut twin = vec![0u32; n];
+            for p in order.chunks(2) {
+                (twin[p[0] as usize], twin[p[1] as usize]) = (p[1], p[0]);
+            }
+            let (want, ne) = crate::mesh::build::number_halfedges(&twin).unwrap();
+            number_in_place(&mut twin).unwrap();
+            assert_eq!((twin, ne), (want, n / 2), "{n}");
+        }
+        let mut lone = vec![1, 0, NONE];
+        assert!(number_in_place(&mut lone).is_err());
+    }
 
     #[test]
     fn columns_round_trip_and_bad_references_are_refused() {

@@ -371,6 +371,8 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     crate::cancel::check()?;
+    // the corner numbering is done with before the positions (issue 19)
+    drop((vl, cb, hb, fidx, bidx, vidx_b));
     let fill = |i: usize, row: &mut crate::schemes::stencil::Row| {
         if i < real.len() {
             let hs = fl.corners(real[i] as usize);
@@ -386,20 +388,28 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
             row.add(bverts[i - real.len() - bedges.len()], 1.0);
         }
     };
-    // the rows are stored only when asked for (issue 19: peak memory)
-    let (pos, stencils) = if m.n_holes() == 0 {
-        // closed: the centroids exactly as the plain path sums them (same layout)
-        let mut p = crate::mesh::zeroed_points(nf);
-        face_centroids(m, &fl, &mut p);
-        crate::cancel::check()?;
-        (p, if req.stencils { Some(Stencils::build(n_out, nv, fill)?) } else { None })
-    } else {
-        Stencils::points_and_rows(n_out, nv, &m.pos, req.stencils, fill)?
+    // the rows are stored only when asked for (issue 19: peak memory); the
+    // positions come after the connectivity, once the corner lists are freed
+    let points = || {
+        if m.n_holes() == 0 {
+            // closed: the centroids exactly as the plain path sums them (same layout)
+            let mut p = crate::mesh::zeroed_points(nf);
+            face_centroids(m, &fl, &mut p);
+            crate::cancel::check()?;
+            Ok((p, if req.stencils { Some(Stencils::build(n_out, nv, fill)?) } else { None }))
+        } else {
+            Stencils::points_and_rows(n_out, nv, &m.pos, req.stencils, fill)
+        }
     };
-    let mut mesh = Mesh::from_corner_twins(pos, &sizes, &cv, &tw)?;
-    for f in nv..mesh.n_faces() {
-        mesh.f_hole[f] = true;
-    }
+    // the twins are this function's closed forms (the faces after the
+    // vertices' are the holes)
+    let holes = (0..sizes.len()).map(|f| f >= nv).collect();
+    let mut stencils = None;
+    let mesh = Mesh::from_trusted_twins(n_out, sizes, cv, tw, holes, || {
+        let (p, s) = points()?;
+        stencils = s;
+        Ok(p)
+    })?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(n_out, mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(EDGE).take(bedges.len())).chain(std::iter::repeat(VERTEX).take(bverts.len())));

@@ -258,16 +258,10 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     let n_out_v = ne + bverts.len();
     let bv = |w: u32| (ne as u32) + bidx[w as usize];
     let vface = |x: usize| n_real + vert[x];
-    // the rows are stored only when asked for (issue 19: peak memory)
-    let (pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, |i, row| {
-        if i < ne {
-            row.add(vert[2 * i], 0.5);
-            row.add(vert[2 * i + 1], 0.5);
-        } else {
-            row.add(bverts[i - ne], 1.0);
-        }
-    })?;
-    let mut cols = Columns::new(pos, n_out_h, (n_real + n_holes) as usize + nv);
+    // the positions come last, once the numbering's tables are freed
+    // (issue 19: peak memory)
+    let mut cols = Columns::new(Vec::new(), n_out_h, (n_real + n_holes) as usize + nv);
+    cols.v_out = vec![0; n_out_v];
     {
         let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
         let (pn, pp, pv, pf) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face));
@@ -327,9 +321,9 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     for (i, &w) in bverts.iter().enumerate() {
         cols.v_out[ne + i] = 2 * (n_fc + 2 * r0[w as usize] + 1);
     }
-    let mesh = Mesh::from_columns(cols)?;
+    // origins first: they read the numbering's tables
     let origins = if req.origins {
-        let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
+        let mut o = Origins::with_capacity(n_out_v, n_out_h / 2, (n_real + n_holes) as usize + nv);
         o.vertex_kind = std::iter::repeat(EDGE).take(ne).chain(std::iter::repeat(VERTEX).take(bverts.len())).collect();
         o.vertex = (0..ne as u32).chain(bverts.iter().copied()).collect();
         let real: Vec<u32> = (0..nf as u32).filter(|&f| !m.f_hole[f as usize]).collect();
@@ -338,8 +332,8 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
         o.face = real.iter().copied().chain(0..nv as u32).chain(hole_faces.iter().copied()).collect();
         // a real side cuts a corner of its face; the two sides at a kept
         // vertex are halves of the boundary edges they run along
-        o.edge_kind = vec![0; mesh.n_edges()];
-        o.edge = vec![0; mesh.n_edges()];
+        o.edge_kind = vec![0; n_out_h / 2];
+        o.edge = vec![0; n_out_h / 2];
         for h in 0..nh {
             if !hole(h) {
                 let e = fc(h) as usize;
@@ -354,6 +348,18 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         None
     };
+    drop((fl, fbase, r0, rank, fid, bidx));
+    // the rows are stored only when asked for (issue 19: peak memory)
+    let st;
+    (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, |i, row| {
+        if i < ne {
+            row.add(vert[2 * i], 0.5);
+            row.add(vert[2 * i + 1], 0.5);
+        } else {
+            row.add(bverts[i - ne], 1.0);
+        }
+    })?;
+    let mesh = Mesh::from_columns(cols)?;
     Ok(Level { mesh, stencils: st, origins, creases: None })
 }
 

@@ -160,12 +160,13 @@ fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::sten
     }
 }
 
-/// Builds the level from the output points, the rows when asked for
-/// ([`Stencils::points_and_rows`]), corners and per-corner edge origins.
+/// Builds the level from its corners, then its `n_points` points and the
+/// rows when asked for (`points`, [`Stencils::points_and_rows`]), and the
+/// per-corner edge origins.
 #[allow(clippy::too_many_arguments)]
 fn finish(
     req: &Request,
-    (pos, st): (Vec<glam::DVec3>, Option<Stencils>),
+    (n_points, points): (usize, impl FnOnce() -> Result<(Vec<glam::DVec3>, Option<Stencils>)>),
     sizes: Vec<u32>,
     holes: Vec<bool>,
     cv: Vec<u32>,
@@ -175,11 +176,16 @@ fn finish(
     corner_origin: Vec<(u8, u32)>,
 ) -> Result<Level> {
     // the corners' half-edge ids as `from_corner_twins` numbers them (edges
-    // by first corner, a parallel scan), then the columns straight from them:
-    // the twins are this module's own, so the general builder's pairing
-    // checks and umbrella walk are skipped (the tests validate every output)
-    let (ids, _) = crate::mesh::build::number_halfedges(&tw)?;
-    let mesh = Mesh::from_corner_ids(pos, &sizes, &cv, &ids, holes)?;
+    // by first corner), then the columns straight from them: the twins are
+    // this module's own, so the general builder's pairing checks and
+    // umbrella walk are skipped (the tests validate every output); the
+    // corner lists are freed before the points are computed (issue 19)
+    let mut st = None;
+    let mesh = Mesh::from_trusted_twins(n_points, sizes, cv, tw, holes, || {
+        let (p, s) = points()?;
+        st = s;
+        Ok(p)
+    })?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         (o.vertex_kind, o.vertex) = vertex_origin.into_iter().unzip();
@@ -206,8 +212,10 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
         }
     }
     let boundary: Vec<bool> = (0..nv).map(|v| x.hole_out(v).is_some()).collect();
-    // the rows are stored only when asked for (issue 19: peak memory)
-    let st = Stencils::points_and_rows(nv + real.len(), nv, &m.pos, req.stencils, |i, row| {
+    // the rows are stored only when asked for (issue 19: peak memory); the
+    // points are computed after the connectivity (`finish`)
+    let n_points = nv + real.len();
+    let points = || Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
         if i < nv {
             if boundary[i] {
                 row.add(i as u32, 1.0);
@@ -217,7 +225,7 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
         } else {
             centroid_row(m, vert, real[i - nv], row);
         }
-    })?;
+    });
     let (sizes, holes) = x.faces(1);
     let n_corners = 3 * x.n_tri + (m.n_halfedges() - x.n_tri);
     let mut cv = vec![0u32; n_corners];
@@ -275,7 +283,7 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         vec![]
     };
-    finish(req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+    finish(req, (n_points, points), sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
 }
 
 fn even(m: &Mesh, req: &Request) -> Result<Level> {
@@ -318,7 +326,8 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     let n1 = |b: u32| base + 2 * side_index[b as usize];
     let n2 = |b: u32| base + 2 * side_index[b as usize] + 1;
     let hole_out: Vec<Option<u32>> = (0..nv).map(|v| x.hole_out(v)).collect();
-    let st = Stencils::points_and_rows(base as usize + 2 * sides.len(), nv, &m.pos, req.stencils, |i, row| {
+    let n_points = base as usize + 2 * sides.len();
+    let points = || Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
         if i < nv {
             match hole_out[i] {
                 None => kobbelt_row(m, vert, i, row),
@@ -349,7 +358,7 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
                 row.add(w, 1.0 / 27.0);
             }
         }
-    })?;
+    });
     // P(f, h): the point of face f that the flipped edge of h reaches
     let point = |h: u32| -> u32 {
         let f = face[h as usize] as usize;
@@ -450,5 +459,5 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         vec![]
     };
-    finish(req, st, sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+    finish(req, (n_points, points), sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
 }
