@@ -23,19 +23,31 @@ pub struct Stencils {
     pub n_cols: usize,
 }
 
-/// One row being written: `add(col, weight)`.
+/// One row being written: `add(col, weight)`. Either stored as terms, or,
+/// when only the points are wanted, applied as it is written: each term
+/// added to the point in the order given, as applying the stored row sums
+/// them (the same bits, without the term lists).
 pub struct Row<'a> {
     col: &'a mut Vec<u32>,
     w: &'a mut Vec<f64>,
+    /// The points the terms are applied to at once (no terms stored).
+    apply: Option<&'a [DVec3]>,
+    point: DVec3,
 }
 
 impl Row<'_> {
     #[inline]
     pub fn add(&mut self, col: u32, w: f64) {
-        self.col.push(col);
-        self.w.push(w);
+        match self.apply {
+            Some(p) => self.point += p[col as usize] * w,
+            None => {
+                self.col.push(col);
+                self.w.push(w);
+            }
+        }
     }
-    /// Number of terms written so far in this block (a mark for `scale_from`).
+    /// Number of terms stored so far in this block (a mark for merging a
+    /// row's duplicates); rows applied as written store none.
     #[inline]
     pub fn len(&self) -> usize {
         self.col.len()
@@ -43,13 +55,6 @@ impl Row<'_> {
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.col.is_empty()
-    }
-    /// Multiplies the weights of the terms from `start` on by `s`.
-    #[inline]
-    pub fn scale_from(&mut self, start: usize, s: f64) {
-        for w in &mut self.w[start..] {
-            *w *= s;
-        }
     }
 }
 
@@ -70,7 +75,7 @@ impl Stencils {
                 }
                 for i in s..e {
                     let before = col.len();
-                    fill(i, &mut Row { col: &mut col, w: &mut w });
+                    fill(i, &mut Row { col: &mut col, w: &mut w, apply: None, point: DVec3::ZERO });
                     lens.push(col.len() - before);
                 }
                 (lens, col, w)
@@ -125,29 +130,29 @@ impl Stencils {
         Ok(out)
     }
 
-    /// `S @ p` without storing `S`: row `i` is built by `fill(i, row)` (as
-    /// for [`Stencils::build`]) in a per-thread buffer and applied at once.
+    /// `S @ p` without storing `S`: row `i` is applied as `fill(i, row)`
+    /// writes it (as for [`Stencils::build`]), term by term.
     /// The result is [`Stencils::build`] then [`Stencils::apply_points`]
     /// bit for bit (same terms, summed in the same order), without the rows'
     /// memory (issue 19: for open meshes and creases, about 12 bytes per
     /// term and 8 per row, several times the output, only to place points).
     pub fn apply_rows_points(n_rows: usize, p: &[DVec3], fill: impl Fn(usize, &mut Row) + Sync) -> Result<Vec<DVec3>> {
+        // the row is applied as it is written: ZERO plus each term in order,
+        // what summing the stored terms (`apply_points`) computes
         let out: Vec<DVec3> = (0..n_rows)
             .into_par_iter()
             .with_min_len(super::hosts::MIN_LEN)
-            .map_init(
-                || (Vec::new(), Vec::new()),
-                |(col, w), i| {
-                    // cancelled: zeros, the check below reports it
-                    if crate::cancel::requested() {
-                        return DVec3::ZERO;
-                    }
-                    col.clear();
-                    w.clear();
-                    fill(i, &mut Row { col, w });
-                    col.iter().zip(w.iter()).map(|(&c, &w)| p[c as usize] * w).sum()
-                },
-            )
+            .map(|i| {
+                // cancelled: zeros, the check below reports it
+                if crate::cancel::requested() {
+                    return DVec3::ZERO;
+                }
+                // no terms are stored: the lists stay empty (no allocation)
+                let (mut col, mut w) = (Vec::new(), Vec::new());
+                let mut row = Row { col: &mut col, w: &mut w, apply: Some(p), point: DVec3::ZERO };
+                fill(i, &mut row);
+                row.point
+            })
             .collect();
         crate::cancel::check()?;
         Ok(out)
@@ -241,12 +246,12 @@ mod tests {
     fn rows_applied_unstored_equal_the_stored_rows() {
         let p: Vec<DVec3> = (0..97).map(|i| DVec3::new((i as f64 * 0.37).sin(), (i as f64).sqrt() * 1e-3, 1.0 / (1.0 + i as f64))).collect();
         let fill = |i: usize, r: &mut Row| {
-            let start = r.len();
             for j in 0..(i * 7) % 41 {
                 r.add(((i * 31 + j * 17) % 97) as u32, 1.0 / (1.0 + j as f64) + (i as f64) * 1e-7);
             }
             if i % 3 == 0 {
-                r.scale_from(start, 0.3);
+                // a negative zero term: the sums start from +0 either way
+                r.add((i % 97) as u32, -0.0);
             }
         };
         let n = 20_000;
