@@ -277,10 +277,11 @@ fn stencil_rows<T>(
     let head = |h: u32| vert[(h ^ 1) as usize];
     let mask = |v: usize, rule: Rule, ends: [u32; 2], w: f64, row: &mut Row| match rule {
         Rule::Smooth | Rule::Dart => {
-            let ring: Vec<u32> = super::creases::ring(m, m.v_out[v]).collect();
-            let n = ring.len() as f64;
+            // the ring walked twice (its size first) instead of collected:
+            // no allocation per vertex, the same terms in the same order
+            let n = super::creases::ring(m, m.v_out[v]).count() as f64;
             row.add(v as u32, w * (n - 2.0) / n);
-            for h in ring {
+            for h in super::creases::ring(m, m.v_out[v]) {
                 row.add(head(h), w / (n * n));
                 face_row(face[h as usize] as usize, w / (n * n), row);
             }

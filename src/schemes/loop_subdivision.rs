@@ -320,10 +320,11 @@ fn stencil_rows<T>(m: &Mesh, ls: &LevelSharpness, req: &Request, run: impl FnOnc
     let head = |h: u32| vert[(h ^ 1) as usize];
     let mask = |v: usize, rule: Rule, ends: [u32; 2], w: f64, row: &mut Row| match rule {
         Rule::Smooth | Rule::Dart => {
-            let ring: Vec<u32> = super::creases::ring(m, m.v_out[v]).collect();
-            let beta = loop_beta(ring.len());
-            row.add(v as u32, w * (1.0 - ring.len() as f64 * beta));
-            for h in ring {
+            // the ring walked twice (its size first) instead of collected
+            let n = super::creases::ring(m, m.v_out[v]).count();
+            let beta = loop_beta(n);
+            row.add(v as u32, w * (1.0 - n as f64 * beta));
+            for h in super::creases::ring(m, m.v_out[v]) {
                 row.add(head(h), w * beta);
             }
         }

@@ -145,18 +145,16 @@ impl<'a> Ctx<'a> {
 }
 
 fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::stencil::Row) {
+    // the cycle walked twice (its size first) instead of collected
+    let w = 1.0 / crate::schemes::hosts::face_degree(m, f) as f64;
     let s = m.f_start[f];
     let mut h = s;
-    let mut hs = Vec::new();
     loop {
-        hs.push(vert[h as usize]);
+        row.add(vert[h as usize], w);
         h = m.he_next[h as usize];
         if h == s {
             break;
         }
-    }
-    for &v in &hs {
-        row.add(v, 1.0 / hs.len() as f64);
     }
 }
 

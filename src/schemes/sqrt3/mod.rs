@@ -61,11 +61,11 @@ pub fn sqrt3_alpha(n: usize) -> f64 {
 /// The stencil row of old vertex `v`: `(1 − αₙ) v + αₙ/n Σ neighbours`
 /// over its n ring ends (a self-loop counts twice).
 pub(super) fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut super::stencil::Row) {
-    let ring: Vec<u32> = super::creases::ring(m, m.v_out[v]).collect();
-    let n = ring.len();
+    // the ring walked twice (its size first) instead of collected
+    let n = super::creases::ring(m, m.v_out[v]).count();
     let a = sqrt3_alpha(n);
     row.add(v as u32, 1.0 - a);
-    for h in ring {
+    for h in super::creases::ring(m, m.v_out[v]) {
         row.add(vert[(h ^ 1) as usize], a / n as f64);
     }
 }
