@@ -6,7 +6,7 @@
 //! allocates (a counting global allocator), not the RSS.
 //!
 //! `TOPOMESH_PROF_OPEN=1` removes every 997th face (schemes `catmull_clark_level`, `loop_level`,
-//! `doo_sabin_level`, `sqrt3_level`, `simplest_level`, `dual_level`: the level
+//! `midpoint_level`, `doo_sabin_level`, `sqrt3_level`, `simplest_level`, `dual_level`: the level
 //! path open meshes take); `TOPOMESH_PROF_SMALL=1` takes inputs 16–25× smaller; `TOPOMESH_PEAK_MAX=2` makes it a check (`.ci/run` runs it): it exits
 //! with status 1 when a level's peak exceeds that multiple of the export.
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -73,6 +73,7 @@ fn main() {
     let step: fn(&Mesh) -> topomesh::Result<Mesh> = match scheme {
         "catmull_clark_level" => |m| catmull_clark_level(m, &Request::plain()).map(|l| l.mesh),
         "loop_level" => |m| loop_level(m, &Request::plain()).map(|l| l.mesh),
+        "midpoint_level" => |m| topomesh::schemes::midpoint::midpoint_level(m, &Request::plain()).map(|l| l.mesh),
         "doo_sabin_level" => |m| topomesh::schemes::doo_sabin::doo_sabin_level(m, &Request::plain()).map(|l| l.mesh),
         "sqrt3_level" => |m| topomesh::schemes::sqrt3::sqrt3_level(m, &Request::plain()).map(|l| l.mesh),
         "simplest_level" => |m| topomesh::schemes::simplest::simplest_level(m, &Request::plain()).map(|l| l.mesh),

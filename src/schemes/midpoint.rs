@@ -150,7 +150,9 @@ pub fn midpoint_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) 
 }
 
 fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
-    if m.n_holes() == 0 && !req.stencils && !req.origins {
+    // open meshes too: holes are faces the host leaves as they are, and the
+    // plain step computes its positions last (issue 19: peak memory)
+    if !req.stencils && !req.origins {
         return Ok(Level::plain(step(m)?));
     }
     check_output_size("midpoint", 4 * m.n_halfedges(), m.n_vertices() + m.n_edges() + m.n_faces())?;
