@@ -124,11 +124,10 @@ impl<'a> Ctx<'a> {
         (0..self.m.n_faces() as u32).filter(|&f| self.m.f_hole[f as usize])
     }
 
-    /// The neighbours `(u, w)` along the boundary of a vertex `v` with one
-    /// hole corner `k` (k leaves v): `k` runs `v → u`, its predecessor `w → v`.
-    #[inline]
-    fn boundary_neighbours(&self, k: u32) -> (u32, u32) {
-        (self.vert[(k ^ 1) as usize], self.vert[self.prev[k as usize] as usize])
+    /// Frees the corner tables once the corners are written (issue 19: they
+    /// are not needed for the points).
+    fn release(&mut self) {
+        (self.tri, self.hole_corner) = (Vec::new(), Vec::new());
     }
 
     /// The one hole half-edge leaving `v`, `None` when `v` is interior,
@@ -142,6 +141,13 @@ impl<'a> Ctx<'a> {
         }
         found
     }
+}
+
+/// The neighbours `(u, w)` along the boundary of a vertex `v` with one
+/// hole corner `k` (k leaves v): `k` runs `v → u`, its predecessor `w → v`.
+#[inline]
+fn boundary_neighbours(m: &Mesh, k: u32) -> (u32, u32) {
+    (m.he_vert[(k ^ 1) as usize], m.he_vert[m.he_prev[k as usize] as usize])
 }
 
 fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::stencil::Row) {
@@ -197,7 +203,7 @@ fn finish(
 }
 
 fn odd(m: &Mesh, req: &Request) -> Result<Level> {
-    let x = Ctx::new(m, 1)?;
+    let mut x = Ctx::new(m, 1)?;
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
     // face points of the real faces
@@ -281,11 +287,13 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         vec![]
     };
+    drop(fpt);
+    x.release();
     finish(req, (n_points, points), sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
 }
 
 fn even(m: &Mesh, req: &Request) -> Result<Level> {
-    let x = Ctx::new(m, 3)?;
+    let mut x = Ctx::new(m, 3)?;
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
     // the boundary side of every face that has one (at most one, and only triangles)
@@ -331,7 +339,7 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
                 None => kobbelt_row(m, vert, i, row),
                 Some(NONE) => row.add(i as u32, 1.0),
                 Some(k) => {
-                    let (u, w) = x.boundary_neighbours(k);
+                    let (u, w) = boundary_neighbours(m, k);
                     row.add(u, 4.0 / 27.0);
                     row.add(i as u32, 19.0 / 27.0);
                     row.add(w, 4.0 / 27.0);
@@ -457,5 +465,7 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     } else {
         vec![]
     };
+    drop((fpt, bside, side_index));
+    x.release();
     finish(req, (n_points, points), sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
 }
