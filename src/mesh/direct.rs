@@ -143,28 +143,31 @@ impl Mesh {
     /// whose `twins` the caller made in closed form, so they are trusted
     /// (not paired nor checked, as [`Mesh::from_corner_ids`]): numbered here
     /// as [`Mesh::from_corner_twins`] numbers them (edges by first corner),
-    /// in place of the twins. The lists are freed before `pos` computes the
-    /// `n_points` positions (issue 19: an open level's peak holds the
+    /// in place of the twins. The lists are freed before `points` computes
+    /// the `n_points` positions (issue 19: an open level's peak holds the
     /// output's columns and the lists, or the columns and the positions,
-    /// never all three). `holes` marks faces; no point-spheres.
-    pub(crate) fn from_trusted_twins(
+    /// never all three), with whatever else it makes on the way (a level's
+    /// stencils), handed back beside the mesh. `holes` marks faces; no
+    /// point-spheres.
+    pub(crate) fn from_trusted_twins<T>(
         n_points: usize,
         sizes: Vec<u32>,
         cv: Vec<u32>,
         mut twins: Vec<u32>,
         holes: Vec<bool>,
-        pos: impl FnOnce() -> Result<Vec<DVec3>>,
-    ) -> Result<Mesh> {
+        points: impl FnOnce() -> Result<(Vec<DVec3>, T)>,
+    ) -> Result<(Mesh, T)> {
         number_in_place(&mut twins)?;
         let mut c = Columns::new(Vec::new(), cv.len(), sizes.len());
         c.v_out = vec![0; n_points];
         fill_corner_ids(&mut c, &sizes, &cv, &twins, holes)?;
         drop((sizes, cv, twins));
-        c.pos = pos()?;
+        let extra;
+        (c.pos, extra) = points()?;
         if c.pos.len() != n_points {
             return Err(MeshError::Invariant(format!("direct build: {} points for {n_points} vertices", c.pos.len())));
         }
-        Mesh::from_columns(c)
+        Ok((Mesh::from_columns(c)?, extra))
     }
 
     /// Gives the columns back for reuse (e.g. as the next level's scratch).

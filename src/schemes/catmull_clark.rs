@@ -27,11 +27,11 @@
 //! keep the direct computation above (the same weights, tested equal).
 
 use super::creases::{EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, face_centroids_walk, face_degree, primal_host_late, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids_walk, primal_host_late, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::mesh::{FaceId, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -137,7 +137,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
         o.vertex_kind.extend(std::iter::repeat(VERTEX).take(nv).chain(std::iter::repeat(EDGE).take(ne)).chain(std::iter::repeat(FACE).take(real.len())));
         o.vertex.extend((0..nv as u32).chain(0..ne as u32).chain((0..nf as u32).filter(|&f| !m.f_hole[f as usize])));
         for f in 0..nf {
-            let k = if m.f_hole[f] { 1 } else { face_degree(m, f) };
+            let k = if m.f_hole[f] { 1 } else { m.face_degree(FaceId(f as u32)) };
             o.face_kind.extend(std::iter::repeat(FACE).take(k));
             o.face.extend(std::iter::repeat(f as u32).take(k));
         }
@@ -263,7 +263,7 @@ fn stencil_rows<T>(
     // each face's cycle walked from its first corner, as a face layout
     // lists it (same terms in the same order: the same bits)
     let face_row = |f: usize, w: f64, row: &mut Row| {
-        let k = w / face_degree(m, f) as f64;
+        let k = w / m.face_degree(FaceId(f as u32)) as f64;
         let s = m.f_start[f];
         let mut h = s;
         loop {

@@ -377,7 +377,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     let fill = |i: usize, row: &mut crate::schemes::stencil::Row| {
         if i < real.len() {
             let f = real[i] as usize;
-            let w = 1.0 / super::hosts::face_degree(m, f) as f64;
+            let w = 1.0 / m.face_degree(crate::mesh::FaceId(f as u32)) as f64;
             let s = m.f_start[f];
             let mut h = s;
             loop {
@@ -412,12 +412,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     // the twins are this function's closed forms (the faces after the
     // vertices' are the holes)
     let holes = (0..sizes.len()).map(|f| f >= nv).collect();
-    let mut stencils = None;
-    let mesh = Mesh::from_trusted_twins(n_out, sizes, cv, tw, holes, || {
-        let (p, s) = points()?;
-        stencils = s;
-        Ok(p)
-    })?;
+    let (mesh, stencils) = Mesh::from_trusted_twins(n_out, sizes, cv, tw, holes, points)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(n_out, mesh.n_edges(), mesh.n_faces());
         o.vertex_kind.extend(std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(EDGE).take(bedges.len())).chain(std::iter::repeat(VERTEX).take(bverts.len())));

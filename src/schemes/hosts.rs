@@ -331,22 +331,6 @@ pub(crate) fn face_centroids_walk(m: &Mesh, out: &mut [DVec3]) {
     });
 }
 
-/// Number of corners of face `f`, its cycle walked from its first
-/// half-edge (what [`FaceLayout::degree`] gives, without a layout). Not for
-/// point-sphere faces.
-#[inline]
-pub(crate) fn face_degree(m: &Mesh, f: usize) -> usize {
-    let next = &m.he_next;
-    let s = m.f_start[f];
-    debug_assert!(s & POINT == 0, "face_degree: point-sphere face {f}");
-    let (mut h, mut n) = (next[s as usize], 1usize);
-    while h != s {
-        n += 1;
-        h = next[h as usize];
-    }
-    n
-}
-
 /// The sum of face `f`'s vertex positions along its cycle from its first
 /// half-edge, and its number of corners. Not for point-sphere faces.
 #[inline]

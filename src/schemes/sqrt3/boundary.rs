@@ -152,7 +152,7 @@ fn boundary_neighbours(m: &Mesh, k: u32) -> (u32, u32) {
 
 fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::stencil::Row) {
     // the cycle walked twice (its size first) instead of collected
-    let w = 1.0 / crate::schemes::hosts::face_degree(m, f) as f64;
+    let w = 1.0 / m.face_degree(crate::mesh::FaceId(f as u32)) as f64;
     let s = m.f_start[f];
     let mut h = s;
     loop {
@@ -184,12 +184,7 @@ fn finish(
     // this module's own, so the general builder's pairing checks and
     // umbrella walk are skipped (the tests validate every output); the
     // corner lists are freed before the points are computed (issue 19)
-    let mut st = None;
-    let mesh = Mesh::from_trusted_twins(n_points, sizes, cv, tw, holes, || {
-        let (p, s) = points()?;
-        st = s;
-        Ok(p)
-    })?;
+    let (mesh, st) = Mesh::from_trusted_twins(n_points, sizes, cv, tw, holes, points)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         (o.vertex_kind, o.vertex) = vertex_origin.into_iter().unzip();
