@@ -259,21 +259,10 @@ fn stencil_rows<T>(
     run: impl FnOnce(usize, usize, &(dyn Fn(usize, &mut Row) + Sync)) -> T,
 ) -> T {
     let (nv, ne) = (m.n_vertices(), m.n_edges());
-    let (next, vert, face) = m.halfedge_columns();
+    let (_, vert, face) = m.halfedge_columns();
     // each face's cycle walked from its first corner, as a face layout
     // lists it (same terms in the same order: the same bits)
-    let face_row = |f: usize, w: f64, row: &mut Row| {
-        let k = w / m.face_degree(FaceId(f as u32)) as f64;
-        let s = m.f_start[f];
-        let mut h = s;
-        loop {
-            row.add(vert[h as usize], k);
-            h = next[h as usize];
-            if h == s {
-                break;
-            }
-        }
-    };
+    let face_row = |f: usize, w: f64, row: &mut Row| super::hosts::face_mean_row(m, f, w, row);
     let head = |h: u32| vert[(h ^ 1) as usize];
     let mask = |v: usize, rule: Rule, ends: [u32; 2], w: f64, row: &mut Row| match rule {
         Rule::Smooth | Rule::Dart => {

@@ -376,17 +376,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
     drop((fl, vl, cb, hb, fidx, bidx, vidx_b));
     let fill = |i: usize, row: &mut crate::schemes::stencil::Row| {
         if i < real.len() {
-            let f = real[i] as usize;
-            let w = 1.0 / m.face_degree(crate::mesh::FaceId(f as u32)) as f64;
-            let s = m.f_start[f];
-            let mut h = s;
-            loop {
-                row.add(vert[h as usize], w);
-                h = next[h as usize];
-                if h == s {
-                    break;
-                }
-            }
+            super::hosts::face_mean_row(m, real[i] as usize, 1.0, row);
         } else if i < real.len() + bedges.len() {
             let e = bedges[i - real.len()] as usize;
             row.add(vert[2 * e], 0.5);

@@ -331,6 +331,24 @@ pub(crate) fn face_centroids_walk(m: &Mesh, out: &mut [DVec3]) {
     });
 }
 
+/// The stencil terms of face `f`'s corner mean, scaled by `w`: each
+/// corner's vertex with `w / n`, along the cycle from its first half-edge
+/// (the order of a face layout's corners). Not for point-sphere faces.
+#[inline]
+pub(crate) fn face_mean_row(m: &Mesh, f: usize, w: f64, row: &mut super::stencil::Row) {
+    let (next, vert, _) = m.halfedge_columns();
+    let k = w / m.face_degree(crate::mesh::FaceId(f as u32)) as f64;
+    let s = m.f_start[f];
+    let mut h = s;
+    loop {
+        row.add(vert[h as usize], k);
+        h = next[h as usize];
+        if h == s {
+            break;
+        }
+    }
+}
+
 /// The sum of face `f`'s vertex positions along its cycle from its first
 /// half-edge, and its number of corners. Not for point-sphere faces.
 #[inline]

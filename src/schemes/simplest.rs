@@ -195,6 +195,20 @@ pub fn simplest_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) 
 /// so with r(x) the rank of x among the hole half-edges in rotation order
 /// they are edges N + 2r(x) and N + 2r(x) + 1 (N = number of F-corners);
 /// every hole corner is a second.
+/// The rows of an open level's points: the edge midpoints, then the kept
+/// boundary vertices `bverts`.
+fn open_point_row<'a>(m: &'a Mesh, bverts: &'a [u32]) -> impl Fn(usize, &mut super::stencil::Row) + Sync + 'a {
+    let (ne, vert) = (m.n_edges(), &m.he_vert);
+    move |i, row| {
+        if i < ne {
+            row.add(vert[2 * i], 0.5);
+            row.add(vert[2 * i + 1], 0.5);
+        } else {
+            row.add(bverts[i - ne], 1.0);
+        }
+    }
+}
+
 fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     use crate::mesh::NONE;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
@@ -351,14 +365,7 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     drop((fl, fbase, r0, rank, fid, bidx));
     // the rows are stored only when asked for (issue 19: peak memory)
     let st;
-    (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, |i, row| {
-        if i < ne {
-            row.add(vert[2 * i], 0.5);
-            row.add(vert[2 * i + 1], 0.5);
-        } else {
-            row.add(bverts[i - ne], 1.0);
-        }
-    })?;
+    (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, open_point_row(m, &bverts))?;
     let mesh = Mesh::from_columns(cols)?;
     Ok(Level { mesh, stencils: st, origins, creases: None })
 }

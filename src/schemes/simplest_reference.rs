@@ -184,14 +184,7 @@ pub(super) fn open_level_via_twins(m: &Mesh, req: &Request) -> Result<Level> {
             }
         }
     }
-    let st = Stencils::build(ne + bverts.len(), nv, |i, row| {
-        if i < ne {
-            row.add(vert[2 * i], 0.5);
-            row.add(vert[2 * i + 1], 0.5);
-        } else {
-            row.add(bverts[i - ne], 1.0);
-        }
-    })?;
+    let st = Stencils::build(ne + bverts.len(), nv, super::open_point_row(m, &bverts))?;
     let pos = st.apply_points(&m.pos)?;
     let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
     let origins = if req.origins {

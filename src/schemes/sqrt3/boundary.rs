@@ -150,19 +150,6 @@ fn boundary_neighbours(m: &Mesh, k: u32) -> (u32, u32) {
     (m.he_vert[(k ^ 1) as usize], m.he_vert[m.he_prev[k as usize] as usize])
 }
 
-fn centroid_row(m: &Mesh, vert: &[u32], f: usize, row: &mut crate::schemes::stencil::Row) {
-    // the cycle walked twice (its size first) instead of collected
-    let w = 1.0 / m.face_degree(crate::mesh::FaceId(f as u32)) as f64;
-    let s = m.f_start[f];
-    let mut h = s;
-    loop {
-        row.add(vert[h as usize], w);
-        h = m.he_next[h as usize];
-        if h == s {
-            break;
-        }
-    }
-}
 
 /// Builds the level from its corners, then its `n_points` points and the
 /// rows when asked for (`points`, [`Stencils::points_and_rows`]), and the
@@ -222,7 +209,7 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
                 kobbelt_row(m, vert, i, row);
             }
         } else {
-            centroid_row(m, vert, real[i - nv], row);
+            crate::schemes::hosts::face_mean_row(m, real[i - nv], 1.0, row);
         }
     });
     let (sizes, holes) = x.faces(1);
@@ -341,7 +328,7 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
                 }
             }
         } else if i < base as usize {
-            centroid_row(m, vert, centred[i - nv], row);
+            crate::schemes::hosts::face_mean_row(m, centred[i - nv], 1.0, row);
         } else {
             let j = i - base as usize;
             let b = sides[j / 2];
