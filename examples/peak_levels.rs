@@ -88,6 +88,11 @@ fn main() {
         "vertex_truncation" => |m| vertex_truncation(m, Truncation::Chaikin),
         _ => catmull_clark,
     };
+    // the levels after the first of `iterations = L` on an input nobody else holds
+    let owned: Option<fn(Mesh) -> topomesh::Result<Mesh>> = match scheme {
+        "sqrt3" | "sqrt3_level" => Some(|m| topomesh::schemes::sqrt3::sqrt3_level_owned(m, &Request::plain()).map(|l| l.mesh)),
+        _ => None,
+    };
     // TOPOMESH_PROF_SMALL: inputs 16-25x smaller (CI runs the debug build)
     let small = std::env::var("TOPOMESH_PROF_SMALL").is_ok();
     let input = if std::env::var("TOPOMESH_PROF_INPUT").is_ok_and(|s| s == "torus") {
@@ -124,7 +129,12 @@ fn main() {
         PEAK.store(base, Relaxed);
         let mut cur: Option<Mesh> = None;
         for _ in 0..l {
-            let next = step(cur.as_ref().unwrap_or(&input)).unwrap();
+            // a previous level is given up where the scheme can use that, as the extension does
+            let next = match (cur.take(), owned) {
+                (Some(m), Some(f)) => f(m).unwrap(),
+                (Some(m), None) => step(&m).unwrap(),
+                (None, _) => step(&input).unwrap(),
+            };
             cur = Some(next);
         }
         let m = cur.unwrap();

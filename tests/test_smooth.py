@@ -521,6 +521,12 @@ def test_sqrt3_matches_reference(mesh_name: str) -> None:
     # two levels on triangles: Kobbelt's triadic split, 9x the faces
     if mesh_name in TRI:
         assert m.sqrt3(iterations=2).n_faces == 9 * m.n_faces
+    # the second level of one call consumes the first (issue 19): the same
+    # mesh, bit for bit, as a call per level (closed inputs: no parity)
+    two, once = m.sqrt3(iterations=2), r.sqrt3()
+    assert np.array_equal(two.vertices, once.vertices)
+    assert np.array_equal(two.face_indices, once.face_indices)
+    assert np.array_equal(two.corner_twins, once.corner_twins)
 
 
 @pytest.mark.parametrize("mesh_name", list(CLEAN))

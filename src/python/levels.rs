@@ -43,7 +43,14 @@ pub(crate) struct Spec {
     /// subdivision matrix. When false (Menger) they are only the attribute
     /// transfer, and the correspondence says so.
     pub linear: bool,
+    /// The level on an input nobody else holds (the previous level of a
+    /// multi-level call), where the scheme frees part of it early (issue
+    /// 19); plain calls only, the output equal to `level`'s.
+    pub owned: Option<OwnedLevel>,
 }
+
+/// A level that takes its input by value.
+pub(crate) type OwnedLevel = fn(Mesh, &Request) -> crate::Result<Level>;
 
 impl Spec {
     /// Catmull-Clark or Loop: creases, face-varying data and direct data
@@ -65,12 +72,13 @@ impl Spec {
             with_data: Some(Box::new(with_data)),
             corner_direct: None,
             linear: true,
+            owned: None,
         })
     }
 
     /// A scheme without crease, face-varying or direct-data rules.
     pub fn plain(name: &'static str, predict: crate::budget::Predictor) -> Spec {
-        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, corner_direct: None, linear: true }
+        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, corner_direct: None, linear: true, owned: None }
     }
 
     /// The scheme's own masks interpolate vertex data (no stencils built
@@ -83,6 +91,11 @@ impl Spec {
     /// applies (it returns `None` where not, and the generic transfer runs).
     pub fn with_corners(self, corners: impl Fn(&Mesh, &Mesh, &[f64], usize) -> crate::Result<Option<Vec<f64>>> + Send + Sync + 'static) -> Spec {
         Spec { corner_direct: Some(Box::new(corners)), ..self }
+    }
+
+    /// Levels after the first take their input by value (`owned`).
+    pub fn with_owned(self, owned: OwnedLevel) -> Spec {
+        Spec { owned: Some(owned), ..self }
     }
 
     /// A scheme whose positions are not linear in the input's: its levels'
@@ -143,9 +156,14 @@ pub(crate) fn run<'py>(
     let input = &slf.inner;
     let options = spec.options;
     if !correspondence && slf.data.is_empty() {
-        let (out, _) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, 0usize, |m, k| {
+        let (out, _) = super::iterate_src(py, input, iterations, progress, spec.name, spec.predict, 0usize, |src, k| {
             *k += 1;
-            level(m, &Request { options, level: *k - 1, ..Default::default() }).map(|l| l.mesh)
+            let req = Request { options, level: *k - 1, ..Default::default() };
+            match (src, spec.owned) {
+                (super::Src::Level(m), Some(owned)) => owned(m, &req),
+                (src, _) => level(&src, &req),
+            }
+            .map(|l| l.mesh)
         })?;
         return Ok(Bound::new(py, PyMesh::wrap(out.unwrap_or_else(|| input.clone())))?.into_any());
     }

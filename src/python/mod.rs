@@ -225,8 +225,42 @@ pub(crate) fn iterate_with<S: Send>(
     progress: bool,
     name: &str,
     predict: crate::budget::Predictor,
-    mut state: S,
+    state: S,
     step: impl Fn(&crate::Mesh, &mut S) -> crate::Result<crate::Mesh> + Sync,
+) -> PyResult<(Option<crate::Mesh>, S)> {
+    iterate_src(py, mesh, iterations, progress, name, predict, state, |src, st| step(&src, st))
+}
+
+/// A level's input in [`iterate_src`]: the caller's mesh, or the previous
+/// level's, which the step may consume.
+pub(crate) enum Src<'a> {
+    Input(&'a crate::Mesh),
+    Level(crate::Mesh),
+}
+
+impl std::ops::Deref for Src<'_> {
+    type Target = crate::Mesh;
+    fn deref(&self) -> &crate::Mesh {
+        match self {
+            Src::Input(m) => m,
+            Src::Level(m) => m,
+        }
+    }
+}
+
+/// [`iterate_with`] whose step owns the previous level (issue 19: an input
+/// freed as soon as it is no longer needed); the level is dropped when the
+/// step returns if the step did not consume it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn iterate_src<S: Send>(
+    py: Python<'_>,
+    mesh: &crate::Mesh,
+    iterations: i128,
+    progress: bool,
+    name: &str,
+    predict: crate::budget::Predictor,
+    mut state: S,
+    step: impl Fn(Src<'_>, &mut S) -> crate::Result<crate::Mesh> + Sync,
 ) -> PyResult<(Option<crate::Mesh>, S)> {
     use crate::budget::{self, Counts};
     use std::sync::atomic::{AtomicU64, Ordering};
@@ -260,8 +294,8 @@ pub(crate) fn iterate_with<S: Send>(
             let mut cur: Option<crate::Mesh> = None;
             for k in 1..=n {
                 crate::cancel::check()?;
-                let src = cur.as_ref().unwrap_or(mesh);
-                budget::check_level(name, k, n, &Counts::of(src), predict)?;
+                let src = cur.take().map_or(Src::Input(mesh), Src::Level);
+                budget::check_level(name, k, n, &Counts::of(&src), predict)?;
                 cur = Some(step(src, &mut state)?);
                 done.store(k, Ordering::Relaxed);
             }

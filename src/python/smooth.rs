@@ -115,7 +115,7 @@ impl PyMesh {
     /// as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn sqrt3<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("sqrt3", predict::sqrt3).with_direct(schemes::sqrt3::sqrt3_level_with).with_corners(schemes::corner_direct::sqrt3), correspondence, schemes::sqrt3::sqrt3_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("sqrt3", predict::sqrt3).with_direct(schemes::sqrt3::sqrt3_level_with).with_corners(schemes::corner_direct::sqrt3).with_owned(schemes::sqrt3::sqrt3_level_owned), correspondence, schemes::sqrt3::sqrt3_level)
     }
 
     /// The simplest subdivision scheme (Peters & Reif 1997): mid-edge

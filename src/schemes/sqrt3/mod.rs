@@ -70,10 +70,30 @@ pub(super) fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut super::ste
     }
 }
 
+/// Connectivity first, positions last: the edge numbering's scratch
+/// (`base`, 4 B per output triangle) is freed before the positions exist.
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
-    let pos = positions(m)?;
-    Mesh::from_columns(columns(m, pos)?)
+    let mut cols = columns(m)?;
+    cols.pos = positions(m)?;
+    Mesh::from_columns(cols)
+}
+
+/// [`step`] on a level's input that nobody else holds (the previous level
+/// of a multi-level call, issue 19: "input freed as soon as it is no
+/// longer needed"): once the output's connectivity is written, the input's
+/// face column and hole flags go before the output's positions are
+/// allocated, since [`positions`] walks only rings (`v_out`, `he_prev`),
+/// face cycles (`f_start`, `he_next`) and `he_vert`. The output is
+/// [`step`]'s, bit for bit (`owned_level_equals_the_borrowed_one`).
+fn step_owned(mut m: Mesh) -> Result<Mesh> {
+    check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
+    let mut cols = columns(&m)?;
+    m.he_face = Vec::new();
+    m.f_hole = Vec::new();
+    cols.pos = positions(&m)?;
+    drop(m);
+    Mesh::from_columns(cols)
 }
 
 /// The closed-mesh output positions `[V | F]`: Kobbelt's smoothed old
@@ -115,7 +135,8 @@ const SCAN_CHUNK: usize = 1 << 14;
 /// h's first); spoke corner 3h pairs with 3j + 2, j = next(h ^ 1), and 3h
 /// is first exactly when h ≤ j. A prefix over the triangles of their first
 /// corners gives every edge id; then each column entry is a lookup.
-fn columns(m: &Mesh, pos: Vec<DVec3>) -> Result<Columns> {
+/// The positions are left for the caller (`pos` empty, `v_out` sized).
+fn columns(m: &Mesh) -> Result<Columns> {
     let (nv, nh) = (m.n_vertices(), m.n_halfedges());
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -154,7 +175,7 @@ fn columns(m: &Mesh, pos: Vec<DVec3>) -> Result<Columns> {
     let id0 = |h: usize| if first0(h) { 2 * base[h] } else { 2 * e2(next[h ^ 1] as usize) + 1 };
     let id1 = |h: usize| if h & 1 == 0 { 2 * e1(h) } else { 2 * e1(h ^ 1) + 1 };
     let id2 = |h: usize| if first2(h) { 2 * e2(h) } else { 2 * base[(prev[h] ^ 1) as usize] + 1 };
-    let mut cols = Columns::new(pos, 3 * nh, nh);
+    let mut cols = Columns::for_points(nv + m.n_faces(), 3 * nh, nh);
     let nvu = nv as u32;
     {
         let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
@@ -313,6 +334,18 @@ pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
     })
 }
 
+/// [`sqrt3_level`] on an input the caller gives up (a previous level of a
+/// multi-level call): a closed mesh without point-spheres, asked for no
+/// stencils or origins, takes [`step_owned`], which frees part of the input
+/// before the output's positions exist; anything else is [`sqrt3_level`]'s.
+pub fn sqrt3_level_owned(m: Mesh, req: &Request) -> Result<Level> {
+    crate::cancel::check()?;
+    if m.n_holes() > 0 || req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+        return sqrt3_level(&m, req);
+    }
+    Ok(Level { mesh: step_owned(m)?, stencils: None, origins: None, creases: None })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -347,6 +380,34 @@ mod tests {
             assert!(origin_counts(&o.edge_kind, &o.edge, EDGE, m.n_edges()).iter().all(|&c| c == 1), "{name}");
             assert_eq!(o.face_kind.iter().filter(|&&k| k == FACE).count(), ps, "{name}");
         });
+    }
+
+    #[test]
+    fn owned_level_equals_the_borrowed_one() {
+        // closed, open (falls back) and point-sphere (falls back) inputs; the
+        // comparison is bitwise (Mesh's PartialEq compares positions exactly)
+        let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+        cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
+        for (name, m) in cases {
+            for level in 0..2 {
+                let req = Request { level, ..Request::plain() };
+                // an odd level refuses some open inputs: both paths alike
+                let a = match sqrt3_level(&m, &req) {
+                    Ok(l) => l.mesh,
+                    Err(e) => {
+                        assert_eq!(sqrt3_level_owned(m.clone(), &req).unwrap_err().to_string(), e.to_string(), "{name}");
+                        continue;
+                    }
+                };
+                let b = sqrt3_level_owned(m.clone(), &req).unwrap().mesh;
+                assert_eq!(a, b, "{name} level {level}");
+                assert_eq!(a.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>(),
+                    b.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>(), "{name}");
+            }
+        }
+        // the owned path is the one taken on a closed mesh: same output as the plain step
+        let t = crate::primitives::torus(12, 8, 3.0, 1.0).unwrap();
+        assert_eq!(step_owned(t.clone()).unwrap(), step(&t).unwrap());
     }
 
     #[test]
