@@ -37,9 +37,10 @@
 //! in CGAL, so `sqrt3(iterations=2)` on an open mesh is not two calls of
 //! `sqrt3(iterations=1)` (each of those is an odd step).
 
+use super::boundary_columns::{self, Group};
 use super::kobbelt_row;
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::{Columns, Mesh, NONE};
 use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use crate::schemes::stencil::Stencils;
 
@@ -53,17 +54,17 @@ pub(super) fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     }
 }
 
-struct Ctx<'a> {
-    m: &'a Mesh,
+pub(super) struct Ctx<'a> {
+    pub m: &'a Mesh,
     next: &'a [u32],
     prev: &'a [u32],
     vert: &'a [u32],
     face: &'a [u32],
     /// Output triangle of every real half-edge (`NONE` for hole ones).
-    tri: Vec<u32>,
+    pub tri: Vec<u32>,
     /// First output corner of every hole half-edge (`NONE` for real ones).
     hole_corner: Vec<u32>,
-    n_tri: usize,
+    pub n_tri: usize,
 }
 
 impl<'a> Ctx<'a> {
@@ -106,7 +107,8 @@ impl<'a> Ctx<'a> {
     }
 
     /// Output sizes and hole flags: a triangle per real half-edge, then the
-    /// holes with `per_hole` corners per side.
+    /// holes with `per_hole` corners per side (the list build's input).
+    #[cfg(test)]
     fn faces(&self, per_hole: u32) -> (Vec<u32>, Vec<bool>) {
         let mut sizes = vec![3u32; self.n_tri];
         let mut holes = vec![false; self.n_tri];
@@ -120,7 +122,7 @@ impl<'a> Ctx<'a> {
     }
 
     /// The hole faces of the input in output face order.
-    fn hole_faces(&self) -> impl Iterator<Item = u32> + '_ {
+    pub fn hole_faces(&self) -> impl Iterator<Item = u32> + '_ {
         (0..self.m.n_faces() as u32).filter(|&f| self.m.f_hole[f as usize])
     }
 
@@ -130,17 +132,18 @@ impl<'a> Ctx<'a> {
         (self.tri, self.hole_corner) = (Vec::new(), Vec::new());
     }
 
-    /// The one hole half-edge leaving `v`, `None` when `v` is interior,
-    /// `Some(NONE)` when it lies on more than one boundary loop.
-    fn hole_out(&self, v: usize) -> Option<u32> {
-        let mut found = None;
-        for h in crate::schemes::creases::ring(self.m, self.m.v_out[v]) {
-            if self.hole(h) {
-                found = Some(if found.is_some() { NONE } else { h });
-            }
+}
+
+/// The one hole half-edge leaving `v`, `None` when `v` is interior,
+/// `Some(NONE)` when it lies on more than one boundary loop.
+fn hole_out(m: &Mesh, v: usize) -> Option<u32> {
+    let mut found = None;
+    for h in crate::schemes::creases::ring(m, m.v_out[v]) {
+        if m.f_hole[m.he_face[h as usize] as usize] {
+            found = Some(if found.is_some() { NONE } else { h });
         }
-        found
     }
+    found
 }
 
 /// The neighbours `(u, w)` along the boundary of a vertex `v` with one
@@ -151,27 +154,62 @@ fn boundary_neighbours(m: &Mesh, k: u32) -> (u32, u32) {
 }
 
 
-/// Builds the level from its corners, then its `n_points` points and the
-/// rows when asked for (`points`, [`Stencils::points_and_rows`]), and the
-/// per-corner edge origins.
-#[allow(clippy::too_many_arguments)]
+/// The correspondence's face origins (triangles in order, then the holes)
+/// and corner origins, read off the groups.
+fn group_origins(x: &Ctx, per_hole: u32, group: &impl Fn(usize) -> Group) -> (Vec<(u8, u32)>, Vec<(u8, u32)>) {
+    let nh = x.m.n_halfedges();
+    let mut corner_origin = vec![(0u8, 0u32); 3 * x.n_tri + per_hole as usize * (nh - x.n_tri)];
+    let mut face_origin = Vec::with_capacity(x.n_tri);
+    for h in 0..nh {
+        let g = group(h);
+        if x.tri[h] != NONE {
+            face_origin.push(g.face_origin);
+        }
+        corner_origin[g.c as usize..(g.c + g.n) as usize].copy_from_slice(&g.origin[..g.n as usize]);
+    }
+    face_origin.extend(x.hole_faces().map(|f| (FACE, f)));
+    (face_origin, corner_origin)
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: build through the corner lists and `Mesh::from_trusted_twins`
+    /// instead of [`boundary_columns::columns`].
+    pub(super) static LIST_BUILD: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// The level's columns from its groups (positions left to [`finish`]).
+fn build(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(usize) -> Group + Sync) -> Result<Columns> {
+    #[cfg(test)]
+    if LIST_BUILD.with(|b| b.get()) {
+        let (cv, tw) = boundary_columns::lists(x, per_hole, group);
+        let (sizes, holes) = x.faces(per_hole);
+        let (m, ()) = Mesh::from_trusted_twins(n_points, sizes, cv, tw, holes, || Ok((vec![glam::DVec3::ZERO; n_points], ())))?;
+        let mut c = m.into_columns();
+        c.pos = Vec::new();
+        return Ok(c);
+    }
+    boundary_columns::columns(x, per_hole, n_points, group)
+}
+
+/// The level from its columns, then its `n_points` points and the rows when
+/// asked for (`points`, [`Stencils::points_and_rows`]), and the per-corner
+/// edge origins.
 fn finish(
     req: &Request,
     (n_points, points): (usize, impl FnOnce() -> Result<(Vec<glam::DVec3>, Option<Stencils>)>),
-    sizes: Vec<u32>,
-    holes: Vec<bool>,
-    cv: Vec<u32>,
-    tw: Vec<u32>,
+    mut cols: Columns,
     vertex_origin: Vec<(u8, u32)>,
     face_origin: Vec<(u8, u32)>,
     corner_origin: Vec<(u8, u32)>,
 ) -> Result<Level> {
-    // the corners' half-edge ids as `from_corner_twins` numbers them (edges
-    // by first corner), then the columns straight from them: the twins are
-    // this module's own, so the general builder's pairing checks and
-    // umbrella walk are skipped (the tests validate every output); the
-    // corner lists are freed before the points are computed (issue 19)
-    let (mesh, st) = Mesh::from_trusted_twins(n_points, sizes, cv, tw, holes, points)?;
+    // the positions after the connectivity, once the step's tables are freed (issue 19)
+    let st;
+    (cols.pos, st) = points()?;
+    if cols.pos.len() != n_points {
+        return Err(MeshError::Invariant(format!("sqrt3: {} points for {n_points} vertices", cols.pos.len())));
+    }
+    let mesh = Mesh::from_columns(cols)?;
     let origins = if req.origins {
         let mut o = Origins::with_capacity(mesh.n_vertices(), mesh.n_edges(), mesh.n_faces());
         (o.vertex_kind, o.vertex) = vertex_origin.into_iter().unzip();
@@ -190,14 +228,15 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
     let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
     // face points of the real faces
     let mut fpt = vec![NONE; nf];
-    let mut real = Vec::new();
+    // (u32, exactly sized: it lives until the points are computed)
+    let mut real: Vec<u32> = Vec::with_capacity(nf - m.n_holes());
     for f in 0..nf {
         if !m.f_hole[f] {
             fpt[f] = (nv + real.len()) as u32;
-            real.push(f);
+            real.push(f as u32);
         }
     }
-    let boundary: Vec<bool> = (0..nv).map(|v| x.hole_out(v).is_some()).collect();
+    let boundary: Vec<bool> = (0..nv).map(|v| hole_out(m, v).is_some()).collect();
     // the rows are stored only when asked for (issue 19: peak memory); the
     // points are computed after the connectivity (`finish`)
     let n_points = nv + real.len();
@@ -209,69 +248,55 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
                 kobbelt_row(m, vert, i, row);
             }
         } else {
-            crate::schemes::hosts::face_mean_row(m, real[i - nv], 1.0, row);
+            crate::schemes::hosts::face_mean_row(m, real[i - nv] as usize, 1.0, row);
         }
     });
-    let (sizes, holes) = x.faces(1);
-    let n_corners = 3 * x.n_tri + (m.n_halfedges() - x.n_tri);
-    let mut cv = vec![0u32; n_corners];
-    let mut tw = vec![0u32; n_corners];
-    let mut corner_origin = vec![(0u8, 0u32); if req.origins { n_corners } else { 0 }];
-    let mut face_origin = Vec::with_capacity(if req.origins { sizes.len() } else { 0 });
-    for h in 0..m.n_halfedges() {
-        crate::cancel::poll(h)?;
+    let xr = &x;
+    let fpt_r = &fpt;
+    let group = move |h: usize| -> Group {
         let hu = h as u32;
-        let f = face[h];
-        if x.hole(hu) {
-            let c = x.hole_corner[h] as usize;
-            cv[c] = vert[h];
-            tw[c] = 3 * x.tri[h ^ 1];
-            if req.origins {
-                corner_origin[c] = (EDGE, hu >> 1);
-            }
-            continue;
+        if xr.hole(hu) {
+            // a hole side keeps its corner
+            return Group { c: xr.hole_corner[h], n: 1, cv: [vert[h], 0, 0], tw: [3 * xr.tri[h ^ 1], 0, 0], origin: [(EDGE, hu >> 1); 3], face_origin: (0, 0) };
         }
-        let b = 3 * x.tri[h] as usize;
-        let t = hu ^ 1;
+        let b = 3 * xr.tri[h];
+        let (t, f) = (hu ^ 1, face[h]);
         // the spoke c_f → a: its other side is in the piece of prev(h)'s
         // twin, or in prev(h)'s own boundary piece when prev(h) is a boundary side
         let p = prev[h];
-        tw[b + 2] = if x.hole(p ^ 1) { 3 * x.tri[p as usize] + 1 } else { 3 * x.tri[(p ^ 1) as usize] };
-        cv[b] = vert[h];
-        cv[b + 2] = fpt[f as usize];
-        if x.hole(t) {
+        let tw2 = if xr.hole(p ^ 1) { 3 * xr.tri[p as usize] + 1 } else { 3 * xr.tri[(p ^ 1) as usize] };
+        if xr.hole(t) {
             // boundary side a → b kept: [a, b, c_f]
-            cv[b + 1] = vert[t as usize];
-            tw[b] = x.hole_corner[t as usize];
-            tw[b + 1] = 3 * x.tri[next[h] as usize] + 2;
-            if req.origins {
-                face_origin.push((FACE, f));
-                corner_origin[b] = (EDGE, hu >> 1);
-                corner_origin[b + 1] = (FACE, f);
-                corner_origin[b + 2] = (FACE, f);
+            Group {
+                c: b,
+                n: 3,
+                cv: [vert[h], vert[t as usize], fpt_r[f as usize]],
+                tw: [xr.hole_corner[t as usize], 3 * xr.tri[next[h] as usize] + 2, tw2],
+                origin: [(EDGE, hu >> 1), (FACE, f), (FACE, f)],
+                face_origin: (FACE, f),
             }
         } else {
             let g = face[t as usize];
-            cv[b + 1] = fpt[g as usize];
-            tw[b] = 3 * x.tri[next[t as usize] as usize] + 2;
-            tw[b + 1] = 3 * x.tri[t as usize] + 1;
-            if req.origins {
-                face_origin.push((EDGE, hu >> 1));
-                corner_origin[b] = (FACE, g);
-                corner_origin[b + 1] = (EDGE, hu >> 1);
-                corner_origin[b + 2] = (FACE, f);
+            Group {
+                c: b,
+                n: 3,
+                cv: [vert[h], fpt_r[g as usize], fpt_r[f as usize]],
+                tw: [3 * xr.tri[next[t as usize] as usize] + 2, 3 * xr.tri[t as usize] + 1, tw2],
+                origin: [(FACE, g), (EDGE, hu >> 1), (FACE, f)],
+                face_origin: (EDGE, hu >> 1),
             }
         }
-    }
-    let vertex_origin = if req.origins {
-        face_origin.extend(x.hole_faces().map(|f| (FACE, f)));
-        (0..nv as u32).map(|v| (VERTEX, v)).chain(real.iter().map(|&f| (FACE, f as u32))).collect()
-    } else {
-        vec![]
     };
+    let (face_origin, corner_origin, vertex_origin) = if req.origins {
+        let (fo, co) = group_origins(xr, 1, &group);
+        (fo, co, (0..nv as u32).map(|v| (VERTEX, v)).chain(real.iter().map(|&f| (FACE, f))).collect())
+    } else {
+        (vec![], vec![], vec![])
+    };
+    let cols = build(xr, 1, n_points, group)?;
     drop(fpt);
     x.release();
-    finish(req, (n_points, points), sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+    finish(req, (n_points, points), cols, vertex_origin, face_origin, corner_origin)
 }
 
 fn even(m: &Mesh, req: &Request) -> Result<Level> {
@@ -298,55 +323,56 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     }
     // output vertices: old | centroids of the faces without a boundary side | two per boundary side
     let mut fpt = vec![NONE; nf];
-    let mut centred = Vec::new();
+    // (u32, exactly sized: it lives until the points are computed)
+    let mut centred: Vec<u32> = Vec::with_capacity((0..nf).filter(|&f| !m.f_hole[f] && bside[f] == NONE).count());
     for f in 0..nf {
         if !m.f_hole[f] && bside[f] == NONE {
             fpt[f] = (nv + centred.len()) as u32;
-            centred.push(f);
+            centred.push(f as u32);
         }
     }
     let base = (nv + centred.len()) as u32;
+    // the boundary sides in face order: a side's index by binary search on its face
     let sides: Vec<u32> = (0..nf).filter_map(|f| (bside[f] != NONE).then_some(bside[f])).collect();
-    let mut side_index = vec![NONE; nh];
-    for (i, &b) in sides.iter().enumerate() {
-        side_index[b as usize] = i as u32;
-    }
-    let n1 = |b: u32| base + 2 * side_index[b as usize];
-    let n2 = |b: u32| base + 2 * side_index[b as usize] + 1;
-    let hole_out: Vec<Option<u32>> = (0..nv).map(|v| x.hole_out(v)).collect();
+    let side_index = |b: u32| sides.partition_point(|&s| face[s as usize] < face[b as usize]) as u32;
+    let n1 = |b: u32| base + 2 * side_index(b);
+    let n2 = |b: u32| base + 2 * side_index(b) + 1;
     let n_points = base as usize + 2 * sides.len();
-    let points = || Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
-        if i < nv {
-            match hole_out[i] {
-                None => kobbelt_row(m, vert, i, row),
-                Some(NONE) => row.add(i as u32, 1.0),
-                Some(k) => {
-                    let (u, w) = boundary_neighbours(m, k);
-                    row.add(u, 4.0 / 27.0);
-                    row.add(i as u32, 19.0 / 27.0);
-                    row.add(w, 4.0 / 27.0);
+    let points = || {
+        let hole_out: Vec<Option<u32>> = (0..nv).map(|v| hole_out(m, v)).collect();
+        Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
+            if i < nv {
+                match hole_out[i] {
+                    None => kobbelt_row(m, vert, i, row),
+                    Some(NONE) => row.add(i as u32, 1.0),
+                    Some(k) => {
+                        let (u, w) = boundary_neighbours(m, k);
+                        row.add(u, 4.0 / 27.0);
+                        row.add(i as u32, 19.0 / 27.0);
+                        row.add(w, 4.0 / 27.0);
+                    }
+                }
+            } else if i < base as usize {
+                crate::schemes::hosts::face_mean_row(m, centred[i - nv] as usize, 1.0, row);
+            } else {
+                let j = i - base as usize;
+                let b = sides[j / 2];
+                let k = b ^ 1;
+                let (s, t) = (vert[b as usize], vert[k as usize]);
+                if j % 2 == 0 {
+                    let u = vert[(next[k as usize] ^ 1) as usize];
+                    row.add(s, 16.0 / 27.0);
+                    row.add(t, 10.0 / 27.0);
+                    row.add(u, 1.0 / 27.0);
+                } else {
+                    let w = vert[prev[k as usize] as usize];
+                    row.add(s, 10.0 / 27.0);
+                    row.add(t, 16.0 / 27.0);
+                    row.add(w, 1.0 / 27.0);
                 }
             }
-        } else if i < base as usize {
-            crate::schemes::hosts::face_mean_row(m, centred[i - nv], 1.0, row);
-        } else {
-            let j = i - base as usize;
-            let b = sides[j / 2];
-            let k = b ^ 1;
-            let (s, t) = (vert[b as usize], vert[k as usize]);
-            if j % 2 == 0 {
-                let u = vert[(next[k as usize] ^ 1) as usize];
-                row.add(s, 16.0 / 27.0);
-                row.add(t, 10.0 / 27.0);
-                row.add(u, 1.0 / 27.0);
-            } else {
-                let w = vert[prev[k as usize] as usize];
-                row.add(s, 10.0 / 27.0);
-                row.add(t, 16.0 / 27.0);
-                row.add(w, 1.0 / 27.0);
-            }
-        }
-    });
+        })
+    };
     // P(f, h): the point of face f that the flipped edge of h reaches
     let point = |h: u32| -> u32 {
         let f = face[h as usize] as usize;
@@ -359,62 +385,42 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
             n2(b)
         }
     };
-    let (sizes, holes) = x.faces(3);
-    let n_corners = 3 * x.n_tri + 3 * (nh - x.n_tri);
-    let mut cv = vec![0u32; n_corners];
-    let mut tw = vec![0u32; n_corners];
-    let mut corner_origin = vec![(0u8, 0u32); if req.origins { n_corners } else { 0 }];
-    let mut face_origin = Vec::with_capacity(if req.origins { sizes.len() } else { 0 });
-    let tri = |h: u32| 3 * x.tri[h as usize];
-    for h in 0..nh {
-        crate::cancel::poll(h)?;
+    let xr = &x;
+    let tri = |h: u32| 3 * xr.tri[h as usize];
+    let group = |h: usize| -> Group {
         let hu = h as u32;
         let f = face[h];
-        if x.hole(hu) {
+        if xr.hole(hu) {
             // hole side k = b^1 (t → s) becomes t → n₂ → n₁ → s
             let b = hu ^ 1;
-            let c = x.hole_corner[h] as usize;
-            cv[c] = vert[h];
-            cv[c + 1] = n2(b);
-            cv[c + 2] = n1(b);
-            tw[c] = tri(next[b as usize]) + 2;
-            tw[c + 1] = tri(b);
-            tw[c + 2] = tri(prev[b as usize] ^ 1);
-            if req.origins {
-                for i in 0..3 {
-                    corner_origin[c + i] = (EDGE, hu >> 1);
-                }
-            }
-            continue;
+            return Group {
+                c: xr.hole_corner[h],
+                n: 3,
+                cv: [vert[h], n2(b), n1(b)],
+                tw: [tri(next[b as usize]) + 2, tri(b), tri(prev[b as usize] ^ 1)],
+                origin: [(EDGE, hu >> 1); 3],
+                face_origin: (0, 0),
+            };
         }
-        let c = tri(hu) as usize;
+        let c = tri(hu);
         let t = hu ^ 1;
-        if x.hole(t) {
+        if xr.hole(t) {
             // the middle triangle [n₁, n₂, x] of the boundary face
             let (p, n) = (prev[h], next[h]);
-            cv[c] = n1(hu);
-            cv[c + 1] = n2(hu);
-            cv[c + 2] = vert[p as usize];
-            tw[c] = x.hole_corner[t as usize] + 1;
-            tw[c + 1] = tri(n ^ 1);
-            tw[c + 2] = tri(p) + 2;
-            if req.origins {
-                face_origin.push((FACE, f));
-                corner_origin[c] = (EDGE, hu >> 1);
-                corner_origin[c + 1] = (FACE, f);
-                corner_origin[c + 2] = (FACE, f);
-            }
-            continue;
+            return Group {
+                c,
+                n: 3,
+                cv: [n1(hu), n2(hu), vert[p as usize]],
+                tw: [xr.hole_corner[t as usize] + 1, tri(n ^ 1), tri(p) + 2],
+                origin: [(EDGE, hu >> 1), (FACE, f), (FACE, f)],
+                face_origin: (FACE, f),
+            };
         }
         // interior side a → b: [a, P(g, t), P(f, h)]
         let g = face[t as usize];
-        cv[c] = vert[h];
-        cv[c + 1] = point(t);
-        cv[c + 2] = point(hu);
-        tw[c + 1] = tri(t) + 1;
         let bg = bside[g as usize];
         let (tw0, o0) = if bg != NONE && t == prev[bg as usize] {
-            (x.hole_corner[(bg ^ 1) as usize] + 2, (EDGE, bg >> 1)) // s → n₁ on the boundary
+            (xr.hole_corner[(bg ^ 1) as usize] + 2, (EDGE, bg >> 1)) // s → n₁ on the boundary
         } else if bg != NONE && t == next[bg as usize] {
             (tri(bg) + 1, (FACE, g)) // x → n₂, the middle triangle's side
         } else {
@@ -424,30 +430,32 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
         let (tw2, o2) = if bf != NONE && hu == prev[bf as usize] {
             (tri(bf) + 2, (FACE, f)) // n₁ → x
         } else if bf != NONE && hu == next[bf as usize] {
-            (x.hole_corner[(bf ^ 1) as usize], (EDGE, bf >> 1)) // n₂ → t on the boundary
+            (xr.hole_corner[(bf ^ 1) as usize], (EDGE, bf >> 1)) // n₂ → t on the boundary
         } else {
             (tri(prev[h] ^ 1), (FACE, f))
         };
-        tw[c] = tw0;
-        tw[c + 2] = tw2;
-        if req.origins {
-            face_origin.push((EDGE, hu >> 1));
-            corner_origin[c] = o0;
-            corner_origin[c + 1] = (EDGE, hu >> 1);
-            corner_origin[c + 2] = o2;
+        Group {
+            c,
+            n: 3,
+            cv: [vert[h], point(t), point(hu)],
+            tw: [tw0, tri(t) + 1, tw2],
+            origin: [o0, (EDGE, hu >> 1), o2],
+            face_origin: (EDGE, hu >> 1),
         }
-    }
-    let vertex_origin = if req.origins {
-        face_origin.extend(x.hole_faces().map(|f| (FACE, f)));
-        (0..nv as u32)
-            .map(|v| (VERTEX, v))
-            .chain(centred.iter().map(|&f| (FACE, f as u32)))
-            .chain(sides.iter().flat_map(|&b| [(EDGE, b >> 1), (EDGE, b >> 1)]))
-            .collect()
-    } else {
-        vec![]
     };
-    drop((fpt, bside, side_index));
+    let (face_origin, corner_origin, vertex_origin) = if req.origins {
+        let (fo, co) = group_origins(xr, 3, &group);
+        let vo = (0..nv as u32)
+            .map(|v| (VERTEX, v))
+            .chain(centred.iter().map(|&f| (FACE, f)))
+            .chain(sides.iter().flat_map(|&b| [(EDGE, b >> 1), (EDGE, b >> 1)]))
+            .collect();
+        (fo, co, vo)
+    } else {
+        (vec![], vec![], vec![])
+    };
+    let cols = build(xr, 3, n_points, group)?;
+    drop((fpt, bside));
     x.release();
-    finish(req, (n_points, points), sizes, holes, cv, tw, vertex_origin, face_origin, corner_origin)
+    finish(req, (n_points, points), cols, vertex_origin, face_origin, corner_origin)
 }

@@ -29,6 +29,7 @@
 //! edge → (EDGE, e); a spoke lies inside its face → (FACE, f).
 
 mod boundary;
+mod boundary_columns;
 #[cfg(test)]
 mod boundary_tests;
 /// The builder [`columns`] replaced, kept as the reference it must equal.
