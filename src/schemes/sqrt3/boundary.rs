@@ -61,9 +61,12 @@ pub(super) struct Ctx<'a> {
     vert: &'a [u32],
     face: &'a [u32],
     /// Output triangle of every real half-edge (`NONE` for hole ones).
-    pub tri: Vec<u32>,
+    tri: Vec<u32>,
     /// First output corner of every hole half-edge (`NONE` for real ones).
     hole_corner: Vec<u32>,
+    /// The hole half-edges, one bit each (one cached read instead of the
+    /// face and hole-flag reads the closed forms would repeat).
+    holes: Vec<u64>,
     pub n_tri: usize,
 }
 
@@ -72,10 +75,13 @@ impl<'a> Ctx<'a> {
     fn new(m: &'a Mesh, per_hole: u32) -> Result<Ctx<'a>> {
         let (next, vert, face) = m.halfedge_columns();
         let nh = m.n_halfedges();
+        let mut holes = vec![0u64; nh.div_ceil(64)];
         let mut tri = vec![NONE; nh];
         let mut n_tri = 0u32;
         for h in 0..nh {
-            if !m.f_hole[face[h] as usize] {
+            if m.f_hole[face[h] as usize] {
+                holes[h / 64] |= 1 << (h % 64);
+            } else {
                 tri[h] = n_tri;
                 n_tri += 1;
             }
@@ -98,12 +104,30 @@ impl<'a> Ctx<'a> {
                 }
             }
         }
-        Ok(Ctx { m, next, prev: &m.he_prev, vert, face, tri, hole_corner, n_tri: n_tri as usize })
+        Ok(Ctx { m, next, prev: &m.he_prev, vert, face, tri, hole_corner, holes, n_tri: n_tri as usize })
     }
 
     #[inline]
-    fn hole(&self, h: u32) -> bool {
-        self.m.f_hole[self.face[h as usize] as usize]
+    pub fn hole(&self, h: u32) -> bool {
+        self.holes[h as usize / 64] >> (h % 64) & 1 == 1
+    }
+
+    /// The output triangle of real half-edge `h` (`NONE` for a hole one).
+    #[inline]
+    pub fn tri(&self, h: u32) -> u32 {
+        self.tri[h as usize]
+    }
+
+    /// The first output corner of hole half-edge `h`.
+    #[inline]
+    fn hole_corner(&self, h: u32) -> u32 {
+        self.hole_corner[h as usize]
+    }
+
+    /// Frees the corner tables once the columns are written (issue 19: they
+    /// are not needed for the points).
+    fn release(&mut self) {
+        (self.tri, self.hole_corner) = (Vec::new(), Vec::new());
     }
 
     /// Output sizes and hole flags: a triangle per real half-edge, then the
@@ -126,11 +150,6 @@ impl<'a> Ctx<'a> {
         (0..self.m.n_faces() as u32).filter(|&f| self.m.f_hole[f as usize])
     }
 
-    /// Frees the corner tables once the corners are written (issue 19: they
-    /// are not needed for the points).
-    fn release(&mut self) {
-        (self.tri, self.hole_corner) = (Vec::new(), Vec::new());
-    }
 
 }
 
@@ -156,13 +175,13 @@ fn boundary_neighbours(m: &Mesh, k: u32) -> (u32, u32) {
 
 /// The correspondence's face origins (triangles in order, then the holes)
 /// and corner origins, read off the groups.
-fn group_origins(x: &Ctx, per_hole: u32, group: &impl Fn(usize) -> Group) -> (Vec<(u8, u32)>, Vec<(u8, u32)>) {
+fn group_origins(x: &Ctx, per_hole: u32, group: &impl Fn(usize, bool) -> Group) -> (Vec<(u8, u32)>, Vec<(u8, u32)>) {
     let nh = x.m.n_halfedges();
     let mut corner_origin = vec![(0u8, 0u32); 3 * x.n_tri + per_hole as usize * (nh - x.n_tri)];
     let mut face_origin = Vec::with_capacity(x.n_tri);
     for h in 0..nh {
-        let g = group(h);
-        if x.tri[h] != NONE {
+        let g = group(h, false);
+        if !x.hole(h as u32) {
             face_origin.push(g.face_origin);
         }
         corner_origin[g.c as usize..(g.c + g.n) as usize].copy_from_slice(&g.origin[..g.n as usize]);
@@ -179,7 +198,7 @@ thread_local! {
 }
 
 /// The level's columns from its groups (positions left to [`finish`]).
-fn build(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(usize) -> Group + Sync) -> Result<Columns> {
+fn build(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(usize, bool) -> Group + Sync) -> Result<Columns> {
     #[cfg(test)]
     if LIST_BUILD.with(|b| b.get()) {
         let (cv, tw) = boundary_columns::lists(x, per_hole, group);
@@ -253,25 +272,25 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
     });
     let xr = &x;
     let fpt_r = &fpt;
-    let group = move |h: usize| -> Group {
+    let group = move |h: usize, with_cv: bool| -> Group {
         let hu = h as u32;
         if xr.hole(hu) {
             // a hole side keeps its corner
-            return Group { c: xr.hole_corner[h], n: 1, cv: [vert[h], 0, 0], tw: [3 * xr.tri[h ^ 1], 0, 0], origin: [(EDGE, hu >> 1); 3], face_origin: (0, 0) };
+            return Group { c: xr.hole_corner(hu), n: 1, cv: [if with_cv { vert[h] } else { 0 }, 0, 0], tw: [3 * xr.tri(hu ^ 1), 0, 0], origin: [(EDGE, hu >> 1); 3], face_origin: (0, 0) };
         }
-        let b = 3 * xr.tri[h];
+        let b = 3 * xr.tri(hu);
         let (t, f) = (hu ^ 1, face[h]);
         // the spoke c_f → a: its other side is in the piece of prev(h)'s
         // twin, or in prev(h)'s own boundary piece when prev(h) is a boundary side
         let p = prev[h];
-        let tw2 = if xr.hole(p ^ 1) { 3 * xr.tri[p as usize] + 1 } else { 3 * xr.tri[(p ^ 1) as usize] };
+        let tw2 = if xr.hole(p ^ 1) { 3 * xr.tri(p) + 1 } else { 3 * xr.tri(p ^ 1) };
         if xr.hole(t) {
             // boundary side a → b kept: [a, b, c_f]
             Group {
                 c: b,
                 n: 3,
-                cv: [vert[h], vert[t as usize], fpt_r[f as usize]],
-                tw: [xr.hole_corner[t as usize], 3 * xr.tri[next[h] as usize] + 2, tw2],
+                cv: if with_cv { [vert[h], vert[t as usize], fpt_r[f as usize]] } else { [0; 3] },
+                tw: [xr.hole_corner(t), 3 * xr.tri(next[h]) + 2, tw2],
                 origin: [(EDGE, hu >> 1), (FACE, f), (FACE, f)],
                 face_origin: (FACE, f),
             }
@@ -280,8 +299,8 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
             Group {
                 c: b,
                 n: 3,
-                cv: [vert[h], fpt_r[g as usize], fpt_r[f as usize]],
-                tw: [3 * xr.tri[next[t as usize] as usize] + 2, 3 * xr.tri[t as usize] + 1, tw2],
+                cv: if with_cv { [vert[h], fpt_r[g as usize], fpt_r[f as usize]] } else { [0; 3] },
+                tw: [3 * xr.tri(next[t as usize]) + 2, 3 * xr.tri(t) + 1, tw2],
                 origin: [(FACE, g), (EDGE, hu >> 1), (FACE, f)],
                 face_origin: (EDGE, hu >> 1),
             }
@@ -386,17 +405,17 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
         }
     };
     let xr = &x;
-    let tri = |h: u32| 3 * xr.tri[h as usize];
-    let group = |h: usize| -> Group {
+    let tri = |h: u32| 3 * xr.tri(h);
+    let group = |h: usize, with_cv: bool| -> Group {
         let hu = h as u32;
         let f = face[h];
         if xr.hole(hu) {
             // hole side k = b^1 (t → s) becomes t → n₂ → n₁ → s
             let b = hu ^ 1;
             return Group {
-                c: xr.hole_corner[h],
+                c: xr.hole_corner(hu),
                 n: 3,
-                cv: [vert[h], n2(b), n1(b)],
+                cv: if with_cv { [vert[h], n2(b), n1(b)] } else { [0; 3] },
                 tw: [tri(next[b as usize]) + 2, tri(b), tri(prev[b as usize] ^ 1)],
                 origin: [(EDGE, hu >> 1); 3],
                 face_origin: (0, 0),
@@ -410,8 +429,8 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
             return Group {
                 c,
                 n: 3,
-                cv: [n1(hu), n2(hu), vert[p as usize]],
-                tw: [xr.hole_corner[t as usize] + 1, tri(n ^ 1), tri(p) + 2],
+                cv: if with_cv { [n1(hu), n2(hu), vert[p as usize]] } else { [0; 3] },
+                tw: [xr.hole_corner(t) + 1, tri(n ^ 1), tri(p) + 2],
                 origin: [(EDGE, hu >> 1), (FACE, f), (FACE, f)],
                 face_origin: (FACE, f),
             };
@@ -420,7 +439,7 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
         let g = face[t as usize];
         let bg = bside[g as usize];
         let (tw0, o0) = if bg != NONE && t == prev[bg as usize] {
-            (xr.hole_corner[(bg ^ 1) as usize] + 2, (EDGE, bg >> 1)) // s → n₁ on the boundary
+            (xr.hole_corner(bg ^ 1) + 2, (EDGE, bg >> 1)) // s → n₁ on the boundary
         } else if bg != NONE && t == next[bg as usize] {
             (tri(bg) + 1, (FACE, g)) // x → n₂, the middle triangle's side
         } else {
@@ -430,14 +449,14 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
         let (tw2, o2) = if bf != NONE && hu == prev[bf as usize] {
             (tri(bf) + 2, (FACE, f)) // n₁ → x
         } else if bf != NONE && hu == next[bf as usize] {
-            (xr.hole_corner[(bf ^ 1) as usize], (EDGE, bf >> 1)) // n₂ → t on the boundary
+            (xr.hole_corner(bf ^ 1), (EDGE, bf >> 1)) // n₂ → t on the boundary
         } else {
             (tri(prev[h] ^ 1), (FACE, f))
         };
         Group {
             c,
             n: 3,
-            cv: [vert[h], point(t), point(hu)],
+            cv: if with_cv { [vert[h], point(t), point(hu)] } else { [0; 3] },
             tw: [tw0, tri(t) + 1, tw2],
             origin: [o0, (EDGE, hu >> 1), o2],
             face_origin: (EDGE, hu >> 1),

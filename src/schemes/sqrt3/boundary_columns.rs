@@ -8,7 +8,8 @@
 //! numbered as [`Mesh::from_trusted_twins`] numbers corner lists: an edge by
 //! its first corner (the one before its twin), counted in corner order, so a
 //! first corner `c` is half-edge `2 rank(c)` and its twin `2 rank(c) + 1`.
-//! A bitmap of the first corners and a count per 64 of them give every rank.
+//! A bitmap of the first corners and a count per 64 of them give every rank
+//! (each task sets a word's bits at once: corners follow the half-edges).
 //! Each vertex leaves from its first corner in corner order, found by an
 //! atomic minimum over the corners and walked to from its face's start.
 //! The test `direct_columns_equal_the_list_build` holds the result to the
@@ -21,8 +22,12 @@ use crate::schemes::hosts::{SyncPtr, MIN_LEN};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering::Relaxed};
 
+/// Half-edges per task of the first-corner pass.
+const CHUNK: usize = 1 << 14;
+
 /// The output corners of one input half-edge: `n` (1 or 3) consecutive
-/// corners from `c`, with their vertices, twin corners and, for the
+/// corners from `c`, with their vertices (zeros unless asked for: the
+/// first-corner pass reads only the twins), twin corners and, for the
 /// correspondence, each corner's edge origin and (real half-edges) its
 /// triangle's face origin.
 #[derive(Clone, Copy)]
@@ -37,7 +42,7 @@ pub(super) struct Group {
 
 /// The columns (positions left to the caller) of the corners `group`
 /// describes for every input half-edge; `per_hole` corners per hole side.
-pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(usize) -> Group + Sync) -> Result<Columns> {
+pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(usize, bool) -> Group + Sync) -> Result<Columns> {
     let m = x.m;
     let nh = m.n_halfedges();
     let n_tri = x.n_tri;
@@ -52,23 +57,37 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
     let words = n_corners.div_ceil(64);
     let first: Vec<AtomicU64> = (0..words).map(|_| AtomicU64::new(0)).collect();
     let wrong = AtomicBool::new(false);
-    (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+    // chunks of half-edges in order: a real one's corners follow the last
+    // real one's, so a chunk gathers a word's bits and sets them at once
+    (0..nh.div_ceil(CHUNK)).into_par_iter().for_each(|k| {
         if crate::cancel::requested() {
             return; // the check after the loop reports it
         }
-        let g = group(h);
-        for i in 0..g.n as usize {
-            let (c, t) = (g.c as usize + i, g.tw[i] as usize);
-            if t >= n_corners || t == c || g.cv[i] as usize >= n_points {
-                wrong.store(true, Relaxed);
-            } else if t > c {
-                first[c / 64].fetch_or(1 << (c % 64), Relaxed);
+        let (mut word, mut bits) = (usize::MAX, 0u64);
+        for h in k * CHUNK..((k + 1) * CHUNK).min(nh) {
+            let g = group(h, false);
+            for i in 0..g.n as usize {
+                let (c, t) = (g.c as usize + i, g.tw[i] as usize);
+                if t >= n_corners || t == c {
+                    wrong.store(true, Relaxed);
+                } else if t > c {
+                    if c / 64 != word {
+                        if bits != 0 {
+                            first[word].fetch_or(bits, Relaxed);
+                        }
+                        (word, bits) = (c / 64, 0);
+                    }
+                    bits |= 1 << (c % 64);
+                }
             }
+        }
+        if bits != 0 {
+            first[word].fetch_or(bits, Relaxed);
         }
     });
     crate::cancel::check()?;
     if wrong.load(Relaxed) {
-        return Err(bad("a corner's twin or vertex is out of range"));
+        return Err(bad("a corner's twin is out of range"));
     }
     let first: Vec<u64> = first.into_iter().map(AtomicU64::into_inner).collect();
     let mut rank = Vec::with_capacity(words);
@@ -107,25 +126,34 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
         let write = |ids: &[u32], verts: &[u32], corners: &[u32], f: usize| unsafe {
             *ps.get().add(f) = ids[0];
             for k in 0..ids.len() {
-                let (a, b) = (ids[k], ids[(k + 1) % ids.len()]);
+                // (no modulo: a division per corner cost more than the writes)
+                let (a, b) = (ids[k], ids[if k + 1 == ids.len() { 0 } else { k + 1 }]);
                 *pn.get().add(a as usize) = b;
                 *pp.get().add(b as usize) = a;
                 *pv.get().add(a as usize) = verts[k];
                 *pf.get().add(a as usize) = f as u32;
-                vmin[verts[k] as usize].fetch_min(corners[k], Relaxed);
+                // the minimum only falls: a corner above it needs no atomic
+                let v = &vmin[verts[k] as usize];
+                if v.load(Relaxed) > corners[k] {
+                    v.fetch_min(corners[k], Relaxed);
+                }
             }
         };
         (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
-            if crate::cancel::requested() || x.tri[h] == NONE {
+            if crate::cancel::requested() || x.tri(h as u32) == NONE {
                 return; // cancelled: the check after the loop; hole sides: below
             }
-            let g = group(h);
+            let g = group(h, true);
+            if g.cv.iter().any(|&v| v as usize >= n_points) {
+                wrong.store(true, Relaxed);
+                return;
+            }
             let ids: [u32; 3] = std::array::from_fn(|i| id(g.c as usize + i, g.tw[i] as usize));
-            write(&ids, &g.cv, &[g.c, g.c + 1, g.c + 2], x.tri[h] as usize);
+            write(&ids, &g.cv, &[g.c, g.c + 1, g.c + 2], x.tri(h as u32) as usize);
         });
         crate::cancel::check()?;
         if wrong.load(Relaxed) {
-            return Err(bad("two corners have the same twin"));
+            return Err(bad("a corner's vertex is out of range, or two corners have the same twin"));
         }
         // the holes' faces, each side's corners in cycle order
         let (mut ids, mut verts, mut corners) = (Vec::new(), Vec::new(), Vec::new());
@@ -135,7 +163,10 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
             let s = m.f_start[f as usize];
             let mut h = s;
             loop {
-                let g = group(h as usize);
+                let g = group(h as usize, true);
+                if g.cv[..g.n as usize].iter().any(|&v| v as usize >= n_points) {
+                    return Err(bad("a corner's vertex is out of range"));
+                }
                 for i in 0..g.n as usize {
                     ids.push(id(g.c as usize + i, g.tw[i] as usize));
                     verts.push(g.cv[i]);
@@ -152,10 +183,10 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
             return Err(bad("two corners have the same twin"));
         }
     }
-    // every vertex's first corner, as `from_trusted_twins` picks it: walked
-    // to from its face's first corner (triangles 3t..3t + 2, then the holes
-    // in face order)
-    let hole_first: Vec<u32> = hole_faces.iter().map(|&f| group(m.f_start[f as usize] as usize).c).collect();
+    // every vertex's first corner, as `from_trusted_twins` picks it: its
+    // rank when it is a first corner, else walked to from its face's first
+    // corner (triangles 3t..3t + 2, then the holes in face order)
+    let hole_first: Vec<u32> = hole_faces.iter().map(|&f| group(m.f_start[f as usize] as usize, false).c).collect();
     let Columns { v_out, he_next, f_start, .. } = &mut cols;
     let unused = AtomicU32::new(NONE);
     v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
@@ -164,6 +195,11 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
             unused.fetch_min(v as u32, Relaxed);
             return;
         }
+        if is_first(c as usize) {
+            *o = 2 * rank_of(c as usize);
+            return;
+        }
+        // a second corner: its id is its face's k-th half-edge
         let (f, k) = if (c as usize) < 3 * n_tri {
             (c as usize / 3, c % 3)
         } else {
@@ -186,12 +222,12 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
 /// The corner and twin lists of the same groups, for the list build the
 /// direct columns are tested against.
 #[cfg(test)]
-pub(super) fn lists(x: &Ctx, per_hole: u32, group: impl Fn(usize) -> Group) -> (Vec<u32>, Vec<u32>) {
+pub(super) fn lists(x: &Ctx, per_hole: u32, group: impl Fn(usize, bool) -> Group) -> (Vec<u32>, Vec<u32>) {
     let nh = x.m.n_halfedges();
     let n_corners = 3 * x.n_tri + per_hole as usize * (nh - x.n_tri);
     let (mut cv, mut tw) = (vec![0u32; n_corners], vec![0u32; n_corners]);
     for h in 0..nh {
-        let g = group(h);
+        let g = group(h, true);
         for i in 0..g.n as usize {
             cv[g.c as usize + i] = g.cv[i];
             tw[g.c as usize + i] = g.tw[i];
