@@ -43,14 +43,31 @@ use crate::error::{MeshError, Result};
 use crate::mesh::{Columns, Mesh, NONE};
 use crate::schemes::level::{Level, Origins, Request, EDGE, FACE, VERTEX};
 use crate::schemes::stencil::Stencils;
+use std::borrow::Cow;
 
 /// One level of √3 on a mesh with hole faces (no point-spheres: the caller
 /// splits them off). See the module docs.
-pub(super) fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
+///
+/// An input given up by the caller (`Cow::Owned`: a previous level of the
+/// same call) loses its face column and hole flags once the connectivity is
+/// written, before the points are computed (issue 19).
+pub(super) fn open_level(m: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     if req.level % 2 == 0 {
         odd(m, req)
     } else {
         even(m, req)
+    }
+}
+
+/// What the points no longer need of an input the call owns: they walk
+/// rings and face cycles, and the hole tests were made before.
+fn shed(m: Cow<'_, Mesh>) -> Cow<'_, Mesh> {
+    match m {
+        Cow::Owned(mut m) => {
+            (m.he_face, m.f_hole) = (Vec::new(), Vec::new());
+            Cow::Owned(m)
+        }
+        b => b,
     }
 }
 
@@ -62,11 +79,14 @@ pub(super) struct Ctx<'a> {
     face: &'a [u32],
     /// Output triangle of every real half-edge (`NONE` for hole ones).
     tri: Vec<u32>,
-    /// First output corner of every hole half-edge (`NONE` for real ones).
-    hole_corner: Vec<u32>,
     /// The hole half-edges, one bit each (one cached read instead of the
-    /// face and hole-flag reads the closed forms would repeat).
+    /// face and hole-flag reads the closed forms would repeat), and how many
+    /// come before each word.
     holes: Vec<u64>,
+    hole_rank: Vec<u32>,
+    /// First output corner of every hole half-edge, by its rank among them
+    /// (issue 19: a boundary's worth, not a table per half-edge).
+    hole_corner: Vec<u32>,
     pub n_tri: usize,
 }
 
@@ -86,7 +106,13 @@ impl<'a> Ctx<'a> {
                 n_tri += 1;
             }
         }
-        let mut hole_corner = vec![NONE; nh];
+        let mut hole_rank = Vec::with_capacity(holes.len());
+        let mut acc = 0u32;
+        for w in &holes {
+            hole_rank.push(acc);
+            acc += w.count_ones();
+        }
+        let mut x = Ctx { m, next, prev: &m.he_prev, vert, face, tri, holes, hole_rank, hole_corner: vec![NONE; acc as usize], n_tri: n_tri as usize };
         let mut c = 3 * n_tri;
         for f in 0..m.n_faces() {
             crate::cancel::poll(f)?;
@@ -96,7 +122,8 @@ impl<'a> Ctx<'a> {
             let s = m.f_start[f];
             let mut h = s;
             loop {
-                hole_corner[h as usize] = c;
+                let r = x.hole_rank_of(h) as usize;
+                x.hole_corner[r] = c;
                 c += per_hole;
                 h = next[h as usize];
                 if h == s {
@@ -104,7 +131,14 @@ impl<'a> Ctx<'a> {
                 }
             }
         }
-        Ok(Ctx { m, next, prev: &m.he_prev, vert, face, tri, hole_corner, holes, n_tri: n_tri as usize })
+        Ok(x)
+    }
+
+    /// Hole half-edges before `h`.
+    #[inline]
+    fn hole_rank_of(&self, h: u32) -> u32 {
+        let w = h as usize / 64;
+        self.hole_rank[w] + (self.holes[w] & ((1u64 << (h % 64)) - 1)).count_ones()
     }
 
     #[inline]
@@ -121,13 +155,7 @@ impl<'a> Ctx<'a> {
     /// The first output corner of hole half-edge `h`.
     #[inline]
     fn hole_corner(&self, h: u32) -> u32 {
-        self.hole_corner[h as usize]
-    }
-
-    /// Frees the corner tables once the columns are written (issue 19: they
-    /// are not needed for the points).
-    fn release(&mut self) {
-        (self.tri, self.hole_corner) = (Vec::new(), Vec::new());
+        self.hole_corner[self.hole_rank_of(h) as usize]
     }
 
     /// Output sizes and hole flags: a triangle per real half-edge, then the
@@ -216,7 +244,8 @@ fn build(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(usize, bool) ->
 /// edge origins.
 fn finish(
     req: &Request,
-    (n_points, points): (usize, impl FnOnce() -> Result<(Vec<glam::DVec3>, Option<Stencils>)>),
+    m: &Mesh,
+    (n_points, points): (usize, impl FnOnce(&Mesh) -> Result<(Vec<glam::DVec3>, Option<Stencils>)>),
     mut cols: Columns,
     vertex_origin: Vec<(u8, u32)>,
     face_origin: Vec<(u8, u32)>,
@@ -224,7 +253,7 @@ fn finish(
 ) -> Result<Level> {
     // the positions after the connectivity, once the step's tables are freed (issue 19)
     let st;
-    (cols.pos, st) = points()?;
+    (cols.pos, st) = points(m)?;
     if cols.pos.len() != n_points {
         return Err(MeshError::Invariant(format!("sqrt3: {} points for {n_points} vertices", cols.pos.len())));
     }
@@ -241,8 +270,9 @@ fn finish(
     Ok(Level { mesh, stencils: st, origins, creases: None })
 }
 
-fn odd(m: &Mesh, req: &Request) -> Result<Level> {
-    let mut x = Ctx::new(m, 1)?;
+fn odd(src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
+    let m: &Mesh = &src;
+    let x = Ctx::new(m, 1)?;
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
     // face points of the real faces
@@ -255,21 +285,7 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
             real.push(f as u32);
         }
     }
-    let boundary: Vec<bool> = (0..nv).map(|v| hole_out(m, v).is_some()).collect();
-    // the rows are stored only when asked for (issue 19: peak memory); the
-    // points are computed after the connectivity (`finish`)
     let n_points = nv + real.len();
-    let points = || Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
-        if i < nv {
-            if boundary[i] {
-                row.add(i as u32, 1.0);
-            } else {
-                kobbelt_row(m, vert, i, row);
-            }
-        } else {
-            crate::schemes::hosts::face_mean_row(m, real[i - nv] as usize, 1.0, row);
-        }
-    });
     let xr = &x;
     let fpt_r = &fpt;
     let group = move |h: usize, with_cv: bool| -> Group {
@@ -313,13 +329,28 @@ fn odd(m: &Mesh, req: &Request) -> Result<Level> {
         (vec![], vec![], vec![])
     };
     let cols = build(xr, 1, n_points, group)?;
-    drop(fpt);
-    x.release();
-    finish(req, (n_points, points), cols, vertex_origin, face_origin, corner_origin)
+    drop((fpt, x));
+    let boundary: Vec<bool> = (0..nv).map(|v| hole_out(m, v).is_some()).collect();
+    // the rows are stored only when asked for (issue 19: peak memory); the
+    // points are computed after the connectivity (`finish`)
+    let points = |m: &Mesh| Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
+        if i < nv {
+            if boundary[i] {
+                row.add(i as u32, 1.0);
+            } else {
+                kobbelt_row(m, &m.he_vert, i, row);
+            }
+        } else {
+            crate::schemes::hosts::face_mean_row(m, real[i - nv] as usize, 1.0, row);
+        }
+    });
+    let src = shed(src);
+    finish(req, &src, (n_points, points), cols, vertex_origin, face_origin, corner_origin)
 }
 
-fn even(m: &Mesh, req: &Request) -> Result<Level> {
-    let mut x = Ctx::new(m, 3)?;
+fn even(src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
+    let m: &Mesh = &src;
+    let x = Ctx::new(m, 3)?;
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (next, prev, vert, face) = (x.next, x.prev, x.vert, x.face);
     // the boundary side of every face that has one (at most one, and only triangles)
@@ -357,41 +388,6 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
     let n1 = |b: u32| base + 2 * side_index(b);
     let n2 = |b: u32| base + 2 * side_index(b) + 1;
     let n_points = base as usize + 2 * sides.len();
-    let points = || {
-        let hole_out: Vec<Option<u32>> = (0..nv).map(|v| hole_out(m, v)).collect();
-        Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
-            if i < nv {
-                match hole_out[i] {
-                    None => kobbelt_row(m, vert, i, row),
-                    Some(NONE) => row.add(i as u32, 1.0),
-                    Some(k) => {
-                        let (u, w) = boundary_neighbours(m, k);
-                        row.add(u, 4.0 / 27.0);
-                        row.add(i as u32, 19.0 / 27.0);
-                        row.add(w, 4.0 / 27.0);
-                    }
-                }
-            } else if i < base as usize {
-                crate::schemes::hosts::face_mean_row(m, centred[i - nv] as usize, 1.0, row);
-            } else {
-                let j = i - base as usize;
-                let b = sides[j / 2];
-                let k = b ^ 1;
-                let (s, t) = (vert[b as usize], vert[k as usize]);
-                if j % 2 == 0 {
-                    let u = vert[(next[k as usize] ^ 1) as usize];
-                    row.add(s, 16.0 / 27.0);
-                    row.add(t, 10.0 / 27.0);
-                    row.add(u, 1.0 / 27.0);
-                } else {
-                    let w = vert[prev[k as usize] as usize];
-                    row.add(s, 10.0 / 27.0);
-                    row.add(t, 16.0 / 27.0);
-                    row.add(w, 1.0 / 27.0);
-                }
-            }
-        })
-    };
     // P(f, h): the point of face f that the flipped edge of h reaches
     let point = |h: u32| -> u32 {
         let f = face[h as usize] as usize;
@@ -474,7 +470,43 @@ fn even(m: &Mesh, req: &Request) -> Result<Level> {
         (vec![], vec![], vec![])
     };
     let cols = build(xr, 3, n_points, group)?;
-    drop((fpt, bside));
-    x.release();
-    finish(req, (n_points, points), cols, vertex_origin, face_origin, corner_origin)
+    drop((fpt, bside, x));
+    let hole_out: Vec<Option<u32>> = (0..nv).map(|v| hole_out(m, v)).collect();
+    let points = |m: &Mesh| {
+        let (next, prev, vert) = (&m.he_next, &m.he_prev, &m.he_vert);
+        Stencils::points_and_rows(n_points, nv, &m.pos, req.stencils, |i, row| {
+            if i < nv {
+                match hole_out[i] {
+                    None => kobbelt_row(m, vert, i, row),
+                    Some(NONE) => row.add(i as u32, 1.0),
+                    Some(k) => {
+                        let (u, w) = boundary_neighbours(m, k);
+                        row.add(u, 4.0 / 27.0);
+                        row.add(i as u32, 19.0 / 27.0);
+                        row.add(w, 4.0 / 27.0);
+                    }
+                }
+            } else if i < base as usize {
+                crate::schemes::hosts::face_mean_row(m, centred[i - nv] as usize, 1.0, row);
+            } else {
+                let j = i - base as usize;
+                let b = sides[j / 2];
+                let k = b ^ 1;
+                let (s, t) = (vert[b as usize], vert[k as usize]);
+                if j % 2 == 0 {
+                    let u = vert[(next[k as usize] ^ 1) as usize];
+                    row.add(s, 16.0 / 27.0);
+                    row.add(t, 10.0 / 27.0);
+                    row.add(u, 1.0 / 27.0);
+                } else {
+                    let w = vert[prev[k as usize] as usize];
+                    row.add(s, 10.0 / 27.0);
+                    row.add(t, 16.0 / 27.0);
+                    row.add(w, 1.0 / 27.0);
+                }
+            }
+        })
+    };
+    let src = shed(src);
+    finish(req, &src, (n_points, points), cols, vertex_origin, face_origin, corner_origin)
 }

@@ -292,7 +292,7 @@ fn direct_data(m: &Mesh, a: &[f64], k: usize) -> Result<Vec<f64>> {
 pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, |m, req| {
         if m.n_holes() > 0 {
-            return boundary::open_level(m, req);
+            return boundary::open_level(std::borrow::Cow::Borrowed(m), req);
         }
         let mesh = step(m)?;
         let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
@@ -341,8 +341,11 @@ pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
 /// before the output's positions exist; anything else is [`sqrt3_level`]'s.
 pub fn sqrt3_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
-    if m.n_holes() > 0 || req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+    if req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
         return sqrt3_level(&m, req);
+    }
+    if m.n_holes() > 0 {
+        return boundary::open_level(std::borrow::Cow::Owned(m), req);
     }
     Ok(Level { mesh: step_owned(m)?, stencils: None, origins: None, creases: None })
 }
