@@ -121,8 +121,13 @@ pub(super) fn columns(x: &Ctx, per_hole: u32, n_points: usize, group: impl Fn(us
         let sp = |v: &mut Vec<u32>| SyncPtr(v.as_mut_ptr());
         let (pn, pp, pv, pf, ps) = (sp(&mut cols.he_next), sp(&mut cols.he_prev), sp(&mut cols.he_vert), sp(&mut cols.he_face), sp(&mut cols.f_start));
         // SAFETY (both loops): the ids are a bijection from the corners onto
-        // 0..n_corners (checked above: every corner is paired with one first
-        // corner), so each half-edge and face is written by one task
+        // 0..n_corners when the groups' twins pair the corners (the steps'
+        // closed forms, held to the list build by the tests), so each
+        // half-edge and face is written by one task. Half of the corners are
+        // first ones (checked above) and every second one's twin must be a
+        // first one (checked as the ids are made); a pairing bug beyond that
+        // would leave an id unwritten, which debug builds' validation reports,
+        // as it did for the corner lists this replaces.
         let write = |ids: &[u32], verts: &[u32], corners: &[u32], f: usize| unsafe {
             *ps.get().add(f) = ids[0];
             for k in 0..ids.len() {

@@ -336,9 +336,10 @@ pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
 }
 
 /// [`sqrt3_level`] on an input the caller gives up (a previous level of a
-/// multi-level call): a closed mesh without point-spheres, asked for no
-/// stencils or origins, takes [`step_owned`], which frees part of the input
-/// before the output's positions exist; anything else is [`sqrt3_level`]'s.
+/// multi-level call). Without point-spheres and asked for no stencils or
+/// origins, it frees part of the input before the output's positions exist:
+/// a closed mesh through [`step_owned`], an open one through
+/// `boundary::open_level`; anything else is [`sqrt3_level`]'s.
 pub fn sqrt3_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
     if req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
@@ -388,14 +389,15 @@ mod tests {
 
     #[test]
     fn owned_level_equals_the_borrowed_one() {
-        // closed, open (falls back) and point-sphere (falls back) inputs; the
-        // comparison is bitwise (Mesh's PartialEq compares positions exactly)
+        // closed and open inputs (both consumed) and point-sphere ones (the
+        // borrowed path); positions compared bit for bit
         let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
         cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
         for (name, m) in cases {
             for level in 0..2 {
                 let req = Request { level, ..Request::plain() };
-                // an odd level refuses some open inputs: both paths alike
+                // the even step (level 1) refuses open inputs that no odd step
+                // made: both paths alike
                 let a = match sqrt3_level(&m, &req) {
                     Ok(l) => l.mesh,
                     Err(e) => {
