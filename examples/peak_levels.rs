@@ -91,6 +91,7 @@ fn main() {
     // the levels after the first of `iterations = L` on an input nobody else holds
     let owned: Option<fn(Mesh) -> topomesh::Result<Mesh>> = match scheme {
         "sqrt3" | "sqrt3_level" => Some(|m| topomesh::schemes::sqrt3::sqrt3_level_owned(m, &Request::plain()).map(|l| l.mesh)),
+        "simplest" | "simplest_level" => Some(|m| topomesh::schemes::simplest::simplest_level_owned(m, &Request::plain()).map(|l| l.mesh)),
         _ => None,
     };
     // TOPOMESH_PROF_SMALL: inputs 16-25x smaller (CI runs the debug build)

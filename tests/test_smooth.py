@@ -536,6 +536,12 @@ def test_simplest_and_dual_positions(mesh_name: str) -> None:
     V = m.vertices
     mids = np.array([(V[a] + V[b]) / 2 for a, b in edge_faces(F)])
     assert_same_points(m.simplest().vertices, mids, 1e-9)
+    # the second level of one call consumes the first (issue 19): the same
+    # mesh, bit for bit, as a call per level
+    two, once = m.simplest(iterations=2), m.simplest().simplest()
+    assert np.array_equal(two.vertices, once.vertices)
+    assert np.array_equal(two.face_indices, once.face_indices)
+    assert np.array_equal(two.corner_twins, once.corner_twins)
     assert_same_points(m.dual().vertices, np.array([V[f].mean(0) for f in F]), 1e-9)
     # the dual keeps orientation: positive volume for convex solids
     if mesh_name in PLATONIC:

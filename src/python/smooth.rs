@@ -129,7 +129,7 @@ impl PyMesh {
     /// :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn simplest<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("simplest", predict::simplest).with_direct(schemes::simplest::simplest_level_with).with_corners(schemes::corner_direct::simplest), correspondence, schemes::simplest::simplest_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("simplest", predict::simplest).with_direct(schemes::simplest::simplest_level_with).with_corners(schemes::corner_direct::simplest).with_owned(schemes::simplest::simplest_level_owned), correspondence, schemes::simplest::simplest_level)
     }
 
     /// Midpoint (linear) subdivision: triangles split 1 -> 4 at edge

@@ -40,9 +40,11 @@ use super::corner_origins::edge_origins_by_corner;
 use super::level::{with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::Stencils;
 use crate::error::Result;
+use super::hosts::SyncPtr;
 use crate::mesh::{Columns, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// One level of mid-edge ("simplest") subdivision. See the module docs.
 pub fn simplest(m: &Mesh) -> Result<Mesh> {
@@ -51,13 +53,115 @@ pub fn simplest(m: &Mesh) -> Result<Mesh> {
 }
 
 fn step(m: &Mesh) -> Result<Mesh> {
+    build(Cow::Borrowed(m))
+}
+
+/// [`step`] on a level's input that nobody else holds (the previous level
+/// of a multi-level call, issue 19): each part of the input goes once the
+/// output no longer needs it. The output is [`step`]'s, bit for bit.
+fn step_owned(m: Mesh) -> Result<Mesh> {
+    build(Cow::Owned(m))
+}
+
+/// Every half-edge's position in its face's cycle, counted over the faces
+/// in order (the corner order of the F-faces), and each face's first.
+fn corner_ranks(m: &Mesh) -> Result<(Vec<u32>, Vec<u32>)> {
+    let next = &m.he_next;
+    let nf = m.n_faces();
+    let mut cidx = vec![0u32; m.n_halfedges()];
+    let mut off = Vec::with_capacity(nf + 1);
+    let mut c = 0u32;
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        off.push(c);
+        let s = m.f_start[f];
+        let mut h = s;
+        loop {
+            cidx[h as usize] = c;
+            c += 1;
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
+        }
+    }
+    off.push(c);
+    Ok((cidx, off))
+}
+
+/// Connectivity straight into the columns (issue 19), numbered exactly as
+/// `from_corner_twins` numbered the corners `[F-corners | V-slots]` it was
+/// given (the `output_hashes` test holds it to that). Every F-corner c
+/// (half-edge h at rank c in the faces' cycles, side m(h) → m(next h))
+/// precedes its twin, a V-slot, so it is the first corner of edge c: it gets
+/// half-edge 2c and its twin 2c + 1, the side m(x) → m(prev x) of the
+/// V-face of vert[x] with x = next h (inside face[h], cutting its corner at
+/// vert[x]). Walking on: the F-face goes to next h; the V-face rotates x to
+/// prev[x] ^ 1 = h ^ 1, whose slot side starts the edge of prev(h ^ 1). So
+/// each pair (2c, 2c + 1) is a lookup, written from its half-edge h.
+///
+/// The columns come one at a time and the positions last, so that an input
+/// given up (`Cow::Owned`) loses its vertex starts, face starts and hole
+/// flags before the half-edge columns exist, and its connectivity before
+/// the positions do.
+fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
+    let m: &Mesh = &src;
     check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
-    let fl = FaceLayout::new(m)?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
-    let (next, vert, face) = m.halfedge_columns();
+    let (cidx, off) = corner_ranks(m)?;
+    // a face starts at its first corner: F-face f at corner off[f], V-face v
+    // at the slot of v_out[v]
+    let mut f_start = vec![0u32; nf + nv];
+    let (fs_f, fs_v) = f_start.split_at_mut(nf);
+    fs_f.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, s)| *s = 2 * off[f]);
     let prev = &m.he_prev;
-    let p = &m.pos;
-    let pos: Vec<_> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+    fs_v.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, s)| *s = 2 * cidx[prev[m.v_out[v] as usize] as usize] + 1);
+    drop(off);
+    // midpoint e is first seen at the lower of its two F-corners (every
+    // F-corner comes before every V-slot)
+    let v_out: Vec<u32> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| 2 * cidx[2 * e].min(cidx[2 * e + 1])).collect();
+    if let Cow::Owned(m) = &mut src {
+        (m.v_out, m.f_start, m.f_hole) = (Vec::new(), Vec::new(), Vec::new());
+    }
+    let m: &Mesh = &src;
+    let (next, vert, face) = (&m.he_next, &m.he_vert, &m.he_face);
+    let prev = &m.he_prev;
+    let mut cols = Columns { pos: Vec::new(), v_out, he_next: vec![0; 2 * nh], he_prev: vec![0; 2 * nh], he_vert: vec![0; 2 * nh], he_face: vec![0; 2 * nh], f_start, f_hole: vec![false; nf + nv] };
+    let nfu = nf as u32;
+    {
+        let sp = |v: &mut Vec<u32>| SyncPtr(v.as_mut_ptr());
+        let (pn, pp, pv, pf) = (sp(&mut cols.he_next), sp(&mut cols.he_prev), sp(&mut cols.he_vert), sp(&mut cols.he_face));
+        let ci = |k: u32| 2 * cidx[k as usize];
+        (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+            if crate::cancel::requested() {
+                return; // the check after the loop reports it
+            }
+            let x = next[h] as usize;
+            let i = ci(h as u32) as usize;
+            // SAFETY: the ranks are a bijection onto 0..H (a walk of every
+            // face cycle), so each pair (2c, 2c + 1) is written by one task
+            unsafe {
+                *pn.get().add(i) = ci(x as u32);
+                *pp.get().add(i) = ci(prev[h]);
+                *pv.get().add(i) = (h >> 1) as u32;
+                *pf.get().add(i) = face[h];
+                *pn.get().add(i + 1) = ci(prev[h ^ 1]) + 1;
+                // the slot before x's in its rotation is next(x ^ 1)'s, whose side starts the edge of x ^ 1
+                *pp.get().add(i + 1) = ci((x ^ 1) as u32) + 1;
+                *pv.get().add(i + 1) = (x >> 1) as u32;
+                *pf.get().add(i + 1) = nfu + vert[x];
+            }
+        });
+    }
+    crate::cancel::check()?;
+    drop(cidx);
+    if let Cow::Owned(m) = &mut src {
+        // the positions read the vertex positions and the vertex column only
+        (m.he_next, m.he_prev, m.he_face) = (Vec::new(), Vec::new(), Vec::new());
+    }
+    let m: &Mesh = &src;
+    let (p, vert) = (&m.pos, &m.he_vert);
+    cols.pos = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
         // cancelled: zeros, the check below reports it
         if crate::cancel::requested() {
             DVec3::ZERO
@@ -66,52 +170,20 @@ fn step(m: &Mesh) -> Result<Mesh> {
         }
     }).collect();
     crate::cancel::check()?;
-    // Connectivity straight into the columns (issue 19), numbered exactly as
-    // `from_corner_twins` numbered the corners `[F-corners | V-slots]` it was
-    // given (the `output_hashes` test holds it to that). Every F-corner c
-    // (half-edge h = fh[c], side m(h) → m(next h)) precedes its twin, a
-    // V-slot, so it is the first corner of edge c: it gets half-edge 2c and
-    // its twin 2c + 1, the side m(x) → m(prev x) of the V-face of vert[x]
-    // with x = next h (inside face[h], cutting its corner at vert[x]).
-    // Walking on: the F-face goes to next h; the V-face rotates x to
-    // prev[x] ^ 1 = h ^ 1, whose slot side starts the edge of prev(h ^ 1).
-    // So each pair (2c, 2c + 1) is a lookup, written in order.
-    let mut cols = Columns::new(pos, 2 * nh, nf + nv);
-    let nfu = nf as u32;
-    cols.he_next
-        .par_chunks_exact_mut(2)
-        .zip(cols.he_prev.par_chunks_exact_mut(2))
-        .zip(cols.he_vert.par_chunks_exact_mut(2))
-        .zip(cols.he_face.par_chunks_exact_mut(2))
-        .with_min_len(MIN_LEN)
-        .enumerate()
-        .for_each(|(c, (((hn, hp), hv), hf))| {
-            if crate::cancel::requested() {
-                return; // the check after the loop reports it
-            }
-            let h = fl.fh[c] as usize;
-            let x = next[h] as usize;
-            let ci = |k: u32| 2 * fl.cidx[k as usize];
-            hn[0] = ci(x as u32);
-            hp[0] = ci(prev[h]);
-            hv[0] = (h >> 1) as u32;
-            hf[0] = face[h];
-            hn[1] = ci(prev[h ^ 1]) + 1;
-            // the slot before x's in its rotation is next(x ^ 1)'s, whose side starts the edge of x ^ 1
-            hp[1] = ci((x ^ 1) as u32) + 1;
-            hv[1] = (x >> 1) as u32;
-            hf[1] = nfu + vert[x];
-        });
-    crate::cancel::check()?;
-    // a face starts at its first corner: F-face f at corner off[f], V-face v
-    // at the slot of v_out[v] (the layout starts every rotation there)
-    let (fs_f, fs_v) = cols.f_start.split_at_mut(nf);
-    fs_f.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, s)| *s = 2 * fl.off[f]);
-    fs_v.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, s)| *s = 2 * fl.cidx[prev[m.v_out[v] as usize] as usize] + 1);
-    // midpoint e is first seen at the lower of its two F-corners (every
-    // F-corner comes before every V-slot)
-    cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, o)| *o = 2 * fl.cidx[2 * e].min(fl.cidx[2 * e + 1]));
+    drop(src);
     Mesh::from_columns(cols)
+}
+
+/// [`simplest_level`] on an input the caller gives up (a previous level of
+/// a multi-level call): a closed mesh without point-spheres, asked for no
+/// stencils or origins, takes [`step_owned`]; anything else is
+/// [`simplest_level`]'s.
+pub fn simplest_level_owned(m: Mesh, req: &Request) -> Result<Level> {
+    crate::cancel::check()?;
+    if m.n_holes() > 0 || req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+        return simplest_level(&m, req);
+    }
+    Ok(Level { mesh: step_owned(m)?, stencils: None, origins: None, creases: None })
 }
 
 /// One level with what `req` asks for (see the module docs); without
@@ -374,6 +446,26 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
 mod tests {
     use super::*;
     use crate::schemes::hosts::test_meshes::*;
+
+    #[test]
+    fn owned_level_equals_the_borrowed_one() {
+        // closed inputs (consumed), open and point-sphere ones (the borrowed
+        // path); positions compared bit for bit
+        let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+        cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
+        cases.push(("torus".into(), crate::primitives::torus(12, 8, 3.0, 1.0).unwrap()));
+        for (name, m) in cases {
+            let req = Request::plain();
+            let a = simplest_level(&m, &req).unwrap().mesh;
+            let b = simplest_level_owned(m.clone(), &req).unwrap().mesh;
+            assert_eq!(a, b, "{name}");
+            assert_eq!(a.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>(),
+                b.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>(), "{name}");
+            // and on the first level's output, the input a multi-level call gives up
+            let c = simplest_level(&a, &req).unwrap().mesh;
+            assert_eq!(c, simplest_level_owned(a, &req).unwrap().mesh, "{name} level 2");
+        }
+    }
 
     #[test]
     fn counts_and_validity_on_corpus() {
