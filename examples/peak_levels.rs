@@ -92,6 +92,8 @@ fn main() {
     let owned: Option<fn(Mesh) -> topomesh::Result<Mesh>> = match scheme {
         "sqrt3" | "sqrt3_level" => Some(|m| topomesh::schemes::sqrt3::sqrt3_level_owned(m, &Request::plain()).map(|l| l.mesh)),
         "simplest" | "simplest_level" => Some(|m| topomesh::schemes::simplest::simplest_level_owned(m, &Request::plain()).map(|l| l.mesh)),
+        "honeycomb" => Some(|m| topomesh::schemes::honeycomb::honeycomb_level_owned(m, 0.5, None, &Request::plain()).map(|l| l.mesh)),
+        "vertex_truncation" => Some(|m| topomesh::schemes::vertex_truncation::vertex_truncation_level_owned(m, Truncation::Chaikin, &Request::plain()).map(|l| l.mesh)),
         _ => None,
     };
     // TOPOMESH_PROF_SMALL: inputs 16-25x smaller (CI runs the debug build)

@@ -538,10 +538,11 @@ def test_simplest_and_dual_positions(mesh_name: str) -> None:
     assert_same_points(m.simplest().vertices, mids, 1e-9)
     # the second level of one call consumes the first (issue 19): the same
     # mesh, bit for bit, as a call per level
-    two, once = m.simplest(iterations=2), m.simplest().simplest()
-    assert np.array_equal(two.vertices, once.vertices)
-    assert np.array_equal(two.face_indices, once.face_indices)
-    assert np.array_equal(two.corner_twins, once.corner_twins)
+    for name in ("simplest", "honeycomb", "vertex_truncation"):
+        two, once = getattr(m, name)(iterations=2), getattr(getattr(m, name)(), name)()
+        assert np.array_equal(two.vertices, once.vertices), name
+        assert np.array_equal(two.face_indices, once.face_indices), name
+        assert np.array_equal(two.corner_twins, once.corner_twins), name
     assert_same_points(m.dual().vertices, np.array([V[f].mean(0) for f in F]), 1e-9)
     # the dual keeps orientation: positive volume for convex solids
     if mesh_name in PLATONIC:

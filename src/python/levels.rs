@@ -50,7 +50,7 @@ pub(crate) struct Spec {
 }
 
 /// A level that takes its input by value.
-pub(crate) type OwnedLevel = fn(Mesh, &Request) -> crate::Result<Level>;
+pub(crate) type OwnedLevel = Box<dyn Fn(Mesh, &Request) -> crate::Result<Level> + Send + Sync>;
 
 impl Spec {
     /// Catmull-Clark or Loop: creases, face-varying data and direct data
@@ -94,8 +94,8 @@ impl Spec {
     }
 
     /// Levels after the first take their input by value (`owned`).
-    pub fn with_owned(self, owned: OwnedLevel) -> Spec {
-        Spec { owned: Some(owned), ..self }
+    pub fn with_owned(self, owned: impl Fn(Mesh, &Request) -> crate::Result<Level> + Send + Sync + 'static) -> Spec {
+        Spec { owned: Some(Box::new(owned)), ..self }
     }
 
     /// A scheme whose positions are not linear in the input's: its levels'
@@ -159,7 +159,7 @@ pub(crate) fn run<'py>(
         let (out, _) = super::iterate_src(py, input, iterations, progress, spec.name, spec.predict, 0usize, |src, k| {
             *k += 1;
             let req = Request { options, level: *k - 1, ..Default::default() };
-            match (src, spec.owned) {
+            match (src, spec.owned.as_ref()) {
                 (super::Src::Level(m), Some(owned)) => owned(m, &req),
                 (src, _) => level(&src, &req),
             }

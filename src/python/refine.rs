@@ -57,7 +57,8 @@ impl PyMesh {
         honeycomb::check_args(t, tension).map_err(err)?;
         let spec = super::levels::Spec::plain("honeycomb", predict::truncation)
             .with_direct(move |m, r, data| honeycomb::honeycomb_level_with(m, t, tension, r, data))
-            .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::honeycomb(i, o, t, tension, rows, k));
+            .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::honeycomb(i, o, t, tension, rows, k))
+            .with_owned(move |m, r| honeycomb::honeycomb_level_owned(m, t, tension, r));
         super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| honeycomb::honeycomb_level(m, t, tension, r))
     }
 
@@ -127,7 +128,8 @@ impl PyMesh {
         how.check().map_err(err)?;
         let ratio = how.ratio();
         let spec = super::levels::Spec::plain("vertex_truncation", predict::truncation)
-            .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::truncation(i, o, ratio, rows, k));
+            .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::truncation(i, o, ratio, rows, k))
+            .with_owned(move |m, r| vertex_truncation::vertex_truncation_level_owned(m, how, r));
         super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| vertex_truncation::vertex_truncation_level(m, how, r))
     }
 }

@@ -44,9 +44,11 @@ struct Frame {
 }
 
 impl Frame {
-    /// Appends the point-sphere vertices to `pos` (in vertex order, after
-    /// the scheme's own vertices) and numbers the vertex faces.
-    fn new(m: &Mesh, pos: &mut Vec<DVec3>) -> Frame {
+    /// Numbers the vertex faces and the point-sphere vertices (in vertex
+    /// order, after the scheme's own `n_before`), and returns the latter's
+    /// positions, to be appended after the scheme's.
+    fn numbered(m: &Mesh, n_before: usize) -> (Frame, Vec<DVec3>) {
+        let mut pos = Vec::new();
         let (nv, nf) = (m.n_vertices(), m.n_faces());
         let any_point = m.v_out.par_iter().with_min_len(1 << 14).any(|&o| o & POINT != 0);
         let mut points = Vec::new();
@@ -59,7 +61,7 @@ impl Frame {
                 .enumerate()
                 .map(|(v, &o)| {
                     if o & POINT != 0 {
-                        let id = pos.len() as u32;
+                        let id = (n_before + pos.len()) as u32;
                         pos.push(m.pos[v]);
                         points.push((o & !POINT, id));
                         id
@@ -70,7 +72,7 @@ impl Frame {
                 })
                 .collect()
         };
-        Frame { nf, vface, points }
+        (Frame { nf, vface, points }, pos)
     }
 
     /// Number of output faces.
@@ -132,14 +134,15 @@ impl Out {
     }
 }
 
-/// Honeycomb's connectivity around its new points `pos` (one per old
-/// half-edge, new vertex `h` for half-edge `h`); see the module docs.
-pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>) -> Result<Mesh> {
+/// Honeycomb's connectivity (one new vertex per old half-edge, new vertex
+/// `h` for half-edge `h`, then the point-spheres'); see the module docs.
+/// The positions are left to the caller ([`Pending::finish`]).
+pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout) -> Result<Pending> {
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let (next, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
     let cidx = &fl.cidx;
-    let frame = Frame::new(m, &mut pos);
+    let (frame, points) = Frame::numbered(m, nh);
     // the odd slot corner of g pairs with that of next(twin(prev g)); the lower slot is first
     let partner = |g: u32| next[(prev[g as usize] ^ 1) as usize];
     let rot = |g: u32| prev[g as usize] ^ 1;
@@ -192,7 +195,7 @@ pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>) 
     let odd_first = |g: u32| 2 * (ebase[vert[g as usize] as usize] + (rank[g as usize] >> 1));
     let odd = |g: u32| if rank[g as usize] & 1 != 0 { odd_first(g) } else { odd_first(partner(g)) + 1 };
     let even = |g: u32| 2 * cidx[prev[g as usize] as usize] + 1;
-    let mut cols = Columns::new(pos, 3 * nh, frame.n_faces(m));
+    let mut cols = Columns::for_points(nh + points.len(), 3 * nh, frame.n_faces(m));
     let out = Out::of(&mut cols);
     // front faces: new vertex h at corner h, ids 2·cidx
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
@@ -240,16 +243,39 @@ pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>) 
     crate::cancel::check()?;
     // new vertex h first shows up at its front corner
     cols.v_out[..nh].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(h, o)| *o = 2 * cidx[h]);
-    frame.finish(m, cols)
+    Ok(Pending { cols, frame, points })
 }
 
-/// Vertex truncation's connectivity around its cut points `pos` (one per
-/// old half-edge, or per old edge when `merge`d); see the module docs.
-pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>, merge: bool) -> Result<Mesh> {
+/// A scheme's columns before its positions (issue 19: the connectivity's
+/// scratch is gone, and an input given up can lose what the positions do
+/// not read, before they are allocated).
+pub(crate) struct Pending {
+    cols: Columns,
+    frame: Frame,
+    /// The point-sphere vertices' positions, after the scheme's own.
+    points: Vec<DVec3>,
+}
+
+impl Pending {
+    /// The mesh around the scheme's own new points `pos`; `m` is the input,
+    /// of which only the hole flags are read here.
+    pub(crate) fn finish(self, m: &Mesh, mut pos: Vec<DVec3>) -> Result<Mesh> {
+        let Pending { mut cols, frame, points } = self;
+        pos.extend(points);
+        cols.pos = pos;
+        frame.finish(m, cols)
+    }
+}
+
+/// Vertex truncation's connectivity around its cut points (one per old
+/// half-edge, or per old edge when `merge`d, then the point-spheres'); see
+/// the module docs. The positions are left to the caller ([`Pending::finish`]).
+pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, merge: bool) -> Result<Pending> {
     let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
     let prev = &m.he_prev;
     let cidx = &fl.cidx;
-    let frame = Frame::new(m, &mut pos);
+    let n_cut = if merge { nh / 2 } else { nh };
+    let (frame, points) = Frame::numbered(m, n_cut);
     let rot = |g: u32| prev[g as usize] ^ 1;
     let n_front = if merge { nh } else { 2 * nh };
     // per old corner (FaceLayout index): rank << 1 | first(p_h); face edge bases
@@ -298,7 +324,7 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>,
     };
     let id0 = |h: u32| if rank[cidx[h as usize] as usize] & 1 != 0 { first0(h) } else { first0(h ^ 1) + 1 };
     let n_out = if merge { nh / 2 } else { nh };
-    let mut cols = Columns::new(pos, n_front + nh, frame.n_faces(m));
+    let mut cols = Columns::for_points(n_cut + points.len(), n_front + nh, frame.n_faces(m));
     let out = Out::of(&mut cols);
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
         let hs = fl.corners(f);
@@ -366,7 +392,7 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, mut pos: Vec<DVec3>,
             id1(x as u32 ^ 1)
         };
     });
-    frame.finish(m, cols)
+    Ok(Pending { cols, frame, points })
 }
 
 #[cfg(test)]
@@ -399,7 +425,7 @@ mod tests {
                 let fl = FaceLayout::new(&m).unwrap();
                 for merge in [false, true] {
                     let p = if merge { pos[..m.n_edges()].to_vec() } else { pos.clone() };
-                    let a = truncation_columns(&m, &fl, p.clone(), merge).unwrap();
+                    let a = truncation_columns(&m, &fl, merge).unwrap().finish(&m, p.clone()).unwrap();
                     let b = old::vertex_truncation(&m, p, merge).unwrap();
                     a.validate().unwrap_or_else(|e| panic!("{name} merge {merge}: {e}"));
                     assert!(a == b, "vertex_truncation {name} merge {merge}");

@@ -89,26 +89,68 @@ pub fn honeycomb(m: &Mesh, t: f64, tension: Option<f64>) -> Result<Mesh> {
 /// [`honeycomb`] on `m`'s face layout (built once by the callers that
 /// need it again: stencils, origins, data masks). Arguments checked.
 fn honeycomb_on(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>) -> Result<Mesh> {
-    let new_pos = positions(m, fl, t, tension)?;
     // ---- faces: [front faces (or copied point-spheres) | one 2k-gon per vertex],
-    // written straight into the columns
-    super::face_vertex_columns::honeycomb_columns(m, fl, new_pos)
+    // written straight into the columns; the positions after them (issue 19:
+    // the connectivity's scratch is gone by then)
+    let cols = super::face_vertex_columns::honeycomb_columns(m, fl)?;
+    cols.finish(m, positions(m, fl, t, tension)?)
+}
+
+/// [`honeycomb_level`] on an input the caller gives up (a previous level of
+/// a multi-level call, issue 19): asked for no stencils or origins, the
+/// connectivity is written first, then the face layout and what the
+/// positions do not read of the input (previous half-edges, faces of the
+/// half-edges, vertex starts) are freed before the positions exist, which
+/// walk the face cycles themselves. Anything else is [`honeycomb_level`]'s.
+/// The output is the same, bit for bit (`owned_level_equals_the_borrowed_one`).
+pub fn honeycomb_level_owned(mut m: Mesh, t: f64, tension: Option<f64>, req: &Request) -> Result<Level> {
+    if req.stencils || req.origins {
+        return honeycomb_level(&m, t, tension, req);
+    }
+    check_args(t, tension)?;
+    let fl = FaceLayout::new(&m)?;
+    let cols = super::face_vertex_columns::honeycomb_columns(&m, &fl)?;
+    drop(fl);
+    (m.he_prev, m.he_face, m.v_out) = (Vec::new(), Vec::new(), Vec::new());
+    let next = &m.he_next;
+    let pos = positions_by(&m, t, tension, |f, buf| {
+        let s = m.f_start[f];
+        if s & crate::mesh::POINT == 0 {
+            let mut h = s;
+            loop {
+                buf.push(h);
+                h = next[h as usize];
+                if h == s {
+                    break;
+                }
+            }
+        }
+    })?;
+    Ok(Level::plain(cols.finish(&m, pos)?))
 }
 
 /// Honeycomb's new vertices, one per old half-edge (eq. 2; holes and
 /// one-gons keep their edge points); shared with `topmod::root3_dual`.
 pub(crate) fn positions(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>) -> Result<Vec<DVec3>> {
+    positions_by(m, t, tension, |f, buf| buf.extend_from_slice(fl.corners(f)))
+}
+
+/// [`positions`] with face `f`'s corners (its cycle from its first
+/// half-edge; none for a point-sphere face) put in `buf` by `corners`.
+fn positions_by(m: &Mesh, t: f64, tension: Option<f64>, corners: impl Fn(usize, &mut Vec<u32>) + Sync) -> Result<Vec<DVec3>> {
     let nh = m.n_halfedges();
     let nf = m.n_faces();
-    let (_, vert, _) = m.halfedge_columns();
+    let vert = &m.he_vert;
     let pos = m.positions();
 
     // ---- new positions, one per old half-edge, face by face: the sums of the
     // face's edge points p_m (relative to its first vertex), then eq. 2 per corner
     let mut new_pos = crate::mesh::zeroed_points(nh);
     let np = super::hosts::SyncPtr(new_pos.as_mut_ptr());
-    (0..nf).into_par_iter().with_min_len(super::hosts::MIN_LEN / 4).for_each(|f| {
-        let hs = fl.corners(f);
+    (0..nf).into_par_iter().with_min_len(super::hosts::MIN_LEN / 4).for_each_init(Vec::new, |buf, f| {
+        buf.clear();
+        corners(f, buf);
+        let hs = &buf[..];
         // cancelled: the check below reports it; a point-sphere face has no corner
         if crate::cancel::requested() || hs.is_empty() {
             return;
@@ -349,6 +391,29 @@ pub fn check_args(t: f64, tension: Option<f64>) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn owned_level_equals_the_borrowed_one() {
+        use crate::schemes::hosts::test_meshes::{corpus, open_meshes};
+        // the corpus (point-spheres, self-loops, two-gons), open meshes and a
+        // second level; positions compared bit for bit
+        let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+        cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
+        cases.push(("torus".into(), crate::primitives::torus(12, 8, 3.0, 1.0).unwrap()));
+        let bits = |m: &Mesh| m.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+        for (name, m) in cases {
+            for (t, tension) in [(0.5, None), (0.3, Some(0.8))] {
+                let req = Request::plain();
+                let a = honeycomb_level(&m, t, tension, &req).unwrap().mesh;
+                let b = honeycomb_level_owned(m.clone(), t, tension, &req).unwrap().mesh;
+                assert_eq!(a, b, "{name}");
+                assert_eq!(bits(&a), bits(&b), "{name}");
+                let c = honeycomb_level(&a, t, tension, &req).unwrap().mesh;
+                let d = honeycomb_level_owned(a, t, tension, &req).unwrap().mesh;
+                assert_eq!((&c, bits(&c)), (&d, bits(&d)), "{name} level 2");
+            }
+        }
+    }
 
     #[test]
     fn tabled_cosines_are_the_expression_bit_for_bit() {

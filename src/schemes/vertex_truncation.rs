@@ -109,26 +109,49 @@ impl Truncation {
 /// Errors: a polyhedral `ratio` outside `(0, 1/2]` (including NaN).
 pub fn vertex_truncation(m: &Mesh, mode: Truncation) -> Result<Mesh> {
     mode.check()?;
-    let r = mode.ratio();
+    // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex],
+    // written straight into the columns; the positions after them (issue 19:
+    // the face layout is gone by then)
     let fl = FaceLayout::new(m)?;
-    let nh = m.n_halfedges();
-    let (_, vert, _) = m.halfedge_columns();
-    let pos = m.positions();
-    let merge = r == 0.5;
+    let cols = super::face_vertex_columns::truncation_columns(m, &fl, mode.ratio() == 0.5)?;
+    drop(fl);
+    cols.finish(m, cut_points(m, mode.ratio())?)
+}
 
-    // ---- positions: [cut points (per half-edge, or per edge when merged) | point-spheres]
+/// The cut points: per half-edge h, `(1 − r) vert(h) + r vert(twin h)`, or
+/// per edge its midpoint when `r = 1/2` (the cuts merged). Reads only the
+/// positions and the vertex column.
+fn cut_points(m: &Mesh, r: f64) -> Result<Vec<DVec3>> {
+    let (pos, vert) = (&m.pos, &m.he_vert);
+    let nh = vert.len();
     // (cancelled: zeros, the check below reports it)
     let stop = crate::cancel::requested;
-    let new_pos: Vec<DVec3> = if merge {
+    let new_pos: Vec<DVec3> = if r == 0.5 {
         (0..nh / 2).into_par_iter().map(|e| if stop() { DVec3::ZERO } else { 0.5 * (pos[vert[2 * e] as usize] + pos[vert[2 * e + 1] as usize]) }).collect()
     } else {
         (0..nh).into_par_iter().map(|h| if stop() { DVec3::ZERO } else { (1.0 - r) * pos[vert[h] as usize] + r * pos[vert[h ^ 1] as usize] }).collect()
     };
     crate::cancel::check()?;
+    Ok(new_pos)
+}
 
-    // ---- faces: [old faces (2n-gons, or n-gons when merged) | one m-gon per vertex],
-    // written straight into the columns
-    super::face_vertex_columns::truncation_columns(m, &fl, new_pos, merge)
+/// [`vertex_truncation_level`] on an input the caller gives up (a previous
+/// level of a multi-level call, issue 19): asked for no stencils or
+/// origins, the connectivity is written first, then the input keeps only
+/// its positions, vertex column and hole flags while the cut points are
+/// computed. Anything else is [`vertex_truncation_level`]'s. The output is
+/// the same, bit for bit (`owned_level_equals_the_borrowed_one`).
+pub fn vertex_truncation_level_owned(mut m: Mesh, mode: Truncation, req: &Request) -> Result<Level> {
+    if req.stencils || req.origins {
+        return vertex_truncation_level(&m, mode, req);
+    }
+    mode.check()?;
+    let fl = FaceLayout::new(&m)?;
+    let cols = super::face_vertex_columns::truncation_columns(&m, &fl, mode.ratio() == 0.5)?;
+    drop(fl);
+    (m.he_next, m.he_prev, m.he_face, m.v_out, m.f_start) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let pos = cut_points(&m, mode.ratio())?;
+    Ok(Level::plain(cols.finish(&m, pos)?))
 }
 
 /// One step with what `req` asks for (see the module docs); without
@@ -209,6 +232,28 @@ mod tests {
     use super::*;
     use crate::primitives::*;
     use crate::schemes::hosts::test_meshes::{check_output, counts, cube_with_hole, handle_cube, one_gon_two_gon_cube, prism, star_prism};
+
+    #[test]
+    fn owned_level_equals_the_borrowed_one() {
+        use crate::schemes::hosts::test_meshes::{corpus, open_meshes};
+        // the corpus (point-spheres, self-loops, two-gons), open meshes and a
+        // second level, cuts apart and merged; positions compared bit for bit
+        let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+        cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
+        cases.push(("torus".into(), torus(12, 8, 3.0, 1.0).unwrap()));
+        let bits = |m: &Mesh| m.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+        for (name, m) in cases {
+            for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.5 }, Truncation::Polyhedral { ratio: 0.3 }] {
+                let req = Request::plain();
+                let a = vertex_truncation_level(&m, mode, &req).unwrap().mesh;
+                let b = vertex_truncation_level_owned(m.clone(), mode, &req).unwrap().mesh;
+                assert_eq!((&a, bits(&a)), (&b, bits(&b)), "{name}");
+                let c = vertex_truncation_level(&a, mode, &req).unwrap().mesh;
+                let d = vertex_truncation_level_owned(a, mode, &req).unwrap().mesh;
+                assert_eq!((&c, bits(&c)), (&d, bits(&d)), "{name} level 2");
+            }
+        }
+    }
 
     /// Largest distance of a face's corners from the plane through its
     /// centroid with its Newell normal, relative to the face's bounding-box
