@@ -156,7 +156,7 @@ pub(crate) fn run<'py>(
     let input = &slf.inner;
     let options = spec.options;
     if !correspondence && slf.data.is_empty() {
-        let (out, _) = super::iterate_src(py, input, iterations, progress, spec.name, spec.predict, 0usize, |src, k| {
+        let (out, _) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, 0usize, |src, k| {
             *k += 1;
             let req = Request { options, level: *k - 1, ..Default::default() };
             match (src, spec.owned.as_ref()) {
@@ -217,7 +217,8 @@ pub(crate) fn run<'py>(
         name: spec.name,
         level: 0,
     };
-    let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |m, st| {
+    let (out, st) = super::iterate_with(py, input, iterations, progress, spec.name, spec.predict, state, |src, st| {
+        let m: &Mesh = &src;
         let direct = spec.with_data.as_ref().filter(|_| !st.attrs.is_empty());
         // corner rows: the scheme's direct path where it applies (no stencils or
         // origins needed), else the generic transfer

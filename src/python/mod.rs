@@ -200,7 +200,8 @@ pub(crate) fn iterate_traced(
     use crate::schemes::face_parents::{compose_parents, traced};
     // None: not wanted (no face attributes) or a level recorded nothing
     let start = (!data.face.is_empty()).then(|| (0..mesh.n_faces() as u32).collect::<Vec<u32>>());
-    let (out, parents) = iterate_with(py, mesh, iterations, progress, name, predict, start, |m, st| {
+    let (out, parents) = iterate_with(py, mesh, iterations, progress, name, predict, start, |src, st| {
+        let m: &crate::Mesh = &src;
         if st.is_none() {
             return step(m);
         }
@@ -214,24 +215,7 @@ pub(crate) fn iterate_traced(
     data::inherited(py, data, name, mesh, out.unwrap_or_else(|| mesh.clone()), parents)
 }
 
-/// [`iterate_traced`] with a state carried from level to level (attributes,
-/// stencils, origins); returns the last level's mesh (None for 0 levels)
-/// and the state.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn iterate_with<S: Send>(
-    py: Python<'_>,
-    mesh: &crate::Mesh,
-    iterations: i128,
-    progress: bool,
-    name: &str,
-    predict: crate::budget::Predictor,
-    state: S,
-    step: impl Fn(&crate::Mesh, &mut S) -> crate::Result<crate::Mesh> + Sync,
-) -> PyResult<(Option<crate::Mesh>, S)> {
-    iterate_src(py, mesh, iterations, progress, name, predict, state, |src, st| step(&src, st))
-}
-
-/// A level's input in [`iterate_src`]: the caller's mesh, or the previous
+/// A level's input in [`iterate_with`]: the caller's mesh, or the previous
 /// level's, which the step may consume.
 pub(crate) enum Src<'a> {
     Input(&'a crate::Mesh),
@@ -248,11 +232,13 @@ impl std::ops::Deref for Src<'_> {
     }
 }
 
-/// [`iterate_with`] whose step owns the previous level (issue 19: an input
-/// freed as soon as it is no longer needed); the level is dropped when the
-/// step returns if the step did not consume it.
+/// [`iterate_traced`] with a state carried from level to level (attributes,
+/// stencils, origins); returns the last level's mesh (None for 0 levels)
+/// and the state. The step owns the previous level (issue 19: an input
+/// freed as soon as it is no longer needed); it is dropped when the step
+/// returns if the step did not consume it.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn iterate_src<S: Send>(
+pub(crate) fn iterate_with<S: Send>(
     py: Python<'_>,
     mesh: &crate::Mesh,
     iterations: i128,

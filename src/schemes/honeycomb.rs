@@ -112,20 +112,7 @@ pub fn honeycomb_level_owned(mut m: Mesh, t: f64, tension: Option<f64>, req: &Re
     let cols = super::face_vertex_columns::honeycomb_columns(&m, &fl)?;
     drop(fl);
     (m.he_prev, m.he_face, m.v_out) = (Vec::new(), Vec::new(), Vec::new());
-    let next = &m.he_next;
-    let pos = positions_by(&m, t, tension, |f, buf| {
-        let s = m.f_start[f];
-        if s & crate::mesh::POINT == 0 {
-            let mut h = s;
-            loop {
-                buf.push(h);
-                h = next[h as usize];
-                if h == s {
-                    break;
-                }
-            }
-        }
-    })?;
+    let pos = positions_by(&m, t, tension, |f, buf| buf.extend(m.face_halfedges(FaceId(f as u32)).map(|h| h.idx() as u32)))?;
     Ok(Level::plain(cols.finish(&m, pos)?))
 }
 
