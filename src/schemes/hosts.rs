@@ -103,34 +103,48 @@ pub(crate) struct FaceLayout {
 impl FaceLayout {
     /// Fails only when cancelled ([`crate::cancel`]), polled every 64 Ki faces.
     pub fn new(m: &Mesh) -> Result<Self> {
-        let (next, _, _) = m.halfedge_columns();
+        let mut fh = Vec::with_capacity(m.n_halfedges());
+        let (cidx, off) = Self::walk(m, |h| fh.push(h))?;
+        Ok(FaceLayout { fh, off, cidx })
+    }
+
+    /// [`FaceLayout::new`]'s ranks and face starts alone (`cidx`, `off`),
+    /// without the corner list: for fills that run over the half-edges.
+    pub fn ranks(m: &Mesh) -> Result<(Vec<u32>, Vec<u32>)> {
+        Self::walk(m, |_| ())
+    }
+
+    /// Every face cycle from its first corner, in face order: each corner's
+    /// rank and each face's first, with `corner` called on every corner in
+    /// that order.
+    fn walk(m: &Mesh, mut corner: impl FnMut(u32)) -> Result<(Vec<u32>, Vec<u32>)> {
+        let next = &m.he_next;
         let nf = m.n_faces();
-        let nh = m.n_halfedges();
-        let mut fh = Vec::with_capacity(nh);
         let mut off = Vec::with_capacity(nf + 1);
-        let mut cidx = vec![0u32; nh];
-        off.push(0u32);
+        let mut cidx = vec![0u32; m.n_halfedges()];
+        let mut c = 0u32;
         for f in 0..nf {
             if f % 65536 == 0 {
                 crate::cancel::check()?;
             }
+            off.push(c);
             let s = m.f_start[f];
             if s & POINT != 0 {
-                off.push(fh.len() as u32);
                 continue;
             }
             let mut h = s;
             loop {
-                cidx[h as usize] = fh.len() as u32;
-                fh.push(h);
+                cidx[h as usize] = c;
+                corner(h);
+                c += 1;
                 h = next[h as usize];
                 if h == s {
                     break;
                 }
             }
-            off.push(fh.len() as u32);
         }
-        Ok(FaceLayout { fh, off, cidx })
+        off.push(c);
+        Ok((cidx, off))
     }
 
     /// The half-edges of face `f`'s corners, in cycle order.

@@ -63,32 +63,6 @@ fn step_owned(m: Mesh) -> Result<Mesh> {
     build(Cow::Owned(m))
 }
 
-/// Every half-edge's position in its face's cycle, counted over the faces
-/// in order (the corner order of the F-faces), and each face's first.
-fn corner_ranks(m: &Mesh) -> Result<(Vec<u32>, Vec<u32>)> {
-    let next = &m.he_next;
-    let nf = m.n_faces();
-    let mut cidx = vec![0u32; m.n_halfedges()];
-    let mut off = Vec::with_capacity(nf + 1);
-    let mut c = 0u32;
-    for f in 0..nf {
-        crate::cancel::poll(f)?;
-        off.push(c);
-        let s = m.f_start[f];
-        let mut h = s;
-        loop {
-            cidx[h as usize] = c;
-            c += 1;
-            h = next[h as usize];
-            if h == s {
-                break;
-            }
-        }
-    }
-    off.push(c);
-    Ok((cidx, off))
-}
-
 /// Connectivity straight into the columns (issue 19), numbered exactly as
 /// `from_corner_twins` numbered the corners `[F-corners | V-slots]` it was
 /// given (the `output_hashes` test holds it to that). Every F-corner c
@@ -108,7 +82,7 @@ fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
     let m: &Mesh = &src;
     check_output_size("simplest", 2 * m.n_halfedges(), m.n_edges())?;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
-    let (cidx, off) = corner_ranks(m)?;
+    let (cidx, off) = FaceLayout::ranks(m)?;
     // a face starts at its first corner: F-face f at corner off[f], V-face v
     // at the slot of v_out[v]
     let mut f_start = vec![0u32; nf + nv];

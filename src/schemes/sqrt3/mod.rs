@@ -44,6 +44,7 @@ use crate::error::Result;
 use crate::mesh::{Columns, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// One level of √3 subdivision of a closed mesh. See the module docs; open
 /// meshes go through [`sqrt3_level`] (the boundary rule needs the level's
@@ -74,10 +75,7 @@ pub(super) fn kobbelt_row(m: &Mesh, vert: &[u32], v: usize, row: &mut super::ste
 /// Connectivity first, positions last: the edge numbering's scratch
 /// (`base`, 4 B per output triangle) is freed before the positions exist.
 fn step(m: &Mesh) -> Result<Mesh> {
-    check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
-    let mut cols = columns(m)?;
-    cols.pos = positions(m)?;
-    Mesh::from_columns(cols)
+    build(Cow::Borrowed(m))
 }
 
 /// [`step`] on a level's input that nobody else holds (the previous level
@@ -87,13 +85,18 @@ fn step(m: &Mesh) -> Result<Mesh> {
 /// allocated, since [`positions`] walks only rings (`v_out`, `he_prev`),
 /// face cycles (`f_start`, `he_next`) and `he_vert`. The output is
 /// [`step`]'s, bit for bit (`owned_level_equals_the_borrowed_one`).
-fn step_owned(mut m: Mesh) -> Result<Mesh> {
-    check_output_size("sqrt3", 3 * m.n_halfedges(), m.n_vertices() + m.n_faces())?;
-    let mut cols = columns(&m)?;
-    m.he_face = Vec::new();
-    m.f_hole = Vec::new();
-    cols.pos = positions(&m)?;
-    drop(m);
+fn step_owned(m: Mesh) -> Result<Mesh> {
+    build(Cow::Owned(m))
+}
+
+fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
+    check_output_size("sqrt3", 3 * src.n_halfedges(), src.n_vertices() + src.n_faces())?;
+    let mut cols = columns(&src)?;
+    if let Cow::Owned(m) = &mut src {
+        (m.he_face, m.f_hole) = (Vec::new(), Vec::new());
+    }
+    cols.pos = positions(&src)?;
+    drop(src);
     Mesh::from_columns(cols)
 }
 
@@ -292,7 +295,7 @@ fn direct_data(m: &Mesh, a: &[f64], k: usize) -> Result<Vec<f64>> {
 pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
     with_point_spheres_level(m, req, |m, req| {
         if m.n_holes() > 0 {
-            return boundary::open_level(std::borrow::Cow::Borrowed(m), req);
+            return boundary::open_level(Cow::Borrowed(m), req);
         }
         let mesh = step(m)?;
         let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
@@ -346,7 +349,7 @@ pub fn sqrt3_level_owned(m: Mesh, req: &Request) -> Result<Level> {
         return sqrt3_level(&m, req);
     }
     if m.n_holes() > 0 {
-        return boundary::open_level(std::borrow::Cow::Owned(m), req);
+        return boundary::open_level(Cow::Owned(m), req);
     }
     Ok(Level { mesh: step_owned(m)?, stencils: None, origins: None, creases: None })
 }
