@@ -77,12 +77,11 @@ impl PyMesh {
     ///     only the attribute ``transfer``.
     /// reduce_thickness : bool, default True, keyword-only
     ///     Where an iteration's output has crossing triangle pairs (exact
-    ///     predicate, the whole output), halve the offset depth and rebuild,
-    ///     keeping the build with the fewest pairs: of every face with the
-    ///     per-face construction (at most 3 rebuilds), of the input faces
-    ///     whose structure crosses with ``"merged"``
-    ///     (``src/schemes/menger/mod.rs``, "Per-face corners" and
-    ///     "Thickness reduction"). Outputs without crossings are unchanged.
+    ///     predicate, the whole output), halve the offset depth of the
+    ///     input faces whose structure placed them (no other face) and
+    ///     rebuild, at most 6 times, keeping the build with the fewest
+    ///     pairs (``src/schemes/menger/mod.rs``, "Thickness reduction").
+    ///     Outputs without crossings are unchanged.
     ///     False: the construction without it (no whole-output scan;
     ///     faster, about 1.6x on a 100k-face torus).
     /// report : bool, default False, keyword-only
@@ -101,8 +100,8 @@ impl PyMesh {
     ///     straight below its window, so every pipe is a right prism; vertex
     ///     faces are cones from a point below every face around the vertex,
     ///     and the depth is half the inset (full on the cube's right angles:
-    ///     the classic sponge), halved for the whole mesh while the output
-    ///     crosses. ``"merged"``: the dissertation's construction (VII.4),
+    ///     the classic sponge), halved where the output crosses (see
+    ///     ``reduce_thickness``). ``"merged"``: the dissertation's construction (VII.4),
     ///     one offset corner per group of faces joined by collapsed edges
     ///     (edges up to ``collapse_angle``), kept to reproduce the chapter's
     ///     counts (the tetrahedron's first iteration: 36 faces, against 46

@@ -227,87 +227,69 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
     }
 }
 
-/// Uniform halvings of the per-face construction's depth (module docs,
-/// "Per-face corners"): at most this many rebuilds.
-pub const PER_FACE_ROUNDS: usize = 3;
-
-/// The per-face construction's depth before any halving (module docs,
+/// The per-face construction's depth before any reduction (module docs,
 /// "Per-face corners"), as a fraction of the inset `D`, unless every edge
 /// of the mesh meets at a right or flat angle (the cube's family, whose
 /// per-face corners coincide into the classic sponge at full depth).
 pub const PER_FACE_DEPTH: f64 = 0.5;
 
-/// [`build_reduced`] for [`super::Offset::PerFace`] (module docs,
-/// "Per-face corners"): the depth starts at [`PER_FACE_DEPTH`] of the inset
-/// off right angles and, while the output crosses, every face's depth is
-/// halved (a uniform thinning, not a local one: measured, a local halving
-/// leaves faces of different depth side by side and stalls, octahedron 3 at
-/// 504 pairs); the build with the fewest pairs is kept.
-fn build_per_face(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
-    let base = super::offset::per_face_depth(m);
-    let mut best: Option<((Built, Mesh), MengerReport)> = None;
-    let mut scale = 1.0;
-    // per-face corners have no full collapse to fall back on, so the
-    // per-vertex check only reports (`crossing_vertices`): it runs where
-    // the whole-output scan does not (no reduction) or found pairs (a
-    // crossing-free output has no crossing vertex either: the check tests a
-    // subset of the scan's pairs with the same predicate)
-    let all_apart = vec![false; m.n_vertices()];
-    let vertices = |cur: &(Built, Mesh), tri: &Tris| local_crossings(&tri.p, &tri.t.tris, &cur.0.owner, cur.0.first_inner, None).len();
-    for rounds in 0..=PER_FACE_ROUNDS {
-        let red = Reduction { depth: vec![base * scale; m.n_faces()] };
-        let cur = build_once(m, o, &all_apart, Some(&red))?;
-        let tri = Tris::of(&cur.1);
-        let mut report = MengerReport { face_factor: cur.0.depth_factor.clone(), rounds, crossing_pairs: None, crossing_vertices: 0, nominal: base };
-        if !reduce {
-            report.crossing_vertices = vertices(&cur, &tri);
-            crate::cancel::check()?;
-            return Ok((cur, report));
-        }
-        let n = output_crossings(&tri, cur.0.first_inner).len();
-        crate::cancel::check()?;
-        if n > 0 {
-            report.crossing_vertices = vertices(&cur, &tri);
-        }
-        drop(tri);
-        report.crossing_pairs = Some(n);
-        if best.as_ref().map_or(true, |(_, r)| r.crossing_pairs.is_some_and(|x| n < x)) {
-            best = Some((cur, report));
-        }
-        if n == 0 {
-            break;
-        }
-        scale *= 0.5;
-    }
-    Ok(best.expect("one build at least"))
+/// One per-face build (module docs, "Per-face corners") at the depths of
+/// `red`. Per-face corners have no full collapse to fall back on, so the
+/// per-vertex check only reports (`crossing_vertices`): it runs here when
+/// no whole-output scan follows (`!reduce`), else [`build_reduced`] runs it
+/// where the scan found pairs (a crossing-free output has no crossing
+/// vertex either: the check tests a subset of the scan's pairs with the
+/// same predicate).
+fn build_apart(m: &Mesh, o: &MengerOptions, red: &Reduction, reduce: bool) -> Result<Checked> {
+    let cur = build_once(m, o, &vec![false; m.n_vertices()], Some(red))?;
+    let tri = Tris::of(&cur.1);
+    let vertices = if reduce { 0 } else { crossing_vertex_count(&cur.0, &tri) };
+    crate::cancel::check()?;
+    Ok((cur, vertices, Scan::Tris(tri)))
+}
+
+/// Input vertices whose own triangles cross (the per-vertex check).
+fn crossing_vertex_count(b: &Built, tri: &Tris) -> usize {
+    local_crossings(&tri.p, &tri.t.tris, &b.owner, b.first_inner, None).len()
 }
 
 /// One iteration with the thickness reduction (module docs, "Thickness
-/// reduction"): [`build_valid`], then, while the output has crossing
-/// triangle pairs (exact predicate, the whole output), the faces involved
-/// get half their thickness and the level is rebuilt; faces already at
-/// [`REDUCTION_FLOOR`] stay there. Without `reduce`, one [`build_valid`]
-/// and no whole-output scan.
+/// reduction"), for both constructions: a build ([`build_valid`], or
+/// [`build_apart`] at the per-face depth), then, while the output has
+/// crossing triangle pairs (exact predicate, the whole output), the input
+/// faces involved ([`implicated`]) get half their depth and the level is
+/// rebuilt; faces already at [`REDUCTION_FLOOR`] of the construction's own
+/// depth stay there. The build with the fewest pairs is kept. Without
+/// `reduce`, one build and no whole-output scan.
 pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
-    if o.offset == super::Offset::PerFace {
-        return build_per_face(m, o, reduce);
-    }
+    let per_face = o.offset == super::Offset::PerFace;
     let nf = m.n_faces();
-    let mut red = Reduction { depth: vec![1.0; nf] };
-    let factor = |r: &Reduction, f: usize| r.depth[f];
+    // the construction's own depth factor (module docs, "Per-face corners")
+    let nominal = if per_face { super::offset::per_face_depth(m) } else { 1.0 };
+    let mut red = Reduction { depth: vec![nominal; nf] };
     let mut rounds = 0;
     let mut hit: Vec<u32> = Vec::new();
     // the build with the fewest crossing pairs so far
     let mut best: Option<((Built, Mesh), MengerReport)> = None;
     loop {
-        let ((b, mesh), vertices, scanned) = build_valid(m, o, (rounds > 0).then_some(&red))?;
+        let ((b, mesh), mut vertices, scanned) =
+            if per_face { build_apart(m, o, &red, reduce)? } else { build_valid(m, o, (rounds > 0).then_some(&red))? };
+        // per face: the factor of the face's depth, with the sharp-edge
+        // bound of the per-face construction (invariant 3)
+        let face_factor = if per_face { b.depth_factor.clone() } else { red.depth.clone() };
+        let report = |crossing_pairs, crossing_vertices| MengerReport { face_factor, rounds, crossing_pairs, crossing_vertices, nominal };
         if !reduce {
-            let report = MengerReport { face_factor: vec![1.0; nf], rounds: 0, crossing_pairs: None, crossing_vertices: vertices, nominal: 1.0 };
-            return Ok(((b, mesh), report));
+            return Ok(((b, mesh), report(None, vertices)));
         }
         let pairs = match scanned {
             Scan::Pairs(p) => p,
-            Scan::Tris(t) => output_crossings(&t, b.first_inner),
+            Scan::Tris(t) => {
+                let p = output_crossings(&t, b.first_inner);
+                if per_face && !p.is_empty() {
+                    vertices = crossing_vertex_count(&b, &t);
+                }
+                p
+            }
         };
         crate::cancel::check()?;
         if best.as_ref().is_some_and(|(_, r)| r.crossing_pairs.is_some_and(|n| n <= pairs.len())) {
@@ -321,8 +303,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         }
         hit.sort_unstable();
         hit.dedup();
-        let face_factor = (0..nf).map(|f| factor(&red, f)).collect();
-        let report = MengerReport { face_factor, rounds, crossing_pairs: Some(pairs.len()), crossing_vertices: vertices, nominal: 1.0 };
+        let report = report(Some(pairs.len()), vertices);
         let last = pairs.is_empty() || rounds == REDUCTION_ROUNDS;
         drop(pairs);
         best = Some(((b, mesh), report));
@@ -332,7 +313,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
         let mut changed = false;
         for &f in &hit {
             let f = f as usize;
-            if factor(&red, f) > REDUCTION_FLOOR * (1.0 + 1e-9) {
+            if red.depth[f] > nominal * REDUCTION_FLOOR * (1.0 + 1e-9) {
                 red.depth[f] *= 0.5;
                 changed = true;
             }
