@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import os
 import re
+import warnings
 from pathlib import Path
 
 import pytest
@@ -108,7 +109,14 @@ def test_menger_command_constructions(tmp_path):
     got = {}
     for extra in ([], ["--offset", "merged"]):
         dst = tmp_path / f"out{len(extra)}.ply"
-        assert cli.main(["menger", str(src), str(dst), *extra]) == 0
+        if extra:
+            assert cli.main(["menger", str(src), str(dst), *extra]) == 0
+        else:
+            # per-face corners keep the requested depth except at the
+            # tetrahedron's 70.5° edges, where it is bounded: said, not silent
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", topomesh.GeometryWarning)
+                assert cli.main(["menger", str(src), str(dst), *extra]) == 0
         m = topomesh.load(dst, allow_multi_edges=True)
         got[tuple(extra)] = (m.n_faces, m.genus)
     assert got == {(): (46, 3), ("--offset", "merged"): (36, 3)}

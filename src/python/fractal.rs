@@ -91,17 +91,18 @@ impl PyMesh {
     ///     ``reduced_faces``, ``min_factor``, ``rounds`` (rebuilds kept),
     ///     ``crossing_pairs`` (crossing triangle pairs left in the output,
     ///     None with ``reduce_thickness=False``), ``crossing_vertices`` and
-    ///     ``nominal_factor`` (the construction's own depth factor: 1, or
-    ///     1/2 with ``offset="per_face"`` off right angles; faces below it
+    ///     ``nominal_factor`` (the depth factor before any reduction: 1,
+    ///     the requested thickness, for both constructions; faces below it
     ///     count as reduced).
     /// offset : {"per_face", "merged"}, default "per_face", keyword-only
     ///     How the inner surface is built (``src/schemes/menger/mod.rs``).
     ///     ``"per_face"``: every face corner gets its own offset corner
     ///     straight below its window, so every pipe is a right prism; vertex
     ///     faces are cones from a point below every face around the vertex,
-    ///     and the depth is half the inset (full on the cube's right angles:
-    ///     the classic sponge), halved where the output crosses (see
-    ///     ``reduce_thickness``). ``"merged"``: the dissertation's construction (VII.4),
+    ///     and the depth is the requested thickness, halved only on the
+    ///     faces behind a crossing (see ``reduce_thickness``; the cube's
+    ///     right angles keep it: the classic sponge). ``"merged"``: the
+    ///     dissertation's construction (VII.4),
     ///     one offset corner per group of faces joined by collapsed edges
     ///     (edges up to ``collapse_angle``), kept to reproduce the chapter's
     ///     counts (the tetrahedron's first iteration: 36 faces, against 46

@@ -227,12 +227,6 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
     }
 }
 
-/// The per-face construction's depth before any reduction (module docs,
-/// "Per-face corners"), as a fraction of the inset `D`, unless every edge
-/// of the mesh meets at a right or flat angle (the cube's family, whose
-/// per-face corners coincide into the classic sponge at full depth).
-pub const PER_FACE_DEPTH: f64 = 0.5;
-
 /// One per-face build (module docs, "Per-face corners") at the depths of
 /// `red`. Per-face corners have no full collapse to fall back on, so the
 /// per-vertex check only reports (`crossing_vertices`): it runs here when
@@ -264,8 +258,9 @@ fn crossing_vertex_count(b: &Built, tri: &Tris) -> usize {
 pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
     let per_face = o.offset == super::Offset::PerFace;
     let nf = m.n_faces();
-    // the construction's own depth factor (module docs, "Per-face corners")
-    let nominal = if per_face { super::offset::per_face_depth(m) } else { 1.0 };
+    // both constructions start at the requested depth (module docs,
+    // "Per-face corners", invariant 6)
+    let nominal = 1.0;
     let mut red = Reduction { depth: vec![nominal; nf] };
     let mut rounds = 0;
     let mut hit: Vec<u32> = Vec::new();

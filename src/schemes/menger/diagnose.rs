@@ -104,7 +104,7 @@ fn classify_crossings() {
         let m = menger_iterated(&input(&name), n - 1, &pre).unwrap();
         // the per-face construction's own depth (module docs, "Per-face corners")
         let scale: f64 = std::env::var("SCALE").ok().and_then(|x| x.parse().ok()).unwrap_or(1.0);
-        let red = (o.offset == Offset::PerFace).then(|| Reduction { depth: vec![scale * super::offset::per_face_depth(&m); m.n_faces()] });
+        let red = (o.offset == Offset::PerFace).then(|| Reduction { depth: vec![scale; m.n_faces()] });
         let ((b, mesh), left, _) = build_valid(&m, &o, red.as_ref()).unwrap();
         let pl = plan(&m, &o, &vec![false; m.n_vertices()], None).unwrap();
         let pos = m.positions();

@@ -129,34 +129,46 @@
 //! cube with the default thickness every edge collapses, so the first
 //! iteration is the classic level-1 sponge (V 64, E 144, F 72, genus 5).
 //!
-//! With per-face corners ("Per-face corners" below) off right angles
-//! (some edge not at 90°, 180° or 270°), nothing is welded, collapsed or
-//! measured: with `E_m` the non-convex edges (interior angle above 180°)
-//! and, at each vertex `v`, a collar of `c_v = valence(v) + m_v` corners
-//! (`m_v` the ends of non-convex edges at `v`: one miter point each), every
-//! vertex face with `c_v > 3` a cone of `c_v` triangles from one apex and
-//! every other one a triangle,
+//! With per-face corners ("Per-face corners" below) nothing is collapsed:
+//! with `E_m` the non-convex edges (interior angle above 180°) and, at each
+//! vertex `v`, a collar of `c_v = valence(v) + m_v` corners (`m_v` the ends
+//! of non-convex edges at `v`: one miter point each), every vertex face
+//! with `c_v > 3` a cone of `c_v` triangles from one apex and every other
+//! one a triangle,
 //!
 //! ```text
-//! V' = V + 4E (trisection, inset corners) + 2E (offset corners) + 2E_m + K
+//! V' = V + 4E (trisection, inset corners) + 2E (offset corners) + 2E_m + K − 2W
 //! F' = 4E (corner, edge quads) + 2E (pipe walls) + E + E_m (strips, miter
-//!      quads) + Σ_{c_v > 3} c_v + #{v : c_v = 3}
-//! E' = V' + F' − χ'         K = #{v : c_v > 3}
+//!      quads) + Σ_{c_v > 3} c_v + #{v : c_v = 3} − 3W + P
+//! E' = V' + F' − χ'  (= … − 5W + P)         K = #{v : c_v > 3}
 //! ```
 //!
-//! for inputs whose vertices have valence 3 or more and whose faces are
-//! planar (a non-planar face's outer quads are split into planar pieces,
-//! each adding a face and an edge; a miter point held back by its reach,
-//! invariant 4, splits its two quads the same way). The formula holds
-//! exactly on every iteration of the tetrahedron (1–4), octahedron,
-//! icosahedron and dodecahedron (1–4) and the torus (1–2)
-//! (`tests/test_menger_offset.py`, which evaluates it from the input alone).
-//! The tetrahedron's first iteration (no non-convex edge, every collar of
-//! three corners, no cone): V 40 = 4 + 24 + 12, F 46 = 24 + 12 + 6 strips
-//! + 4 triangular vertex faces (the chapter's 36 faces plus the strips and
-//! the vertex faces), E 90, genus 3. On right angles (the cube's
-//! family) the coincident corners are welded (invariant 2) and the counts
-//! are the merged construction's above (the classic sponge).
+//! that is,
+//!
+//! ```text
+//! V' = V + 6E + 2E_m + K − 2W
+//! F' = 7E + E_m + Σ_{c_v > 3} c_v + #{v : c_v = 3} − 3W + P
+//! ```
+//!
+//! for inputs whose vertices have valence 3 or more. `W` counts the edges
+//! whose two offset edges coincide and are welded (invariant 2: a
+//! right-angled edge whose two faces keep depths equal to each other's
+//! inset; each removes its strip, two offset corners, and one triangle
+//! from the cone at each end) and `P` the pieces added by splitting
+//! non-planar faces (a face and an edge each: the outer quads of a
+//! non-planar input face, or a miter point held back by its reach,
+//! invariant 4). Both are zero off right angles and on planar inputs;
+//! `tests/test_menger_offset.py` evaluates the rest from the input alone on
+//! every iteration of the tetrahedron (1–4), octahedron, icosahedron (1–3),
+//! dodecahedron (1–3) and torus (1–2): exact except the octahedron's and
+//! icosahedron's third iterations (`W` = 48 and 120, at the pipe walls'
+//! right angles) and the tetrahedron's fourth (`P` = 20). The tetrahedron's
+//! first iteration (no non-convex edge, every collar of three corners, no
+//! cone): V 40 = 4 + 24 + 12, F 46 = 24 + 12 + 6 strips + 4 triangular
+//! vertex faces (the chapter's 36 faces plus the strips and the vertex
+//! faces), E 90, genus 3. On a mesh whose edges all meet at right angles
+//! (the cube's family) every corner welds as the merged ones collapse, and
+//! the counts are the merged construction's above (the classic sponge).
 //!
 //! # Thickness, welding, planarity
 //!
@@ -293,35 +305,34 @@
 //!    tetrahedron's vertices of 60°, 270° and 270° (fourth iteration: 276
 //!    pairs, 48 as cones); on the cube's right angles they stay as built,
 //!    which keeps the classic sponge;
-//! 6. the depth is thin: `PER_FACE_DEPTH` = ½ of the inset `D` on every
-//!    face, unless every edge of the mesh meets at 90°, 180° or 270° (the
-//!    cube and its iterations: full depth, where invariant 2 welds the
-//!    corners into the classic sponge). Where the output crosses, the
-//!    thickness reduction ("Thickness reduction" above, the same for both
-//!    constructions) halves the depth of the input faces behind the
-//!    crossing pairs only, and rebuilds; every other face keeps this depth.
+//! 6. the depth is the requested one: `D` on every face (the cube's family:
+//!    invariant 2 welds the corners into the classic sponge), less only
+//!    where invariant 3 bounds it at sharp edges and where the thickness
+//!    reduction ("Thickness reduction" above, the same loop for both
+//!    constructions) halves the depth of the input faces behind a crossing
+//!    pair; every other face keeps `D`. Both are reported per face.
 //!
 //! Invariants 1–5 make the structure at every vertex converge, as the depth
 //! shrinks, to a thin layer under its faces, which cannot cross where the
-//! vertex's normals fit in a hemisphere. Invariant 6 is measured, not
-//! derived: thinner is not always better (octahedron 3 with a tenth of
-//! the inset: 288 pairs, with a quarter: 0), and the depth of earlier
-//! iterations decides what later ones can offset (octahedron 2 built at
-//! full depth, 96 pairs, then halved: the third iteration keeps 408 pairs
-//! at best; built at half depth from the first iteration: 0). A depth per
-//! face (full on right-angled faces, half elsewhere) left 120 / 1396 pairs
-//! in the octahedron's / icosahedron's third iteration. The local halving
-//! of "Thickness reduction" stalled on faces of different depth side by
-//! side before invariants 4 and 5 took their present form (octahedron 3:
-//! 504, dodecahedron 3: 963) and a uniform halving of every face was used
-//! instead; with them it leaves none: the only two cases of issue 17's
-//! list that cross as built, the dodecahedron's third iteration (480
-//! pairs) and the tetrahedron's fourth (1,368), are crossing-free after one
-//! local round with 420 of 4,370 and 2,340 of 16,102 faces reduced (the
-//! uniform halving reduced all of them), and the dodecahedron's fourth,
-//! built on that third (4,560 pairs as built), after one round too (5,220
-//! of 80,150). Each rule was measured alone on the merged construction's
-//! first octahedron iteration (its second iteration, full depth, no reduction):
+//! vertex's normals fit in a hemisphere: halving the depth of the faces
+//! behind a crossing converges. Invariant 6 replaced a measured rule: the
+//! depth used to start at ½ of the inset on every face off right angles
+//! and be halved for the whole mesh while the output crossed, because a
+//! local halving stalled on faces of different depth side by side before
+//! invariants 4 and 5 took their present form (octahedron 3: 504 pairs,
+//! dodecahedron 3: 963) and starting at full depth then left 408 pairs in
+//! the octahedron's third iteration. With them, the local reduction from
+//! the requested depth leaves no pair on any case of issue 17's list (as
+//! built → after, input faces reduced): tetrahedron 3 1,618 → 0 (870 of
+//! 874), 4 53,739 → 0 (16,014 of 16,102); octahedron 2 288 → 0 (108 of
+//! 108), 3 3,848 → 0 (1,884 of 1,980); icosahedron 2 720 → 0 (all 270), 3
+//! 7,551 → 0 (4,710 of 4,950); dodecahedron 2 221 → 0 (all 230), 3 7,276
+//! → 0 (all 4,370), 4 190,224 → 0 (79,424 of 80,330); torus 2 8,086 → 0 (all
+//! 5,616); the first iterations, the cube's and the genus-2 surface's need
+//! none. Faces whose structure does not cross keep the requested depth: a
+//! subdivided box with one corner pulled into a spike reduces 24 of 96.
+//! Each rule was measured alone on the merged construction's first
+//! octahedron iteration (its second iteration, full depth, no reduction):
 //! centroid cones and slid miter points 384 pairs, apex below every face
 //! 168, and the middle miter points 96; at a quarter of the depth 0 with
 //! either cone, at a twentieth 0 with the apex below every face and 384
@@ -335,7 +346,7 @@
 //! 76817 → **0**; tetrahedron 1–3 0 → 0, 4 4646 → **0**; torus(24, 12)
 //! 1–2 0 → 0: every case of issue 17's list, the tetrahedron's fourth and
 //! the cube's fourth confirmed by CGAL's exact test as well (and, once by
-//! hand, the dodecahedron's fourth: 2,550,440 triangles, none meeting). It is the
+//! hand, the dodecahedron's fourth: 2,561,684 triangles, none meeting). It is the
 //! default for that; it drops the dissertation's VII.4 collapses (every
 //! edge gets a strip unless its corners coincide, so `collapse_angle` does
 //! not apply: the Python binding refuses it), whose counts the merged
@@ -433,10 +444,8 @@ pub struct MengerReport {
     /// Input vertices whose own triangles still cross when the per-vertex
     /// check of step 3 ends (see [`menger_checked`]).
     pub crossing_vertices: usize,
-    /// The construction's own depth factor before any reduction: 1 for
-    /// [`Offset::Merged`], [`check::PER_FACE_DEPTH`] or 1 for
-    /// [`Offset::PerFace`] (module docs, "Per-face corners"); faces below
-    /// it count as reduced.
+    /// The depth factor before any reduction: 1 (the requested thickness)
+    /// for both constructions; faces below it count as reduced.
     pub nominal: f64,
 }
 
@@ -449,7 +458,7 @@ impl MengerReport {
     }
 }
 
-pub use check::{PER_FACE_DEPTH, REDUCTION_FLOOR, REDUCTION_ROUNDS};
+pub use check::{REDUCTION_FLOOR, REDUCTION_ROUNDS};
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(super) enum EdgeKind {

@@ -172,22 +172,9 @@ fn sharp_edge_depth(m: &Mesh, face_n: &[DVec3], face_d: &[f64], face_depth: &mut
     }
 }
 
-/// The per-face construction's depth factor before any halving
-/// ([`super::check::PER_FACE_DEPTH`]), one for the whole mesh: 1 when every
-/// edge meets at a right, flat or reflex right angle (90°, 180°, 270°,
-/// within [`ANGLE_TOL`]: the cube and its iterations, whose per-face corners
-/// coincide into the classic sponge), else `PER_FACE_DEPTH`. One factor for
-/// the whole mesh, not per face: right-angled faces of a mixed mesh (the
-/// pipe walls of an octahedron's iteration) at full depth beside thinned
-/// ones cross in the next iteration (octahedron 3: 120 pairs, 0 with one
-/// factor).
-pub(super) fn per_face_depth(m: &Mesh) -> f64 {
-    let normal: Vec<DVec3> = m.faces().map(|f| m.face_newell(f).normalize_or_zero()).collect();
-    if right_angled(m, &normal) { 1.0 } else { super::check::PER_FACE_DEPTH }
-}
-
 /// Whether every edge meets at 90°, 180° or 270° (within [`ANGLE_TOL`]),
-/// for unit face normals `face_n` ([`per_face_depth`]).
+/// for unit face normals `face_n`: the cube's family, whose per-face
+/// vertex faces stay as built (module docs, "Per-face corners", invariant 5).
 pub(super) fn right_angled(m: &Mesh, face_n: &[DVec3]) -> bool {
     m.edges().all(|e| {
         let phi = interior_angle(m, face_n, e.halfedge());

@@ -335,20 +335,19 @@ mod per_face {
     #[test]
     fn sharp_edges_bound_the_depth_and_say_so() {
         // the tetrahedron's edges have φ = arccos(1/3) ≈ 70.5°: every face's
-        // depth is at most SHARP_MARGIN·tan(φ/2) ≈ 0.566 of its inset, and
-        // PER_FACE_DEPTH (0.5, not a right-angled mesh) is below that:
-        // reported per face
+        // depth is at most SHARP_MARGIN·tan(φ/2) ≈ 0.566 of its inset
+        // (invariant 3), below the requested depth: reported per face
         let out = run(&primitives::tetrahedron(), 1);
         let phi = (1.0f64 / 3.0).acos();
-        let sharp = super::super::offset::SHARP_MARGIN * (0.5 * phi).tan();
-        assert!(sharp > super::super::check::PER_FACE_DEPTH);
-        let want = super::super::check::PER_FACE_DEPTH;
+        let want = super::super::offset::SHARP_MARGIN * (0.5 * phi).tan();
+        assert!(want < 1.0);
         let (m, r) = &out[0];
         assert_eq!(r.face_factor.len(), 4);
         assert!(r.face_factor.iter().all(|&x| (x - want).abs() < 1e-12), "{:?}", r.face_factor);
-        // the construction's own depth is no reduction
-        assert_eq!(r.nominal, want);
-        assert_eq!(r.reduced(), (0, want));
+        // the requested depth is the nominal one: all four are reduced
+        assert_eq!(r.nominal, 1.0);
+        assert_eq!(r.reduced().0, 4);
+        assert!((r.reduced().1 - want).abs() < 1e-12);
         // strips along the six edges instead of collapses: 36 + 6 faces,
         // and the four corners' three per-face corners joined by a triangle
         assert_eq!(m.n_faces(), 46);
@@ -360,9 +359,10 @@ mod per_face {
     fn measured_crossings() {
         // free of crossings: the octahedron's and the tetrahedron's first
         // three iterations (the merged construction's octahedron 3: 624
-        // pairs), the dodecahedron's first two, the genus-2 surface's first;
-        // built on the merged construction's second octahedron iteration it
-        // crosses (792 pairs with the reduction, docs/schemes/menger.md)
+        // pairs), the dodecahedron's first two, the genus-2 surface's first
+        // (after the reduction where they cross as built); built on the
+        // merged construction's second octahedron iteration without the
+        // reduction it crosses
         for (m0, n) in [(primitives::octahedron(), 3), (primitives::tetrahedron(), 3), (primitives::dodecahedron(), 2), (primitives::genus_surface(2).unwrap(), 1)] {
             for (m, r) in run(&m0, n) {
                 assert_eq!(r.crossing_pairs, Some(0));
@@ -376,10 +376,11 @@ mod per_face {
         assert_eq!(r.crossing_pairs, None);
         assert!(crate::geometry::crossing::mesh_crossing_pairs(&m, true).len() > 0);
         // a valid manifold all the same, with the genus formula, at the
-        // construction's own depth (half the inset, less at sharp edges)
+        // requested depth (less at sharp edges)
         m.validate().unwrap();
         assert_eq!(m.genus(), 2 * o2.genus() + o2.n_faces() as i64 - 1);
-        assert!(r.face_factor.iter().all(|&x| x <= 0.5 + 1e-12));
+        assert!(r.face_factor.iter().all(|&x| x <= 1.0 + 1e-12));
+        assert!(r.face_factor.iter().any(|&x| x == 1.0));
     }
 }
 
