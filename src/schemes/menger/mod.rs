@@ -160,9 +160,10 @@
 //! invariant 4). Both are zero off right angles and on planar inputs;
 //! `tests/test_menger_offset.py` evaluates the rest from the input alone on
 //! every iteration of the tetrahedron (1–4), octahedron, icosahedron (1–3),
-//! dodecahedron (1–3) and torus (1–2): exact except the octahedron's and
-//! icosahedron's third iterations (`W` = 48 and 120, at the pipe walls'
-//! right angles) and the tetrahedron's fourth (`P` = 20). The tetrahedron's
+//! dodecahedron (1–3) and torus (1–2): exact except the tetrahedron's
+//! fourth (`P` = 12; with other depths, before the reduction gave depth
+//! back, the octahedron's and icosahedron's third had `W` = 48 and 120, at
+//! the pipe walls' right angles). The tetrahedron's
 //! first iteration (no non-convex edge, every collar of three corners, no
 //! cone): V 40 = 4 + 24 + 12, F 46 = 24 + 12 + 6 strips + 4 triangular
 //! vertex faces (the chapter's 36 faces plus the strips and the vertex
@@ -231,8 +232,8 @@
 //! reduced or a pair is left. `reduce_thickness: false` skips the scan and
 //! the rounds (the per-vertex check alone, which can miss pairs between
 //! two vertices' structures). The per-face construction runs the same
-//! rounds from its own depth (invariant 6 of "Per-face corners"), to which
-//! the floor and the reported factors are relative.
+//! rounds, then gives the reduced faces part of their depth back where the
+//! output stays crossing-free (invariant 6 of "Per-face corners").
 //!
 //! Measured (crossing pairs with contacts, before → after; faces reduced,
 //! smallest factor): see the table in `docs/schemes/menger.md`, every
@@ -310,7 +311,11 @@
 //!    where invariant 3 bounds it at sharp edges and where the thickness
 //!    reduction ("Thickness reduction" above, the same loop for both
 //!    constructions) halves the depth of the input faces behind a crossing
-//!    pair; every other face keeps `D`. Both are reported per face.
+//!    pair; once the output is crossing-free the reduced faces get part of
+//!    their depth back (×√2, then ×2^¼, each step kept only if the output
+//!    stays crossing-free, else only for the faces not behind its new
+//!    crossings), since a halving overshoots by up to 2×. Every other face
+//!    keeps `D`; all of it is reported per face.
 //!
 //! Invariants 1–5 make the structure at every vertex converge, as the depth
 //! shrinks, to a thin layer under its faces, which cannot cross where the
@@ -323,14 +328,16 @@
 //! dodecahedron 3: 963) and starting at full depth then left 408 pairs in
 //! the octahedron's third iteration. With them, the local reduction from
 //! the requested depth leaves no pair on any case of issue 17's list (as
-//! built → after, input faces reduced): tetrahedron 3 1,618 → 0 (870 of
-//! 874), 4 53,739 → 0 (16,014 of 16,102); octahedron 2 288 → 0 (108 of
-//! 108), 3 3,848 → 0 (1,884 of 1,980); icosahedron 2 720 → 0 (all 270), 3
-//! 7,551 → 0 (4,710 of 4,950); dodecahedron 2 221 → 0 (all 230), 3 7,276
-//! → 0 (all 4,370), 4 190,224 → 0 (79,424 of 80,330); torus 2 8,086 → 0 (all
-//! 5,616); the first iterations, the cube's and the genus-2 surface's need
-//! none. Faces whose structure does not cross keep the requested depth: a
-//! subdivided box with one corner pulled into a spike reduces 24 of 96.
+//! built → after, input faces reduced, their mean depth factor):
+//! tetrahedron 3 1,618 → 0 (870 of 874, 0.70), 4 49,011 → 0 (15,994 of
+//! 16,102); octahedron 2 288 → 0 (all 108, 0.71), 3 2,470 → 0 (all
+//! 1,980); icosahedron 2 720 → 0 (all 270, 0.84), 3 8,649 → 0 (all
+//! 4,950); dodecahedron 2 221 → 0 (all 230, 0.84), 3 7,279 → 0 (all
+//! 4,370), 4 178,932 → 0 (79,952 of 80,330, 0.63); torus 2 8,086 → 0 (all
+//! 5,616, 0.84); the first iterations, the cube's and the genus-2
+//! surface's need none. Faces whose structure does not cross keep the
+//! requested depth: a subdivided box with one corner pulled into a spike
+//! reduces 24 of 96.
 //! Each rule was measured alone on the merged construction's first
 //! octahedron iteration (its second iteration, full depth, no reduction):
 //! centroid cones and slid miter points 384 pairs, apex below every face
@@ -346,7 +353,7 @@
 //! 76817 → **0**; tetrahedron 1–3 0 → 0, 4 4646 → **0**; torus(24, 12)
 //! 1–2 0 → 0: every case of issue 17's list, the tetrahedron's fourth and
 //! the cube's fourth confirmed by CGAL's exact test as well (and, once by
-//! hand, the dodecahedron's fourth: 2,561,684 triangles, none meeting). It is the
+//! hand, the dodecahedron's fourth: 2,569,880 triangles, none meeting). It is the
 //! default for that; it drops the dissertation's VII.4 collapses (every
 //! edge gets a strip unless its corners coincide, so `collapse_angle` does
 //! not apply: the Python binding refuses it), whose counts the merged
@@ -433,8 +440,9 @@ pub struct MengerReport {
     /// Per input face, the factor its requested offset depth was multiplied
     /// by: 1 where it was not reduced, down to [`REDUCTION_FLOOR`].
     pub face_factor: Vec<f64>,
-    /// Rebuilds made by the reduction (0 when the first build had no
-    /// crossing, or the reduction is off).
+    /// Halving rounds made by the reduction (0 when the first build had no
+    /// crossing, or the reduction is off; the per-face builds that give
+    /// depth back are not counted).
     pub rounds: usize,
     /// Crossing triangle pairs of the output by the exact predicate, with
     /// coplanar contacts ([`crate::geometry::crossing::mesh_crossing_pairs`]
