@@ -234,12 +234,12 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
 /// where the scan found pairs (a crossing-free output has no crossing
 /// vertex either: the check tests a subset of the scan's pairs with the
 /// same predicate).
-fn build_apart(m: &Mesh, o: &MengerOptions, red: &Reduction, reduce: bool) -> Result<Checked> {
+fn build_apart(m: &Mesh, o: &MengerOptions, red: &Reduction, reduce: bool) -> Result<((Built, Mesh), usize, Tris)> {
     let cur = build_once(m, o, &vec![false; m.n_vertices()], Some(red))?;
     let tri = Tris::of(&cur.1);
     let vertices = if reduce { 0 } else { crossing_vertex_count(&cur.0, &tri) };
     crate::cancel::check()?;
-    Ok((cur, vertices, Scan::Tris(tri)))
+    Ok((cur, vertices, tri))
 }
 
 /// Input vertices whose own triangles cross (the per-vertex check).
@@ -252,14 +252,15 @@ fn crossing_vertex_count(b: &Built, tri: &Tris) -> usize {
 /// [`build_apart`] at the per-face depth), then, while the output has
 /// crossing triangle pairs (exact predicate, the whole output), the input
 /// faces involved ([`implicated`]) get half their depth and the level is
-/// rebuilt; faces already at [`REDUCTION_FLOOR`] of the construction's own
-/// depth stay there. The build with the fewest pairs is kept. Without
-/// `reduce`, one build and no whole-output scan.
+/// rebuilt; faces already at [`REDUCTION_FLOOR`] stay there. The build with
+/// the fewest pairs is kept; a per-face one that is crossing-free then
+/// gives depth back ([`raise_back`]). Without `reduce`, one build and no
+/// whole-output scan.
 pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result<((Built, Mesh), MengerReport)> {
     let per_face = o.offset == super::Offset::PerFace;
     let nf = m.n_faces();
     // both constructions start at the requested depth (module docs,
-    // "Per-face corners", invariant 6)
+    // "Per-face corners", invariant 6): the factor faces are reduced from
     let nominal = 1.0;
     let mut red = Reduction { depth: vec![nominal; nf] };
     let mut rounds = 0;
@@ -267,8 +268,12 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
     // the build with the fewest crossing pairs so far
     let mut best: Option<((Built, Mesh), MengerReport)> = None;
     loop {
-        let ((b, mesh), mut vertices, scanned) =
-            if per_face { build_apart(m, o, &red, reduce)? } else { build_valid(m, o, (rounds > 0).then_some(&red))? };
+        let ((b, mesh), mut vertices, scanned) = if per_face {
+            let (built, vertices, tri) = build_apart(m, o, &red, reduce)?;
+            (built, vertices, Scan::Tris(tri))
+        } else {
+            build_valid(m, o, (rounds > 0).then_some(&red))?
+        };
         // per face: the factor of the face's depth, with the sharp-edge
         // bound of the per-face construction (invariant 3)
         let face_factor = if per_face { b.depth_factor.clone() } else { red.depth.clone() };
@@ -342,8 +347,7 @@ fn raise_back(m: &Mesh, o: &MengerOptions, red: &mut Reduction, mut best: ((Buil
     let mut hit: Vec<u32> = Vec::new();
     // a crossing-free build at the given depths, as the best so far
     let try_build = |depth: &Reduction| -> Result<Attempt> {
-        let (built, _, scanned) = build_apart(m, o, depth, true)?;
-        let Scan::Tris(t) = scanned else { unreachable!("build_apart returns its triangles") };
+        let (built, _, t) = build_apart(m, o, depth, true)?;
         let pairs = output_crossings(&t, built.0.first_inner);
         crate::cancel::check()?;
         if !pairs.is_empty() {
