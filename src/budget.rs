@@ -240,6 +240,8 @@ pub fn mesh_bytes(c: &Counts) -> u64 {
 /// 1.29, catmull_clark and midpoint 1.34, doo_sabin 1.56, honeycomb 1.59,
 /// sierpinski 1.76, loop on quads (fanned first) 1.93, torus 2.31, menger
 /// 2.92 (on 1–5 M-element outputs); 4 keeps every prediction above them.
+/// (Menger's thickness reduction needs more and is checked on its own:
+/// `schemes::menger`, `REDUCTION_PEAK`.)
 pub const LEVEL_FACTOR: u64 = 4;
 
 /// Predicted peak of one level: its input stays alive while the output and

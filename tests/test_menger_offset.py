@@ -370,3 +370,22 @@ def test_per_face_reduction_gives_depth_back():
     assert rep["rounds"] == [1] and f.min() > 0.5 and np.allclose(f, 2 ** -0.25)
     out.validate()
     _assert_cgal_finds_none(out)
+
+
+def test_reduction_memory_is_budgeted():
+    """The thickness reduction keeps two builds, a triangulation and the
+    scan's hierarchy alive (measured up to 9x the output's bytes, above the
+    4x every level is checked for): it is checked on its own, before it
+    starts, and the refusal names the way around it."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", topomesh.GeometryWarning)
+        d2 = topomesh.dodecahedron().menger(2)
+    try:
+        # above the level check (about 34 MB here), below the reduction's (about 100 MB)
+        topomesh.set_memory_budget(60 << 20)
+        with pytest.raises(topomesh.MeshError, match=r"menger: one iteration with the thickness reduction \(reduce_thickness=False skips it\) needs about"):
+            d2.menger()
+        with pytest.warns(topomesh.GeometryWarning, match="self-intersects"):
+            assert d2.menger(reduce_thickness=False).genus == 2 * d2.genus + d2.n_faces - 1
+    finally:
+        topomesh.set_memory_budget(None)

@@ -483,6 +483,11 @@ pub(super) const MITER_REACH: f64 = 4.0;
 /// (module docs, "Thickness, welding, planarity").
 pub(super) const WELD_TOL: f64 = 0.3;
 
+/// Peak of an iteration with the thickness reduction over the stored bytes
+/// of its upper-bound output counts (measured up to 9.0, see
+/// [`checked_build`]).
+const REDUCTION_PEAK: u64 = 12;
+
 /// One generalized Menger iteration (module docs).
 pub fn menger(m: &Mesh, o: &MengerOptions) -> Result<Mesh> {
     Ok(menger_checked(m, o)?.0)
@@ -519,6 +524,16 @@ pub(crate) fn checked_build(m: &Mesh, o: &MengerOptions) -> Result<((Built, Mesh
             "menger: coordinates reach {top:e}, outside [2^-200, 2^200] where the offsets' lengths and normals stay \
              within float64; scale the mesh first"
         )));
+    }
+    if o.reduce_thickness {
+        // the thickness reduction keeps two builds, a triangulation and the
+        // whole-output scan's hierarchy alive at once: measured 7.8–9.0× the
+        // stored bytes of the output's upper-bound counts (dodecahedron 4:
+        // 1,310 MiB), above the 4× every level is checked for
+        use crate::budget::{check, mesh_bytes, predict, Counts};
+        let input = Counts::of(m);
+        let need = mesh_bytes(&input).saturating_add(mesh_bytes(&predict::menger(&input).1).saturating_mul(REDUCTION_PEAK));
+        check("menger", "one iteration with the thickness reduction (reduce_thickness=False skips it)", need)?;
     }
     let ((built, mesh), crossing) = check::build_reduced(m, o, o.reduce_thickness)?;
     // a thickness under the face-width bound can still exceed what the body
