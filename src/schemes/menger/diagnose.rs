@@ -102,7 +102,8 @@ fn classify_crossings() {
     for (name, n) in cases("octahedron:3,dodecahedron:3") {
         let pre = if std::env::var("PRE_PF").is_ok() { o } else { MengerOptions::default() };
         let m = menger_iterated(&input(&name), n - 1, &pre).unwrap();
-        // the per-face construction's own depth (module docs, "Per-face corners")
+        // the per-face depth as a factor of the requested one (module docs,
+        // "Per-face corners", invariant 6)
         let scale: f64 = std::env::var("SCALE").ok().and_then(|x| x.parse().ok()).unwrap_or(1.0);
         let red = (o.offset == Offset::PerFace).then(|| Reduction { depth: vec![scale; m.n_faces()] });
         let ((b, mesh), left, _) = build_valid(&m, &o, red.as_ref()).unwrap();
