@@ -227,6 +227,18 @@ fn implicated(m: &Mesh, b: &Built, mesh: &Mesh, face: u32, out: &mut Vec<u32>) {
     }
 }
 
+/// The input faces behind crossing `pairs` of a build ([`implicated`] for
+/// both faces of each pair), sorted and without repeats, into `hit`.
+fn behind(m: &Mesh, b: &Built, mesh: &Mesh, pairs: &[(u32, u32)], hit: &mut Vec<u32>) {
+    hit.clear();
+    for &(x, y) in pairs {
+        implicated(m, b, mesh, x, hit);
+        implicated(m, b, mesh, y, hit);
+    }
+    hit.sort_unstable();
+    hit.dedup();
+}
+
 /// One per-face build (module docs, "Per-face corners") at the depths of
 /// `red`. Per-face corners have no full collapse to fall back on, so the
 /// per-vertex check only reports (`crossing_vertices`): it runs here when
@@ -296,13 +308,7 @@ pub(super) fn build_reduced(m: &Mesh, o: &MengerOptions, reduce: bool) -> Result
             // this round did not lower the count: the best so far stands
             return Ok(best.expect("set"));
         }
-        hit.clear();
-        for &(a, c) in &pairs {
-            implicated(m, &b, &mesh, a, &mut hit);
-            implicated(m, &b, &mesh, c, &mut hit);
-        }
-        hit.sort_unstable();
-        hit.dedup();
+        behind(m, &b, &mesh, &pairs, &mut hit);
         let report = report(Some(pairs.len()), vertices);
         let clean = pairs.is_empty();
         drop(pairs);
@@ -373,11 +379,7 @@ fn raise_back(m: &Mesh, o: &MengerOptions, red: &mut Reduction, mut best: ((Buil
             }
             Attempt::Crossing(b, pairs) => {
                 // the faces behind the new crossings keep their depth
-                hit.clear();
-                for &(x, y) in &pairs {
-                    implicated(m, &b.0, &b.1, x, &mut hit);
-                    implicated(m, &b.0, &b.1, y, &mut hit);
-                }
+                behind(m, &b.0, &b.1, &pairs, &mut hit);
                 drop(b);
                 for &f in &hit {
                     up.depth[f as usize] = red.depth[f as usize];
