@@ -36,6 +36,7 @@ impl Builder {
     }
 
     /// The same face with the opposite orientation (each side keeps its tag).
+    #[cfg(test)]
     pub fn face_reversed(&mut self, verts: &[u32], tags: &[u64]) {
         let n = verts.len();
         let v: Vec<u32> = (0..n).map(|j| verts[(n - j) % n]).collect();

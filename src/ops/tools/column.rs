@@ -54,8 +54,10 @@
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{HalfedgeId, Mesh};
-use crate::schemes::keyed::Out;
+use crate::mesh::Columns;
+use crate::schemes::hosts::{SyncPtr, VertexLayout, MIN_LEN};
 use glam::DVec3;
+use rayon::prelude::*;
 
 impl Mesh {
     /// **Column modelling** (module docs): a prism of `segments` sides and
@@ -81,44 +83,56 @@ impl Mesh {
             return Err(MeshError::Precondition(format!("wireframe_columns: face {} is a point-sphere (a vertex without edges has no column)", f.0)));
         }
         let (n, nh, ne) = (segments, self.n_halfedges(), self.n_edges());
-        let m = n / 2;
-        let even = n % 2 == 0;
         let dir = |h: HalfedgeId| self.position(self.head(h)) - self.position(self.vertex(h));
-        // axes and the shared up vector of every edge
-        let mut up = crate::mesh::zeroed_points(ne);
-        for e in self.edges() {
-            let h = e.halfedge();
-            let d = dir(h);
-            if self.vertex(h) == self.head(h) || d.length() == 0.0 {
-                return Err(MeshError::Precondition(format!(
-                    "wireframe_columns: edge {} is a {} (a column needs an axis)",
-                    e.0,
-                    if self.vertex(h) == self.head(h) { "self-loop" } else { "zero-length edge" }
-                )));
-            }
-            let a = d.normalize();
+        // axes and the shared up vector of every edge (the first bad edge
+        // is the one reported)
+        let bad = (0..ne).into_par_iter().with_min_len(MIN_LEN).position_first(|e| {
+            let h = HalfedgeId(2 * e as u32);
+            self.vertex(h) == self.head(h) || dir(h).length() == 0.0
+        });
+        if let Some(e) = bad {
+            let h = HalfedgeId(2 * e as u32);
+            return Err(MeshError::Precondition(format!(
+                "wireframe_columns: edge {e} is a {} (a column needs an axis)",
+                if self.vertex(h) == self.head(h) { "self-loop" } else { "zero-length edge" }
+            )));
+        }
+        // (each face's normal once, not once per side)
+        let normals: Vec<DVec3> = (0..self.n_faces() as u32).into_par_iter().with_min_len(MIN_LEN).map(|f| {
+            let f = crate::mesh::FaceId(f);
+            if self.is_hole(f) { DVec3::ZERO } else { self.face_unit_normal(f) }
+        }).collect();
+        let up: Vec<DVec3> = (0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+            let h = HalfedgeId(2 * e as u32);
+            let a = dir(h).normalize();
             let mut nrm = DVec3::ZERO;
             for s in [h, h.twin()] {
                 if !self.is_hole(self.face(s)) {
-                    nrm += self.face_unit_normal(self.face(s));
+                    nrm += normals[self.face(s).idx()];
                 }
             }
             let u = (nrm - nrm.dot(a) * a).normalize_or_zero();
-            up[e.idx()] = if u == DVec3::ZERO { a.any_orthonormal_vector() } else { u };
-        }
+            if u == DVec3::ZERO { a.any_orthonormal_vector() } else { u }
+        }).collect();
+        drop(normals);
         // ring distance of every vertex (TopMod's formula over consecutive edges)
-        let mut dist = vec![0.0f64; self.n_vertices()];
-        for h in self.halfedges() {
+        let ls: Vec<f64> = (0..nh as u32).into_par_iter().with_min_len(MIN_LEN).map(|h| {
+            let h = HalfedgeId(h);
             let g = self.rotate(h);
             if g == h {
-                continue;
+                return 0.0;
             }
             let c = dir(h).normalize().dot(dir(g).normalize()).clamp(-1.0, 1.0);
             let theta = c.acos();
             let l = t / (theta / 2.0).tan() + c.abs() * t + 0.001 * t;
-            let v = self.vertex(h).idx();
-            dist[v] = dist[v].max(if l.is_finite() { l } else { f64::INFINITY });
+            if l.is_finite() { l } else { f64::INFINITY }
+        }).collect();
+        let mut dist = vec![0.0f64; self.n_vertices()];
+        for (h, &l) in ls.iter().enumerate() {
+            let v = self.he_vert[h] as usize;
+            dist[v] = dist[v].max(l);
         }
+        drop(ls);
         for e in self.edges() {
             let h = e.halfedge();
             let (a, b) = (dist[self.vertex(h).idx()], dist[self.head(h).idx()]);
@@ -130,108 +144,234 @@ impl Mesh {
                 )));
             }
         }
-        // ring points: n per outgoing half-edge, at n·h + j
+        // ring points: n per outgoing half-edge, at n·h + j (the angles'
+        // sines and cosines once, the same bits as per point)
         let step = std::f64::consts::TAU / n as f64;
-        let mut pos = Vec::with_capacity(n * nh);
-        for h in self.halfedges() {
-            let e = h.edge().idx();
+        let trig: Vec<(f64, f64)> = (0..n).map(|j| (step * j as f64).sin_cos()).collect();
+        let mut pos = crate::mesh::zeroed_points(n * nh);
+        pos.par_chunks_mut(n).with_min_len(MIN_LEN / n).enumerate().for_each(|(h, ring)| {
+            let h = HalfedgeId(h as u32);
             let a = dir(h).normalize();
-            let u = up[e];
+            let u = up[h.edge().idx()];
             let l = u.cross(a);
             let c = self.position(self.vertex(h)) + dist[self.vertex(h).idx()] * a;
-            for j in 0..n {
-                let (s, co) = (step * j as f64).sin_cos();
-                pos.push(c + t * (co * u + s * l));
+            for (p, &(s, co)) in ring.iter_mut().zip(&trig) {
+                *p = c + t * (co * u + s * l);
             }
+        });
+        crate::cancel::check()?;
+        self.columns_direct(pos, n)
+    }
+
+    /// The connectivity written straight into the columns (issue 16: the
+    /// keyed builder was three quarters of the tool's time), numbered
+    /// exactly as the keyed builder numbered `tests::reference`'s faces
+    /// (tested equal; the Python outputs' hashes are unchanged).
+    ///
+    /// Faces: the n quads of every edge's column (n·e + j), then every
+    /// vertex's joint (its strips corner by corner, its top cap, its bottom
+    /// cap). Edges are numbered by their first corner (half-edge 2k there,
+    /// 2k + 1 on the twin). Column e's 3n edges come first, at 3n·e +
+    /// [`col_local`] / [`side_local`]: its n long edges and the 2n ring
+    /// sides, which the joints meet second. Then every vertex's rungs, in
+    /// the joint order: m + 1 per corner (rung k of corner i at (m + 1) i +
+    /// [`rung_local`]); at a valence-2 vertex the second corner's top rung
+    /// (and bottom rung, even n) is the first corner's, so it adds m − ε.
+    fn columns_direct(&self, pos: Vec<DVec3>, n: usize) -> Result<Mesh> {
+        let (nv, ne) = (self.n_vertices(), self.n_edges());
+        let (n32, m32) = (n as u32, (n / 2) as u32);
+        let even = n % 2 == 0;
+        let vl = VertexLayout::new(self)?;
+        let (next, prev) = (&self.he_next, &self.he_prev);
+        let rot = |k: u32| prev[k as usize] ^ 1;
+        let unrot = |k: u32| next[(k ^ 1) as usize];
+        // joint edges and faces before each vertex's
+        let (mut jb, mut fb) = (vec![0u32; nv + 1], vec![0u32; nv + 1]);
+        for v in 0..nv {
+            let k = vl.valence(v);
+            let (edges, faces) = match k {
+                1 => (0, 1),
+                2 => (2 * (m32 + 1) - 1 - even as u32, 2 * m32 + !even as u32),
+                _ => (k * (m32 + 1), k * m32 + 2),
+            };
+            jb[v + 1] = jb[v] + edges;
+            fb[v + 1] = fb[v] + faces;
         }
-        let (n32, m32) = (n as u32, m as u32);
-        let r = |h: HalfedgeId, j: u32| n32 * h.0 + j % n32;
-        // keys: column edge (e, j) joins R(2e, j) and R(2e+1, n − j); ring side
-        // (h, j) runs R(h, j) → R(h, j+1); rung (h, k) joins R(h, k) and R(rot h, n − k)
-        let col = |e: u32, j: u32| n32 * e + j % n32;
-        let side = |h: HalfedgeId, j: u32| n32 * ne as u32 + n32 * h.0 + j % n32;
-        let rung0 = |h: HalfedgeId, k: u32| n32 * (ne + nh) as u32 + (m32 + 1) * h.0 + k;
-        // at a valence-2 vertex the two-corner caps are left out: the second
-        // strip uses the first one's top (and, for even n, bottom) rung
-        let rung = |h: HalfedgeId, k: u32| {
-            let g = self.rotate(h);
-            if g != h && self.rotate(g) == h && h.0 > g.0 && (k == 0 || (even && k == m32)) {
-                rung0(g, k)
-            } else {
-                rung0(h, k)
-            }
+        let col_edges = 3 * n32 * ne as u32;
+        let (n_edges, nf) = (col_edges as usize + jb[nv] as usize, n * ne + fb[nv] as usize);
+        let ring = |h: u32, j: u32| n32 * h + j % n32;
+        // the ring side (x, j), R(x, j) → R(x, j + 1), is first met in its column
+        let side_e = |x: u32, j: u32| {
+            let e = x >> 1;
+            3 * n32 * e + if x & 1 == 0 { side_local(n32, j % n32, true) } else { side_local(n32, n32 - 1 - j % n32, false) }
         };
-        let n_keys = n * (ne + nh) + (m + 1) * nh;
-        let mut o = Out::new(pos, n_keys, 2 * n * ne, 8 * n * ne);
-        // columns
-        for e in self.edges() {
-            let (h, tw) = (e.halfedge(), e.halfedge().twin());
-            let e = e.0;
-            for j in 0..n32 {
-                o.c(r(h, j), col(e, j));
-                o.c(r(tw, n32 - j), side(tw, n32 - j - 1));
-                o.c(r(tw, n32 - j - 1), col(e, j + 1));
-                o.c(r(h, j + 1), side(h, j));
-                o.end();
-            }
-        }
-        // joints
-        for v in self.vertices() {
-            crate::cancel::poll(v.idx())?;
-            let h0 = self.vertex_halfedge(v).expect("no point-spheres");
-            if self.rotate(h0) == h0 {
+        let col_e = |e: u32, j: u32| 3 * n32 * e + col_local(n32, j % n32);
+        let mut cols = Columns::new(pos, 2 * n_edges, nf);
+        {
+            let sp = |c: &mut Vec<u32>| SyncPtr(c.as_mut_ptr());
+            let (pn, pp, pv, pf) = (sp(&mut cols.he_next), sp(&mut cols.he_prev), sp(&mut cols.he_vert), sp(&mut cols.he_face));
+            let put = |i: u32, nx: u32, v: u32, f: u32| {
+                // SAFETY: the ids above are a bijection onto the half-edges,
+                // each written once below as some corner's and as one corner's
+                // next (both inside the face being written)
+                unsafe {
+                    *pn.get().add(i as usize) = nx;
+                    *pp.get().add(nx as usize) = i;
+                    *pv.get().add(i as usize) = v;
+                    *pf.get().add(i as usize) = f;
+                }
+            };
+            // a face of corners (point, half-edge)
+            let face = |c: &[(u32, u32)], f: u32| {
+                for (i, &(v, h)) in c.iter().enumerate() {
+                    put(h, c[(i + 1) % c.len()].1, v, f);
+                }
+            };
+            let (fsp, vop) = (sp(&mut cols.f_start), sp(&mut cols.v_out));
+            let start = |f: u32, h: u32| {
+                // SAFETY: each face is started by the one task writing it
+                unsafe { *fsp.get().add(f as usize) = h }
+            };
+            let first_at = |p: u32, h: u32| {
+                // SAFETY: each ring point's first corner is in one column
+                unsafe { *vop.get().add(p as usize) = h }
+            };
+            (0..ne as u32).into_par_iter().with_min_len(MIN_LEN / n).for_each(|e| {
+                if crate::cancel::requested() {
+                    return; // the check after the loops reports it
+                }
+                let (h, tw) = (2 * e, 2 * e + 1);
                 for j in 0..n32 {
-                    o.c(r(h0, j), side(h0, j));
-                }
-                o.end();
-                continue;
-            }
-            let mut k = 0;
-            let mut h = h0;
-            loop {
-                let g = self.rotate(h);
-                for q in 0..m32 {
-                    o.c(r(h, q), side(h, q));
-                    o.c(r(h, q + 1), rung(h, q + 1));
-                    o.c(r(g, n32 - q - 1), side(g, n32 - q - 1));
-                    o.c(r(g, n32 - q), rung(h, q));
-                    o.end();
-                }
-                k += 1;
-                h = g;
-                if h == h0 {
-                    break;
-                }
-            }
-            if k > 2 {
-                loop {
-                    o.c(r(h, 0), rung(h, 0));
-                    h = self.rotate(h);
-                    if h == h0 {
-                        break;
+                    // R(h, j) → R(tw, n − j) → R(tw, n − j − 1) → R(h, j + 1)
+                    let c0 = if j == 0 { 2 * col_e(e, 0) } else { 2 * col_e(e, j) + 1 };
+                    let c2 = if j + 1 < n32 { 2 * col_e(e, j + 1) } else { 2 * col_e(e, 0) + 1 };
+                    let c = [(ring(h, j), c0), (ring(tw, n32 - j), 2 * side_e(tw, n32 - j - 1)), (ring(tw, n32 - j - 1), c2), (ring(h, j + 1), 2 * side_e(h, j))];
+                    face(&c, n32 * e + j);
+                    start(n32 * e + j, c0);
+                    // each ring point's first corner: R(h, 0) and R(tw, 0) in
+                    // quad 0, R(h, j + 1) at c3, R(tw, n − j − 1) at c2
+                    if j == 0 {
+                        first_at(ring(h, 0), c0);
+                        first_at(ring(tw, 0), c[1].1);
+                    }
+                    if j + 1 < n32 {
+                        first_at(ring(h, j + 1), c[3].1);
+                        first_at(ring(tw, n32 - j - 1), c2);
                     }
                 }
-                o.end();
-            }
-            if k > 2 || !even {
-                // reverse rotation: pred(h) = next(twin h)
-                loop {
-                    let p = self.next(h.twin());
-                    if even {
-                        o.c(r(h, m32), rung(p, m32));
+            });
+            let nfc = n32 * ne as u32;
+            (0..nv).into_par_iter().with_min_len(MIN_LEN / n).for_each(|v| {
+                if crate::cancel::requested() {
+                    return;
+                }
+                let k = vl.valence(v);
+                let (jb, fb) = (col_edges + jb[v], nfc + fb[v]);
+                let h0 = self.v_out[v];
+                let side2 = |x: u32, j: u32| 2 * side_e(x, j) + 1;
+                if k == 1 {
+                    let c: Vec<(u32, u32)> = (0..n32).map(|j| (ring(h0, j), side2(h0, j))).collect();
+                    face(&c, fb);
+                    start(fb, c[0].1);
+                    return;
+                }
+                // rung kp of corner i: its edge, and whether this corner meets it first
+                let rung = |i: u32, kp: u32| {
+                    if k == 2 && i == 1 && (kp == 0 || (even && kp == m32)) {
+                        jb + rung_local(kp)
+                    } else if k == 2 && i == 1 {
+                        jb + m32 + 1 + kp - 1
                     } else {
-                        o.c(r(h, m32), side(h, m32));
-                        o.c(r(h, m32 + 1), rung(p, m32));
+                        jb + (m32 + 1) * i + rung_local(kp)
                     }
-                    h = p;
-                    if h == h0 {
-                        break;
+                };
+                let second_corner = k == 2;
+                let mut h = h0;
+                for i in 0..k {
+                    let g = rot(h);
+                    for q in 0..m32 {
+                        // R(h, q) → R(h, q + 1) → R(g, n − q − 1) → R(g, n − q)
+                        let top_first = !(second_corner && i == 1 && even && q + 1 == m32);
+                        let c1 = 2 * rung(i, q + 1) + !top_first as u32;
+                        let c3_first = q == 0 && !(second_corner && i == 1);
+                        let c3 = 2 * rung(i, q) + !c3_first as u32;
+                        let c = [(ring(h, q), side2(h, q)), (ring(h, q + 1), c1), (ring(g, n32 - q - 1), side2(g, n32 - q - 1)), (ring(g, n32 - q), c3)];
+                        face(&c, fb + m32 * i + q);
+                        start(fb + m32 * i + q, c[0].1);
                     }
+                    h = g;
                 }
-                o.end();
-            }
+                let mut f = fb + k * m32;
+                if k > 2 {
+                    // the top cap, in rotation order
+                    let c: Vec<(u32, u32)> = (0..k).scan(h0, |h, i| {
+                        let x = *h;
+                        *h = rot(x);
+                        Some((ring(x, 0), 2 * rung(i, 0) + 1))
+                    }).collect();
+                    face(&c, f);
+                    start(f, c[0].1);
+                    f += 1;
+                }
+                if k > 2 || !even {
+                    // the bottom cap, against the rotation: corner i meets
+                    // the bottom rung of corner i − 1
+                    let mut c = Vec::with_capacity(2 * k as usize);
+                    let mut x = h0;
+                    for s in 0..k {
+                        let i = (k - s) % k;
+                        let ip = (i + k - 1) % k;
+                        if even {
+                            c.push((ring(x, m32), 2 * rung(ip, m32) + 1));
+                        } else {
+                            c.push((ring(x, m32), side2(x, m32)));
+                            c.push((ring(x, m32 + 1), 2 * rung(ip, m32) + 1));
+                        }
+                        x = unrot(x);
+                    }
+                    face(&c, f);
+                    start(f, c[0].1);
+                }
+            });
         }
-        o.finish("wireframe_columns")
+        crate::cancel::check()?;
+        Mesh::from_columns(cols)
+    }
+}
+
+/// Where column e's long edge j (R(2e, j) – R(2e+1, n − j)) is first met
+/// among the column's 3n edges: quad 0 meets long edges 0 and 1, quad j ≥ 1
+/// long edge j + 1 as its third corner's side.
+fn col_local(n: u32, j: u32) -> u32 {
+    debug_assert!(j < n);
+    match j {
+        0 => 0,
+        1 => 2,
+        _ => 4 + 3 * (j - 2) + 1,
+    }
+}
+
+/// Where the ring side of quad j is first met among the column's 3n edges:
+/// the side of the half-edge 2e (`own`, the quad's fourth corner) or of its
+/// twin (the second corner).
+fn side_local(n: u32, j: u32, own: bool) -> u32 {
+    debug_assert!(j < n);
+    match (j, own) {
+        (0, false) => 1,
+        (0, true) => 3,
+        (j, false) => 4 + 3 * (j - 1),
+        (j, true) if j + 1 == n => 3 * n - 1,
+        (j, true) => 4 + 3 * (j - 1) + 2,
+    }
+}
+
+/// Where a corner's rung k is first met among its m + 1: the first strip
+/// meets rung 1, then rung 0; strip q ≥ 1 meets rung q + 1.
+fn rung_local(k: u32) -> u32 {
+    match k {
+        0 => 1,
+        1 => 0,
+        k => k,
     }
 }
 
@@ -265,6 +405,131 @@ mod tests {
         *hist.entry(4).or_insert(0) += quads as usize;
         let n = n as i64;
         ((2 * n * e, 3 * n * e + (mm + 1) * (2 * e - v1) - (1 + even) * v2, n * e + mm * (2 * e - v1) + 2 * v3 + (1 - even) * v2 + v1), hist)
+    }
+
+    /// The tool as the keyed builder built it: the numbering the direct
+    /// columns reproduce.
+    pub(super) fn reference(m: &crate::Mesh, thickness: f64, n: usize) -> crate::Mesh {
+        use crate::mesh::HalfedgeId;
+        use crate::schemes::keyed::Out;
+        let pos = m.wireframe_columns(thickness, n).unwrap().positions().to_vec();
+        let (nh, ne) = (m.n_halfedges(), m.n_edges());
+        let (n32, m32) = (n as u32, (n / 2) as u32);
+        let even = n % 2 == 0;
+        let r = |h: HalfedgeId, j: u32| n32 * h.0 + j % n32;
+        // keys: column edge (e, j) joins R(2e, j) and R(2e+1, n − j); ring side
+        // (h, j) runs R(h, j) → R(h, j+1); rung (h, k) joins R(h, k) and R(rot h, n − k)
+        let col = |e: u32, j: u32| n32 * e + j % n32;
+        let side = |h: HalfedgeId, j: u32| n32 * ne as u32 + n32 * h.0 + j % n32;
+        let rung0 = |h: HalfedgeId, k: u32| n32 * (ne + nh) as u32 + (m32 + 1) * h.0 + k;
+        // at a valence-2 vertex the two-corner caps are left out: the second
+        // strip uses the first one's top (and, for even n, bottom) rung
+        let rung = |h: HalfedgeId, k: u32| {
+            let g = m.rotate(h);
+            if g != h && m.rotate(g) == h && h.0 > g.0 && (k == 0 || (even && k == m32)) {
+                rung0(g, k)
+            } else {
+                rung0(h, k)
+            }
+        };
+        let n_keys = n * (ne + nh) + (m32 as usize + 1) * nh;
+        let mut o = Out::new(pos, n_keys, 2 * n * ne, 8 * n * ne);
+        // columns
+        for e in m.edges() {
+            let (h, tw) = (e.halfedge(), e.halfedge().twin());
+            let e = e.0;
+            for j in 0..n32 {
+                o.c(r(h, j), col(e, j));
+                o.c(r(tw, n32 - j), side(tw, n32 - j - 1));
+                o.c(r(tw, n32 - j - 1), col(e, j + 1));
+                o.c(r(h, j + 1), side(h, j));
+                o.end();
+            }
+        }
+        // joints
+        for v in m.vertices() {
+            
+            let h0 = m.vertex_halfedge(v).expect("no point-spheres");
+            if m.rotate(h0) == h0 {
+                for j in 0..n32 {
+                    o.c(r(h0, j), side(h0, j));
+                }
+                o.end();
+                continue;
+            }
+            let mut k = 0;
+            let mut h = h0;
+            loop {
+                let g = m.rotate(h);
+                for q in 0..m32 {
+                    o.c(r(h, q), side(h, q));
+                    o.c(r(h, q + 1), rung(h, q + 1));
+                    o.c(r(g, n32 - q - 1), side(g, n32 - q - 1));
+                    o.c(r(g, n32 - q), rung(h, q));
+                    o.end();
+                }
+                k += 1;
+                h = g;
+                if h == h0 {
+                    break;
+                }
+            }
+            if k > 2 {
+                loop {
+                    o.c(r(h, 0), rung(h, 0));
+                    h = m.rotate(h);
+                    if h == h0 {
+                        break;
+                    }
+                }
+                o.end();
+            }
+            if k > 2 || !even {
+                // reverse rotation: pred(h) = next(twin h)
+                loop {
+                    let p = m.next(h.twin());
+                    if even {
+                        o.c(r(h, m32), rung(p, m32));
+                    } else {
+                        o.c(r(h, m32), side(h, m32));
+                        o.c(r(h, m32 + 1), rung(p, m32));
+                    }
+                    h = p;
+                    if h == h0 {
+                        break;
+                    }
+                }
+                o.end();
+            }
+        }
+        o.finish("wireframe_columns").unwrap()
+    }
+
+    #[test]
+    fn direct_columns_are_the_keyed_builders() {
+        // every column and position bit: valence 1 and 2, odd and even n,
+        // non-convex faces, genus 3, open meshes
+        let split = primitives::cube().subdivide_all_edges(1).unwrap();
+        let mut cases = vec![primitives::cube(), primitives::tetrahedron(), primitives::dodecahedron(), primitives::torus(6, 4, 1.0, 0.4).unwrap(), primitives::genus_surface(3).unwrap(), split, dangling_cube(), grid_cube(2), crate::schemes::hosts::test_meshes::star_prism(), crate::schemes::hosts::test_meshes::handle_cube()];
+        cases.extend(crate::schemes::hosts::test_meshes::open_meshes().into_iter().map(|(_, m)| m));
+        let mut built = 0;
+        for (c, m) in cases.iter().enumerate() {
+            for n in [3, 4, 5, 6, 8] {
+                let Ok(a) = m.wireframe_columns(0.02, n) else { continue };
+                let b = reference(m, 0.02, n);
+                assert_eq!(a, b, "case {c}, n={n}");
+                built += 1;
+            }
+        }
+        assert!(built >= 50, "only {built} builds compared");
+    }
+
+    fn dangling_cube() -> crate::Mesh {
+        let mut d = primitives::cube();
+        let h = d.face_halfedge(crate::FaceId(0)).unwrap();
+        let (p, _) = d.create_vertex(glam::DVec3::new(-0.5, -0.3, -0.4)).unwrap();
+        d.insert_edge(crate::Corner::Halfedge(h), crate::Corner::Point(p)).unwrap();
+        d
     }
 
     #[test]
