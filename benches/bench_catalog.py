@@ -5,6 +5,7 @@ the issue's target of 10 M output faces/s.
     python benches/bench_catalog.py                    # writes benches/CATALOG.md and benches/catalog.json
     python benches/bench_catalog.py --baseline OLD.json  # adds OLD's figures as the "before" column
     python benches/bench_catalog.py --quick            # a 4k-face input, prints only
+    python benches/bench_catalog.py --only ROW ...     # those rows (family/name), prints only
 
 Input: the 400×250 quad torus (100,000 quads, the input of bench_subdivision.py);
 rows that need another kind of input say so (dome makes 56 faces per input
@@ -14,7 +15,9 @@ the others'). Rows that take a face selection run on
 made once before the timed calls, so their time is a copy of the input plus a
 few faces (and the handles' crossing report): they are listed, but their
 faces/s measure the copy. The wireframe tools run with ``thickness`` a
-tenth of the shortest edge (their defaults are lengths for a unit solid). The process sets RAYON_NUM_THREADS=1 before
+tenth of the shortest edge (their defaults are lengths for a unit solid), and
+are timed twice: as called by default, with the crossing report that warns of
+self-intersection, and with ``check_crossings=False`` (the tool alone). The process sets RAYON_NUM_THREADS=1 before
 topomesh is imported (and OPENBLAS_NUM_THREADS=1). Each row: one untimed warm-up call, then the median of
 ``--runs`` timed calls (one for rows whose warm-up takes over 2 s) of ``topomesh.catalog.run_entry``. ``vs CC`` is the
 row's faces/s over Catmull-Clark's (the fastest builder of the package,
@@ -78,12 +81,18 @@ def overrides(entry, mesh) -> dict:
     return kw
 
 
-def time_row(entry, mesh, runs: int, ref) -> tuple[float, int, float]:
+# Rows also timed without their optional crossing report (a variant row
+# below the default one): the tool alone, what a caller who checks the
+# output another way (or knows it is clear) pays.
+UNCHECKED = {"wireframe", "wireframe_columns"}
+
+
+def time_row(entry, mesh, runs: int, ref, extra: dict | None = None) -> tuple[float, int, float]:
     """Median time and output faces of the row, and the median faces/s of
     the reference (Catmull-Clark on the big input) timed between its calls."""
     from topomesh.catalog import run_entry
 
-    kw = overrides(entry, mesh)
+    kw = overrides(entry, mesh) | (extra or {})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t0 = time.perf_counter()
@@ -125,17 +134,21 @@ def main() -> None:
         if args.only and key not in args.only:
             continue
         mesh = small if e["method"] == "dome" else big
-        try:
-            t, nf, cc = time_row(e, mesh, args.runs, ref)
-            rows.append({"row": key, "method": e["method"], "input_faces": mesh.n_faces, "ms": 1e3 * t, "faces": nf, "mfs": nf / t / 1e6, "cc_mfs": cc})
-        except Exception as ex:  # reported in the table, not raised
-            rows.append({"row": key, "method": e["method"], "input_faces": mesh.n_faces, "error": f"{type(ex).__name__}: {ex}"[:120]})
-        r = rows[-1]
-        print(f"{key:45s} " + (f"{r['ms']:9.1f} ms {r['faces']:>10,} faces {r['mfs']:6.2f} M/s (CC {r['cc_mfs']:5.2f})" if "ms" in r else r["error"]), flush=True)
+        variants = [(key, None)]
+        if e["method"] in UNCHECKED:
+            variants.append((f"{key} (check_crossings=False)", {"check_crossings": False}))
+        for name, extra in variants:
+            try:
+                t, nf, cc = time_row(e, mesh, args.runs, ref, extra)
+                rows.append({"row": name, "method": e["method"], "input_faces": mesh.n_faces, "ms": 1e3 * t, "faces": nf, "mfs": nf / t / 1e6, "cc_mfs": cc})
+            except Exception as ex:  # reported in the table, not raised
+                rows.append({"row": name, "method": e["method"], "input_faces": mesh.n_faces, "error": f"{type(ex).__name__}: {ex}"[:120]})
+            r = rows[-1]
+            print(f"{name:45s} " + (f"{r['ms']:9.1f} ms {r['faces']:>10,} faces {r['mfs']:6.2f} M/s (CC {r['cc_mfs']:5.2f})" if "ms" in r else r["error"]), flush=True)
     total = time.perf_counter() - t_all
     load1 = os.getloadavg()[0]
-    if args.quick:
-        return
+    if args.quick or args.only:
+        return  # a partial run does not rewrite the table
     args.json.write_text(json.dumps({"rows": rows, "load": [load0, load1]}, indent=1))
     write_table(rows, args.baseline, total, (load0, load1))
 

@@ -149,13 +149,16 @@ fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
 }
 
 /// [`simplest_level`] on an input the caller gives up (a previous level of
-/// a multi-level call): a closed mesh without point-spheres, asked for no
-/// stencils or origins, takes [`step_owned`]; anything else is
-/// [`simplest_level`]'s.
+/// a multi-level call): a mesh without point-spheres, asked for no stencils
+/// or origins, takes [`step_owned`] (closed) or [`open_build`] on the owned
+/// input (open); anything else is [`simplest_level`]'s.
 pub fn simplest_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
-    if m.n_holes() > 0 || req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+    if req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
         return simplest_level(&m, req);
+    }
+    if m.n_holes() > 0 {
+        return open_build(Cow::Owned(m), req);
     }
     Ok(Level { mesh: step_owned(m)?, stencils: None, origins: None, creases: None })
 }
@@ -244,7 +247,8 @@ pub fn simplest_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) 
 /// The rows of an open level's points: the edge midpoints, then the kept
 /// boundary vertices `bverts`.
 fn open_point_row<'a>(m: &'a Mesh, bverts: &'a [u32]) -> impl Fn(usize, &mut super::stencil::Row) + Sync + 'a {
-    let (ne, vert) = (m.n_edges(), &m.he_vert);
+    // (the vertex column's length: an owned input's `he_next` may be gone)
+    let (ne, vert) = (m.he_vert.len() / 2, &m.he_vert);
     move |i, row| {
         if i < ne {
             row.add(vert[2 * i], 0.5);
@@ -256,57 +260,85 @@ fn open_point_row<'a>(m: &'a Mesh, bverts: &'a [u32]) -> impl Fn(usize, &mut sup
 }
 
 fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
+    open_build(Cow::Borrowed(m), req)
+}
+
+/// A rank in `cidx` that is a hole half-edge's rank in rotation order, not
+/// an F-corner.
+const HOLE: u32 = 1 << 31;
+
+/// [`open_level`]'s build; an input given up (`Cow::Owned`, a previous
+/// level of a multi-level call, issue 19) loses its vertex and face columns
+/// before the output's half-edge columns exist, and its connectivity before
+/// the positions do. The numbering's one table is `cidx`: the F-corner of
+/// every real half-edge, the rank of every hole half-edge (tagged `HOLE`),
+/// which also answers "is h a hole side" once the face columns are gone.
+fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     use crate::mesh::NONE;
+    let m: &Mesh = &src;
     let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     check_output_size("simplest", 2 * nh + nh, ne + nv)?;
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
-    let hole = |h: usize| m.f_hole[face[h] as usize];
     // boundary vertices, in order of their first hole half-edge, after the edge midpoints
     let mut bidx = vec![NONE; nv];
     let mut bverts = Vec::new();
     for h in 0..nh {
         let v = vert[h] as usize;
-        if hole(h) && bidx[v] == NONE {
+        if m.f_hole[face[h] as usize] && bidx[v] == NONE {
             bidx[v] = bverts.len() as u32;
             bverts.push(v as u32);
         }
     }
-    let fl = FaceLayout::new(m)?;
-    // output face of every input face, and each real face's first F-corner
-    let (mut fid, mut fbase) = (vec![0u32; nf], vec![0u32; nf]);
-    let (mut n_real, mut n_fc) = (0u32, 0u32);
+    // F-corners: the real faces' corners in face order, each cycle from its first
+    let mut cidx = vec![0u32; nh];
+    let mut n_fc = 0u32;
+    let mut holes = Vec::new(); // the hole faces, in order
     for f in 0..nf {
-        if !m.f_hole[f] {
-            (fid[f], fbase[f]) = (n_real, n_fc);
-            n_real += 1;
-            n_fc += fl.degree(f) as u32;
-        }
-    }
-    let mut n_holes = 0u32;
-    for f in 0..nf {
+        crate::cancel::poll(f)?;
         if m.f_hole[f] {
-            fid[f] = n_real + nv as u32 + n_holes;
-            n_holes += 1;
+            holes.push(f as u32);
+            continue;
+        }
+        let s = m.f_start[f];
+        let mut h = s;
+        loop {
+            cidx[h as usize] = n_fc;
+            n_fc += 1;
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
         }
     }
-    // rank of every hole half-edge in rotation order, and of each vertex's first one
-    let (mut rank, mut r0) = (vec![NONE; nh], vec![0u32; nv]);
+    // rank of every hole half-edge in rotation order; a kept vertex leaves
+    // from the side w → m(prev x) at its first hole half-edge x
+    let mut kept_out = vec![0u32; bverts.len()];
     let mut nb = 0u32;
     for v in 0..nv {
         crate::cancel::poll(v)?;
-        r0[v] = nb;
+        if bidx[v] != NONE {
+            kept_out[bidx[v] as usize] = 2 * (n_fc + 2 * nb + 1);
+        }
         for x in super::creases::ring(m, m.v_out[v]) {
-            if hole(x as usize) {
-                rank[x as usize] = nb;
+            if m.f_hole[face[x as usize] as usize] {
+                cidx[x as usize] = HOLE | nb;
                 nb += 1;
             }
         }
     }
+    let (n_real, n_holes) = ((nf - holes.len()) as u32, holes.len() as u32);
+    let hole = |h: usize| cidx[h] & HOLE != 0;
+    let fc = |h: usize| cidx[h];
+    let rank = |h: usize| cidx[h] & !HOLE;
+    // output face of an input face: real faces keep their order, holes go last
+    let fid = |f: u32| {
+        let k = holes.partition_point(|&x| x < f) as u32;
+        if holes.get(k as usize) == Some(&f) { n_real + nv as u32 + k } else { f - k }
+    };
     let n_out_h = 2 * (n_fc as usize + 2 * nb as usize);
-    let fc = |h: usize| fbase[face[h] as usize] + fl.cidx[h] - fl.off[face[h] as usize];
     // the edge of m(x) → w (the one of w → m(prev x) is the next)
-    let ev = |x: usize| n_fc + 2 * rank[x];
+    let ev = |x: usize| n_fc + 2 * rank(x);
     // half-edge of: the F-side of real h; the V-side leaving m(x) (its twin
     // is the F-side of prev x, or for a hole x the hole side w → m(x)); the
     // V-side leaving w; the hole sides w → m(k) and m(k) → w'
@@ -314,14 +346,75 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
     let he_slot = |x: usize| if hole(x) { 2 * ev(x) } else { 2 * fc(prev[x] as usize) + 1 };
     let he_vx = |x: usize| 2 * (ev(x) + 1);
     let he_a = |k: usize| 2 * ev(k) + 1;
-    let he_a1 = |k: usize| 2 * (ev(next[k] as usize) + 1) + 1;
     let n_out_v = ne + bverts.len();
     let bv = |w: u32| (ne as u32) + bidx[w as usize];
+    let n_out_f = (n_real + n_holes) as usize + nv;
+    // faces start at their first corner: the cycle from f_start, the ring from v_out
+    let mut f_start = vec![0u32; n_out_f];
+    let mut f_hole = vec![false; n_out_f];
+    for f in 0..nf {
+        let s = m.f_start[f] as usize;
+        let o = fid(f as u32) as usize;
+        f_start[o] = if m.f_hole[f] { he_a(s) } else { he_f(s) };
+        f_hole[o] = m.f_hole[f];
+    }
+    for v in 0..nv {
+        f_start[(n_real as usize) + v] = he_slot(m.v_out[v] as usize);
+    }
+    // each vertex leaves from its first corner: a midpoint from its lower
+    // F-corner (F-corners come first), or, with holes on both sides, from
+    // its V-side of lower rank; a kept vertex as found above
+    let mut v_out = Vec::with_capacity(n_out_v);
+    v_out.par_extend((0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
+        let (a, b) = (2 * e, 2 * e + 1);
+        match (hole(a), hole(b)) {
+            (false, false) => 2 * fc(a).min(fc(b)),
+            (false, true) => 2 * fc(a),
+            (true, false) => 2 * fc(b),
+            (true, true) => 2 * (n_fc + 2 * rank(a).min(rank(b))),
+        }
+    }));
+    v_out.extend_from_slice(&kept_out);
+    drop(kept_out);
+    // origins first: they read the numbering's tables (never on an owned input)
+    let origins = if req.origins {
+        let mut o = Origins::with_capacity(n_out_v, n_out_h / 2, n_out_f);
+        o.vertex_kind = std::iter::repeat(EDGE).take(ne).chain(std::iter::repeat(VERTEX).take(bverts.len())).collect();
+        o.vertex = (0..ne as u32).chain(bverts.iter().copied()).collect();
+        let real: Vec<u32> = (0..nf as u32).filter(|&f| !m.f_hole[f as usize]).collect();
+        o.face_kind = std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(VERTEX).take(nv)).chain(std::iter::repeat(FACE).take(holes.len())).collect();
+        o.face = real.iter().copied().chain(0..nv as u32).chain(holes.iter().copied()).collect();
+        // a real side cuts a corner of its face; the two sides at a kept
+        // vertex are halves of the boundary edges they run along
+        o.edge_kind = vec![0; n_out_h / 2];
+        o.edge = vec![0; n_out_h / 2];
+        for h in 0..nh {
+            if !hole(h) {
+                let e = fc(h) as usize;
+                (o.edge_kind[e], o.edge[e]) = (FACE, face[h]);
+            } else {
+                let e = ev(h) as usize;
+                (o.edge_kind[e], o.edge[e]) = (EDGE, (h >> 1) as u32);
+                (o.edge_kind[e + 1], o.edge[e + 1]) = (EDGE, prev[h] >> 1);
+            }
+        }
+        Some(o)
+    } else {
+        None
+    };
+    if let Cow::Owned(m) = &mut src {
+        (m.v_out, m.f_start, m.f_hole) = (Vec::new(), Vec::new(), Vec::new());
+    }
+    let m: &Mesh = &src;
+    // (the closures over the input's columns again, borrowed anew)
+    let (next, vert, face) = (&m.he_next, &m.he_vert, &m.he_face);
+    let prev = &m.he_prev;
+    let he_a1 = |k: usize| 2 * (ev(next[k] as usize) + 1) + 1;
+    let he_slot = |x: usize| if hole(x) { 2 * ev(x) } else { 2 * fc(prev[x] as usize) + 1 };
     let vface = |x: usize| n_real + vert[x];
     // the positions come last, once the numbering's tables are freed
     // (issue 19: peak memory)
-    let mut cols = Columns::new(Vec::new(), n_out_h, (n_real + n_holes) as usize + nv);
-    cols.v_out = vec![0; n_out_v];
+    let mut cols = Columns { pos: Vec::new(), v_out, he_next: vec![0; n_out_h], he_prev: vec![0; n_out_h], he_vert: vec![0; n_out_h], he_face: vec![0; n_out_h], f_start, f_hole };
     {
         let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
         let (pn, pp, pv, pf) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face));
@@ -341,77 +434,32 @@ fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
             }
             let mid = (h >> 1) as u32;
             let rot = (prev[h] ^ 1) as usize;
+            let f = fid(face[h]);
             if !hole(h) {
                 // F-face side m(h) → m(next h); V-face side m(h) → m(prev h)
-                put(he_f(h), he_f(next[h] as usize), mid, fid[face[h] as usize]);
+                put(he_f(h), he_f(next[h] as usize), mid, f);
                 put(he_slot(h), he_slot(rot), mid, vface(h));
             } else {
                 // V-face of w: m(h) → w → m(prev h); the hole: w → m(h) → (next corner)
                 let w = bv(vert[h]);
                 put(he_slot(h), he_vx(h), mid, vface(h));
                 put(he_vx(h), he_slot(rot), w, vface(h));
-                put(he_a(h), he_a1(h), w, fid[face[h] as usize]);
-                put(he_a1(h), he_a(next[h] as usize), mid, fid[face[h] as usize]);
+                put(he_a(h), he_a1(h), w, f);
+                put(he_a1(h), he_a(next[h] as usize), mid, f);
             }
         });
     }
     crate::cancel::check()?;
-    // faces start at their first corner: the cycle from f_start, the ring from v_out
-    for f in 0..nf {
-        let s = m.f_start[f] as usize;
-        cols.f_start[fid[f] as usize] = if m.f_hole[f] { he_a(s) } else { he_f(s) };
-        cols.f_hole[fid[f] as usize] = m.f_hole[f];
+    drop((cidx, bidx, holes));
+    if let Cow::Owned(m) = &mut src {
+        // the positions read the vertex positions and the vertex column only
+        (m.he_next, m.he_prev, m.he_face) = (Vec::new(), Vec::new(), Vec::new());
     }
-    for v in 0..nv {
-        cols.f_start[(n_real as usize) + v] = he_slot(m.v_out[v] as usize);
-    }
-    // each vertex leaves from its first corner: a midpoint from its lower
-    // F-corner (F-corners come first), or, with holes on both sides, from
-    // its V-side of lower rank; a kept vertex w from its V-face's w → m(prev x)
-    // at its first hole half-edge x
-    for e in 0..ne {
-        let (a, b) = (2 * e, 2 * e + 1);
-        cols.v_out[e] = match (hole(a), hole(b)) {
-            (false, false) => 2 * fc(a).min(fc(b)),
-            (false, true) => 2 * fc(a),
-            (true, false) => 2 * fc(b),
-            (true, true) => 2 * (n_fc + 2 * rank[a].min(rank[b])),
-        };
-    }
-    for (i, &w) in bverts.iter().enumerate() {
-        cols.v_out[ne + i] = 2 * (n_fc + 2 * r0[w as usize] + 1);
-    }
-    // origins first: they read the numbering's tables
-    let origins = if req.origins {
-        let mut o = Origins::with_capacity(n_out_v, n_out_h / 2, (n_real + n_holes) as usize + nv);
-        o.vertex_kind = std::iter::repeat(EDGE).take(ne).chain(std::iter::repeat(VERTEX).take(bverts.len())).collect();
-        o.vertex = (0..ne as u32).chain(bverts.iter().copied()).collect();
-        let real: Vec<u32> = (0..nf as u32).filter(|&f| !m.f_hole[f as usize]).collect();
-        let hole_faces: Vec<u32> = (0..nf as u32).filter(|&f| m.f_hole[f as usize]).collect();
-        o.face_kind = std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(VERTEX).take(nv)).chain(std::iter::repeat(FACE).take(hole_faces.len())).collect();
-        o.face = real.iter().copied().chain(0..nv as u32).chain(hole_faces.iter().copied()).collect();
-        // a real side cuts a corner of its face; the two sides at a kept
-        // vertex are halves of the boundary edges they run along
-        o.edge_kind = vec![0; n_out_h / 2];
-        o.edge = vec![0; n_out_h / 2];
-        for h in 0..nh {
-            if !hole(h) {
-                let e = fc(h) as usize;
-                (o.edge_kind[e], o.edge[e]) = (FACE, face[h]);
-            } else {
-                let e = ev(h) as usize;
-                (o.edge_kind[e], o.edge[e]) = (EDGE, (h >> 1) as u32);
-                (o.edge_kind[e + 1], o.edge[e + 1]) = (EDGE, prev[h] >> 1);
-            }
-        }
-        Some(o)
-    } else {
-        None
-    };
-    drop((fl, fbase, r0, rank, fid, bidx));
+    let m: &Mesh = &src;
     // the rows are stored only when asked for (issue 19: peak memory)
     let st;
     (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, open_point_row(m, &bverts))?;
+    drop(src);
     let mesh = Mesh::from_columns(cols)?;
     Ok(Level { mesh, stencils: st, origins, creases: None })
 }
