@@ -160,9 +160,9 @@ impl PyMesh {
     ///     thickness.
     /// check_crossings : bool, default True
     ///     Test the output for self-crossings and warn when there are any.
-    ///     The test is exact and linear in the output, but it is most of the
-    ///     call (on a 100k-quad torus, one thread: 2.1 s with it, 0.12 s
-    ///     without; `benches/CATALOG.md`). False skips it, for inputs and
+    ///     The test is exact and linear in the output, but it is almost all
+    ///     of the call (on a 100k-quad torus, one thread: 2.3 s with it,
+    ///     0.04 s without; `benches/CATALOG.md`). False skips it, for inputs and
     ///     parameters already known to give a crossing-free result
     ///     (:meth:`self_intersections` and :func:`topomesh.printing.printable`
     ///     test it when asked).
