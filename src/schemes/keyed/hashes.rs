@@ -182,7 +182,7 @@ const RECORDED: &[(&str, u64)] = &[
     ("extrude icosahedral", 0xa36b8f70ff22da29),
     ("wireframe", 0x73546c3f16526c2c),
     ("wireframe width", 0x9d88ca878e7a4611),
-    ("wireframe_columns", 0xfec3134cc53ab91e),
+    ("wireframe_columns", 0x7f38de62a9b2a025), // re-recorded: ring margin 0.25 t (issue 16)
     // changed on purpose (issue 16): the union with the hub keeps the input's
     // edge ids (columns concatenated); vertices, faces and twins as before
     ("multi_face_handle", 0x5eccacbbc8ab6f41),
