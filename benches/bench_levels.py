@@ -13,7 +13,14 @@ Inputs: the 82k-triangle icosphere (``sphere``) and the 100k-quad torus
 (``torus``), every scheme on both. Columns:
 
 * ``ns/face`` = time / output faces (warm median; first call) and ``× L1``,
-  the warm ns/face as a multiple of level 1's (target ≤ 1.3 at level 4);
+  the warm ns/face as a multiple of level 1's (target ≤ 1.3 at level 4).
+  ``iterations=L``'s time includes the lower levels, so even a cost per face
+  that is the same at every level reads 1 + 1/4 + 1/16 + 1/64 = 1.33 here at
+  level 4 for the schemes that quadruple (1.48 for √3, honeycomb and vertex
+  truncation, 1.88 for simplest, 4 for dual). The table after it, *cost of
+  each level's own step*, divides the last step's time,
+  warm(L) − warm(L − 1) of the same run, by its faces: the target read per
+  level (``--steps-from PATH`` prints it from a table already written);
   ``M faces/s`` warm (target ≥ 10 on one thread at every level).
 * ``2 thr. speed-up`` = the one-thread warm time / the two-thread one
   (target ≥ 1.8 at levels ≥ 2).
@@ -71,7 +78,11 @@ def main() -> None:
     ap.add_argument("--no-peers", action="store_true")
     ap.add_argument("--quick", action="store_true", help="tiny inputs")
     ap.add_argument("--readme", default=str(HERE / "README.md"), help="file to write the section into, or - to print only")
+    ap.add_argument("--steps-from", help="print the per-step table from the issue-19 section of this file, run nothing")
     a = ap.parse_args()
+    if a.steps_from:
+        print("\n".join(step_table(rows_of_section(Path(a.steps_from).read_text()))))
+        return
     load0 = os.getloadavg()
     rows = []
     for scheme in a.schemes:
@@ -147,8 +158,56 @@ def table(rows: list, a, load0, load1) -> list[str]:
                 vs = f"{best['warm'] / r['warm']:.1f}× {best['tool']}"
         out.append(head + f" {nf:,} | {r['warm'] * 1e3:.1f} | {r['first'] * 1e3:.1f} | {ns:.1f} | {r['first'] / nf * 1e9:.1f} | {x1} | "
                           f"{nf / r['warm'] / 1e6:.1f} | {sp} | {r['grow'] / nf:.0f} | {xe} | {xa} | {vs} |")
-    out += ["", *targets(rows, a), MARK[1]]
+    out += ["", *targets(rows, a), *step_table(rows), MARK[1]]
     return out
+
+
+def step_table(rows: list) -> list[str]:
+    """Cost per face of each level's own step (topomesh rows): the last
+    step's time, warm(L) − warm(L − 1) of the same run, over its faces, and
+    level 4's as a multiple of level 1's (the issue's ≤ 1.3)."""
+    topo = {(r["scheme"], r["input"], r["threads"], r["level"]): r for r in rows if r["tool"] == "topomesh" and "warm" in r}
+    keys = sorted({k[:3] for k in topo})
+    if not keys:
+        return []
+    out = ["Cost of each level's own step (warm, ns per output face of that level; docstring):", "",
+           "| scheme | input | threads | level 1 | level 2 step | level 3 step | level 4 step | level 4 step × level 1 |",
+           "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    met = total = 0
+    for k in keys:
+        l1 = topo.get((*k, 1))
+        if not l1:
+            continue
+        base = l1["warm"] / l1["faces"] * 1e9
+        cells, last = [], None
+        for lv in (2, 3, 4):
+            a, b = topo.get((*k, lv)), topo.get((*k, lv - 1))
+            last = (a["warm"] - b["warm"]) / a["faces"] * 1e9 if a and b else None
+            cells.append(f"{last:.1f}" if last is not None else "–")
+        x = f"{last / base:.2f}" if last is not None else "–"
+        if last is not None:
+            total += 1
+            met += last / base <= 1.3
+        out.append(f"| {k[0]} | {k[1]} | {k[2]} | {base:.1f} | " + " | ".join(cells) + f" | {x} |")
+    out += ["", f"* level 4's own step within 1.3× of level 1 per face: {met} of {total}.", ""]
+    return out
+
+
+def rows_of_section(text: str) -> list[dict]:
+    """The topomesh rows (scheme, input, level, threads, faces, warm) of an
+    issue-19 section already written."""
+    sec = text.split(MARK[0], 1)[1].split(MARK[1], 1)[0] if MARK[0] in text else text
+    rows = []
+    for line in sec.splitlines():
+        c = [x.strip() for x in line.strip().strip("|").split("|")]
+        if len(c) < 8 or c[4] != "topomesh":
+            continue
+        try:
+            rows.append(dict(scheme=c[0], input=c[1], level=int(c[2]), threads=int(c[3]), tool="topomesh",
+                             faces=int(c[5].replace(",", "")), warm=float(c[6]) / 1e3))
+        except ValueError:
+            continue  # a row that did not run
+    return rows
 
 
 def targets(rows: list, a) -> list[str]:

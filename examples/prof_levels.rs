@@ -1,7 +1,7 @@
 //! One warm subdivision step at a chosen level on the 81,920-triangle
 //! icosphere (issue 19; `TOPOMESH_PROF_INPUT=torus`: the 100k-quad torus),
 //! for profilers and A/B runs, one thread:
-//! `RAYON_NUM_THREADS=1 cargo run --release --example prof_levels -- catmull_clark 3 [REPS]`.
+//! `RAYON_NUM_THREADS=1 cargo run --release --example prof_levels -- catmull_clark|loop|honeycomb|vertex_truncation 3 [REPS]`.
 //! Level L times one step on the output of L − 1 steps; `iter` as a 4th
 //! argument times `L` steps from the sphere instead (what `iterations=L` does),
 //! `counts` the budget's `Counts::of` on the level's input. Prints the median
@@ -20,7 +20,12 @@ fn main() {
     let reps: usize = a.get(3).map_or(5, |s| s.parse().unwrap());
     let iter = a.get(4).is_some_and(|s| s == "iter");
     let counts = a.get(4).is_some_and(|s| s == "counts");
-    let step: fn(&Mesh) -> topomesh::Result<Mesh> = if scheme == "loop" { loop_subdivision } else { catmull_clark };
+    let step: fn(&Mesh) -> topomesh::Result<Mesh> = match scheme {
+        "loop" => loop_subdivision,
+        "honeycomb" => |m| topomesh::schemes::honeycomb::honeycomb(m, 0.5, None),
+        "vertex_truncation" => |m| topomesh::schemes::vertex_truncation::vertex_truncation(m, topomesh::schemes::vertex_truncation::Truncation::Chaikin),
+        _ => catmull_clark,
+    };
     // TOPOMESH_PROF_INPUT=torus: the 400×250 torus (100k quads) instead
     let mut sphere = primitives::icosahedron();
     if std::env::var("TOPOMESH_PROF_INPUT").is_ok_and(|s| s == "torus") {
