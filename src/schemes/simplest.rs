@@ -275,8 +275,14 @@ const HOLE: u32 = 1 << 31;
 /// which also answers "is h a hole side" once the face columns are gone.
 fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     use crate::mesh::NONE;
+    let (nv, ne, nf, nh) = (src.n_vertices(), src.n_edges(), src.n_faces(), src.n_halfedges());
+    // the vertex and face columns, taken out of an owned input to be freed
+    // before the output's half-edge columns exist
+    let (v_out_in, f_start_in, f_hole_in): (Cow<[u32]>, Cow<[u32]>, Cow<[bool]>) = match &mut src {
+        Cow::Owned(m) => (Cow::Owned(std::mem::take(&mut m.v_out)), Cow::Owned(std::mem::take(&mut m.f_start)), Cow::Owned(std::mem::take(&mut m.f_hole))),
+        Cow::Borrowed(m) => (Cow::Borrowed(&m.v_out[..]), Cow::Borrowed(&m.f_start[..]), Cow::Borrowed(&m.f_hole[..])),
+    };
     let m: &Mesh = &src;
-    let (nv, ne, nf, nh) = (m.n_vertices(), m.n_edges(), m.n_faces(), m.n_halfedges());
     check_output_size("simplest", 2 * nh + nh, ne + nv)?;
     let (next, vert, face) = m.halfedge_columns();
     let prev = &m.he_prev;
@@ -285,7 +291,7 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     let mut bverts = Vec::new();
     for h in 0..nh {
         let v = vert[h] as usize;
-        if m.f_hole[face[h] as usize] && bidx[v] == NONE {
+        if f_hole_in[face[h] as usize] && bidx[v] == NONE {
             bidx[v] = bverts.len() as u32;
             bverts.push(v as u32);
         }
@@ -296,11 +302,11 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     let mut holes = Vec::new(); // the hole faces, in order
     for f in 0..nf {
         crate::cancel::poll(f)?;
-        if m.f_hole[f] {
+        if f_hole_in[f] {
             holes.push(f as u32);
             continue;
         }
-        let s = m.f_start[f];
+        let s = f_start_in[f];
         let mut h = s;
         loop {
             cidx[h as usize] = n_fc;
@@ -320,8 +326,8 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
         if bidx[v] != NONE {
             kept_out[bidx[v] as usize] = 2 * (n_fc + 2 * nb + 1);
         }
-        for x in super::creases::ring(m, m.v_out[v]) {
-            if m.f_hole[face[x as usize] as usize] {
+        for x in super::creases::ring(m, v_out_in[v]) {
+            if f_hole_in[face[x as usize] as usize] {
                 cidx[x as usize] = HOLE | nb;
                 nb += 1;
             }
@@ -344,6 +350,8 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     // V-side leaving w; the hole sides w → m(k) and m(k) → w'
     let he_f = |h: usize| 2 * fc(h);
     let he_slot = |x: usize| if hole(x) { 2 * ev(x) } else { 2 * fc(prev[x] as usize) + 1 };
+    let he_a1 = |k: usize| 2 * (ev(next[k] as usize) + 1) + 1;
+    let vface = |x: usize| n_real + vert[x];
     let he_vx = |x: usize| 2 * (ev(x) + 1);
     let he_a = |k: usize| 2 * ev(k) + 1;
     let n_out_v = ne + bverts.len();
@@ -353,13 +361,13 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     let mut f_start = vec![0u32; n_out_f];
     let mut f_hole = vec![false; n_out_f];
     for f in 0..nf {
-        let s = m.f_start[f] as usize;
+        let s = f_start_in[f] as usize;
         let o = fid(f as u32) as usize;
-        f_start[o] = if m.f_hole[f] { he_a(s) } else { he_f(s) };
-        f_hole[o] = m.f_hole[f];
+        f_start[o] = if f_hole_in[f] { he_a(s) } else { he_f(s) };
+        f_hole[o] = f_hole_in[f];
     }
     for v in 0..nv {
-        f_start[(n_real as usize) + v] = he_slot(m.v_out[v] as usize);
+        f_start[(n_real as usize) + v] = he_slot(v_out_in[v] as usize);
     }
     // each vertex leaves from its first corner: a midpoint from its lower
     // F-corner (F-corners come first), or, with holes on both sides, from
@@ -381,7 +389,7 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
         let mut o = Origins::with_capacity(n_out_v, n_out_h / 2, n_out_f);
         o.vertex_kind = std::iter::repeat(EDGE).take(ne).chain(std::iter::repeat(VERTEX).take(bverts.len())).collect();
         o.vertex = (0..ne as u32).chain(bverts.iter().copied()).collect();
-        let real: Vec<u32> = (0..nf as u32).filter(|&f| !m.f_hole[f as usize]).collect();
+        let real: Vec<u32> = (0..nf as u32).filter(|&f| !f_hole_in[f as usize]).collect();
         o.face_kind = std::iter::repeat(FACE).take(real.len()).chain(std::iter::repeat(VERTEX).take(nv)).chain(std::iter::repeat(FACE).take(holes.len())).collect();
         o.face = real.iter().copied().chain(0..nv as u32).chain(holes.iter().copied()).collect();
         // a real side cuts a corner of its face; the two sides at a kept
@@ -402,16 +410,7 @@ fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
     } else {
         None
     };
-    if let Cow::Owned(m) = &mut src {
-        (m.v_out, m.f_start, m.f_hole) = (Vec::new(), Vec::new(), Vec::new());
-    }
-    let m: &Mesh = &src;
-    // (the closures over the input's columns again, borrowed anew)
-    let (next, vert, face) = (&m.he_next, &m.he_vert, &m.he_face);
-    let prev = &m.he_prev;
-    let he_a1 = |k: usize| 2 * (ev(next[k] as usize) + 1) + 1;
-    let he_slot = |x: usize| if hole(x) { 2 * ev(x) } else { 2 * fc(prev[x] as usize) + 1 };
-    let vface = |x: usize| n_real + vert[x];
+    drop((v_out_in, f_start_in, f_hole_in));
     // the positions come last, once the numbering's tables are freed
     // (issue 19: peak memory)
     let mut cols = Columns { pos: Vec::new(), v_out, he_next: vec![0; n_out_h], he_prev: vec![0; n_out_h], he_vert: vec![0; n_out_h], he_face: vec![0; n_out_h], f_start, f_hole };
