@@ -71,14 +71,27 @@ def test_wireframe_columns(make, n):
 @pytest.mark.filterwarnings("ignore::topomesh.GeometryWarning")
 @pytest.mark.parametrize("make", [lambda: topomesh.torus(6, 4), lambda: topomesh.genus_surface(2)])
 def test_wireframe_columns_curved(make):
-    # at the torus' and the slab's vertices the joints can cross (a GeometryWarning,
-    # docs/tools.md); the counts and the genus hold
+    # at the coarse torus' saddle vertices the joints can still cross (a
+    # GeometryWarning, docs/tools.md); the counts and the genus hold
     m = make()
     v, e, f, g = counts(m)
     for n in (3, 4):
         c = m.wireframe_columns(0.05, n)
         assert counts(c) == (*column_counts(m, n), e - v + 1)
         assert c.to_trimesh().is_watertight
+
+
+@pytest.mark.parametrize("make", [lambda: topomesh.torus(24, 12), lambda: topomesh.genus_surface(2), lambda: topomesh.genus_surface(3)])
+def test_wireframe_columns_quad_meshes_do_not_cross(make):
+    # the joints between columns at right angles (every vertex of a quad
+    # mesh) no longer fold over each other (ring margin 0.25 t, docs/tools.md):
+    # no GeometryWarning with the default four sides, nor with 5 or 6
+    m = make()
+    for n in (4, 5, 6):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            c = m.wireframe_columns(0.05, n)
+        assert len(c.self_intersections()) == 0, n
 
 
 def test_wireframe_columns_errors():
