@@ -254,7 +254,10 @@ impl PyMesh {
     /// ``segments`` sides and radius ``thickness`` along every edge, joined
     /// at every vertex by strips between neighbouring columns and a top and
     /// a bottom cap (no cap at a valence-2 vertex; an n-gon closes a
-    /// valence-1 vertex's column).
+    /// valence-1 vertex's column). The columns end at TopMod's distance
+    /// from each vertex plus a quarter of the thickness (TopMod's margin of
+    /// a thousandth folded the joints between columns at right angles;
+    /// ``docs/tools.md``).
     ///
     /// With V₁, V₂, V₃ the vertices of valence 1, 2, ≥ 3, n = ``segments``,
     /// m = n // 2 and ε = 1 for even n (else 0): V' = 2nE,
