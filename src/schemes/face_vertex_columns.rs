@@ -94,7 +94,7 @@ impl Frame {
 /// Raw pointers to the half-edge and face columns of `c`, for the parallel
 /// fills whose writes are disjoint by construction.
 #[derive(Clone, Copy)]
-pub(super) struct Out {
+pub(crate) struct Out {
     next: SyncPtr<u32>,
     prev: SyncPtr<u32>,
     vert: SyncPtr<u32>,
@@ -103,7 +103,7 @@ pub(super) struct Out {
 }
 
 impl Out {
-    pub(super) fn of(c: &mut Columns) -> Out {
+    pub(crate) fn of(c: &mut Columns) -> Out {
         Out {
             next: SyncPtr(c.he_next.as_mut_ptr()),
             prev: SyncPtr(c.he_prev.as_mut_ptr()),
@@ -118,7 +118,7 @@ impl Out {
     /// `id`, `nx` and `f` are in range, and no other thread writes half-edge
     /// `id`, the `prev` of `nx`, or (through [`Out::start`]) face `f`.
     #[inline]
-    pub(super) unsafe fn link(self, id: u32, v: u32, f: u32, nx: u32) {
+    pub(crate) unsafe fn link(self, id: u32, v: u32, f: u32, nx: u32) {
         unsafe {
             *self.next.get().add(id as usize) = nx;
             *self.prev.get().add(nx as usize) = id;
@@ -129,7 +129,7 @@ impl Out {
     /// # Safety
     /// As [`Out::link`], for `f_start[f]`.
     #[inline]
-    pub(super) unsafe fn start(self, f: u32, id: u32) {
+    pub(crate) unsafe fn start(self, f: u32, id: u32) {
         unsafe { *self.f_start.get().add(f as usize) = id };
     }
 }

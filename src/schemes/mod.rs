@@ -5,7 +5,7 @@ pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
 mod primal_columns;
-mod face_vertex_columns;
+pub(crate) mod face_vertex_columns;
 mod fan_columns;
 #[cfg(test)]
 mod twin_reference;

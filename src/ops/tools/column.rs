@@ -61,6 +61,7 @@
 use crate::error::{MeshError, Result};
 use crate::mesh::{HalfedgeId, Mesh};
 use crate::mesh::Columns;
+use crate::schemes::face_vertex_columns::Out;
 use crate::schemes::hosts::{SyncPtr, VertexLayout, MIN_LEN};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -218,29 +219,20 @@ impl Mesh {
         let col_e = |e: u32, j: u32| 3 * n32 * e + col_local(n32, j % n32);
         let mut cols = Columns::new(pos, 2 * n_edges, nf);
         {
-            let sp = |c: &mut Vec<u32>| SyncPtr(c.as_mut_ptr());
-            let (pn, pp, pv, pf) = (sp(&mut cols.he_next), sp(&mut cols.he_prev), sp(&mut cols.he_vert), sp(&mut cols.he_face));
-            let put = |i: u32, nx: u32, v: u32, f: u32| {
-                // SAFETY: the ids above are a bijection onto the half-edges,
-                // each written once below as some corner's and as one corner's
-                // next (both inside the face being written)
-                unsafe {
-                    *pn.get().add(i as usize) = nx;
-                    *pp.get().add(nx as usize) = i;
-                    *pv.get().add(i as usize) = v;
-                    *pf.get().add(i as usize) = f;
-                }
-            };
-            // a face of corners (point, half-edge)
+            let vop = SyncPtr(cols.v_out.as_mut_ptr());
+            let out = Out::of(&mut cols);
+            // face f of corners (point, half-edge), started at its first
             let face = |c: &[(u32, u32)], f: u32| {
-                for (i, &(v, h)) in c.iter().enumerate() {
-                    put(h, c[(i + 1) % c.len()].1, v, f);
+                // SAFETY: the ids above are a bijection onto the half-edges,
+                // each written once below as some corner's and as one
+                // corner's next (both inside face f), and each face by the
+                // one task writing it
+                unsafe {
+                    out.start(f, c[0].1);
+                    for (i, &(v, h)) in c.iter().enumerate() {
+                        out.link(h, v, f, c[(i + 1) % c.len()].1);
+                    }
                 }
-            };
-            let (fsp, vop) = (sp(&mut cols.f_start), sp(&mut cols.v_out));
-            let start = |f: u32, h: u32| {
-                // SAFETY: each face is started by the one task writing it
-                unsafe { *fsp.get().add(f as usize) = h }
             };
             let first_at = |p: u32, h: u32| {
                 // SAFETY: each ring point's first corner is in one column
@@ -257,7 +249,6 @@ impl Mesh {
                     let c2 = if j + 1 < n32 { 2 * col_e(e, j + 1) } else { 2 * col_e(e, 0) + 1 };
                     let c = [(ring(h, j), c0), (ring(tw, n32 - j), 2 * side_e(tw, n32 - j - 1)), (ring(tw, n32 - j - 1), c2), (ring(h, j + 1), 2 * side_e(h, j))];
                     face(&c, n32 * e + j);
-                    start(n32 * e + j, c0);
                     // each ring point's first corner: R(h, 0) and R(tw, 0) in
                     // quad 0, R(h, j + 1) at c3, R(tw, n − j − 1) at c2
                     if j == 0 {
@@ -282,10 +273,10 @@ impl Mesh {
                 if k == 1 {
                     let c: Vec<(u32, u32)> = (0..n32).map(|j| (ring(h0, j), side2(h0, j))).collect();
                     face(&c, fb);
-                    start(fb, c[0].1);
                     return;
                 }
-                // rung kp of corner i: its edge, and whether this corner meets it first
+                // the edge of rung kp of corner i (at a valence-2 vertex the
+                // second corner's top, and for even n bottom, rung is the first's)
                 let rung = |i: u32, kp: u32| {
                     if k == 2 && i == 1 && (kp == 0 || (even && kp == m32)) {
                         jb + rung_local(kp)
@@ -295,19 +286,17 @@ impl Mesh {
                         jb + (m32 + 1) * i + rung_local(kp)
                     }
                 };
-                let second_corner = k == 2;
                 let mut h = h0;
                 for i in 0..k {
                     let g = rot(h);
                     for q in 0..m32 {
                         // R(h, q) → R(h, q + 1) → R(g, n − q − 1) → R(g, n − q)
-                        let top_first = !(second_corner && i == 1 && even && q + 1 == m32);
+                        let top_first = !(k == 2 && i == 1 && even && q + 1 == m32);
                         let c1 = 2 * rung(i, q + 1) + !top_first as u32;
-                        let c3_first = q == 0 && !(second_corner && i == 1);
+                        let c3_first = q == 0 && !(k == 2 && i == 1);
                         let c3 = 2 * rung(i, q) + !c3_first as u32;
                         let c = [(ring(h, q), side2(h, q)), (ring(h, q + 1), c1), (ring(g, n32 - q - 1), side2(g, n32 - q - 1)), (ring(g, n32 - q), c3)];
                         face(&c, fb + m32 * i + q);
-                        start(fb + m32 * i + q, c[0].1);
                     }
                     h = g;
                 }
@@ -320,7 +309,6 @@ impl Mesh {
                         Some((ring(x, 0), 2 * rung(i, 0) + 1))
                     }).collect();
                     face(&c, f);
-                    start(f, c[0].1);
                     f += 1;
                 }
                 if k > 2 || !even {
@@ -340,7 +328,6 @@ impl Mesh {
                         x = unrot(x);
                     }
                     face(&c, f);
-                    start(f, c[0].1);
                 }
             });
         }

@@ -21,7 +21,8 @@
 
 use crate::error::{MeshError, Result};
 use crate::mesh::{Columns, HalfedgeId, Mesh};
-use crate::schemes::hosts::{SyncPtr, VertexLayout, MIN_LEN};
+use crate::schemes::face_vertex_columns::Out;
+use crate::schemes::hosts::{VertexLayout, MIN_LEN};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -89,7 +90,7 @@ impl Mesh {
 
     /// The connectivity written straight into the columns (issue 16: the
     /// general builder was half of the tool's time), numbered exactly as
-    /// `Mesh::from_corner_twins` numbered the faces `reference::build` gives
+    /// `Mesh::from_corner_twins` numbered the faces `tests::reference` gives
     /// it (tested equal, and the Python outputs' hashes are unchanged).
     ///
     /// Faces, in order: outer vertex faces (v), outer edge quads (V + e),
@@ -139,18 +140,10 @@ impl Mesh {
         let nf = 2 * nv + 2 * ne + nh;
         let mut cols = Columns::new(pos, 10 * nh, nf);
         {
-            let sp = |c: &mut Vec<u32>| SyncPtr(c.as_mut_ptr());
-            let (pn, pp, pv, pf) = (sp(&mut cols.he_next), sp(&mut cols.he_prev), sp(&mut cols.he_vert), sp(&mut cols.he_face));
-            let put = |i: u32, n: u32, v: u32, f: u32| {
-                // SAFETY: the ids above are a bijection onto 0..10H, each
-                // written once below as some corner's and as one corner's next
-                unsafe {
-                    *pn.get().add(i as usize) = n;
-                    *pp.get().add(n as usize) = i;
-                    *pv.get().add(i as usize) = v;
-                    *pf.get().add(i as usize) = f;
-                }
-            };
+            let out = Out::of(&mut cols);
+            // SAFETY: the ids above are a bijection onto 0..10H, each written
+            // once below as some corner's and as one corner's next
+            let put = |i: u32, n: u32, v: u32, f: u32| unsafe { out.link(i, v, f, n) };
             (0..ne).into_par_iter().with_min_len(MIN_LEN / 2).for_each(|e| {
                 if crate::cancel::requested() {
                     return; // the check after the loop reports it
