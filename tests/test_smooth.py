@@ -538,7 +538,7 @@ def test_simplest_and_dual_positions(mesh_name: str) -> None:
     assert_same_points(m.simplest().vertices, mids, 1e-9)
     # the second level of one call consumes the first (issue 19): the same
     # mesh, bit for bit, as a call per level
-    for name in ("simplest", "honeycomb", "vertex_truncation"):
+    for name in ("simplest", "honeycomb", "vertex_truncation", "dual"):
         two, once = getattr(m, name)(iterations=2), getattr(getattr(m, name)(), name)()
         assert np.array_equal(two.vertices, once.vertices), name
         assert np.array_equal(two.face_indices, once.face_indices), name

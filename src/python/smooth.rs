@@ -150,7 +150,7 @@ impl PyMesh {
     /// return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn dual<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("dual", predict::dual).with_direct(schemes::dual::dual_level_with).with_corners(schemes::corner_direct::dual), correspondence, schemes::dual::dual_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("dual", predict::dual).with_direct(schemes::dual::dual_level_with).with_corners(schemes::corner_direct::dual).with_owned(schemes::dual::dual_level_owned), correspondence, schemes::dual::dual_level)
     }
 
     /// Limit positions and unit normals of the Catmull-Clark or Loop surface

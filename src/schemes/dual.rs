@@ -47,6 +47,7 @@ use super::stencil::Stencils;
 use crate::error::{MeshError, Result};
 use crate::mesh::{Columns, Mesh, NONE};
 use crate::schemes::dual_walk::DualWalk;
+pub use super::dual_in_place::dual_level_owned;
 use glam::DVec3;
 use rayon::prelude::*;
 

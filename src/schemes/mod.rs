@@ -21,6 +21,7 @@ pub mod stencil;
 pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod dual;
+mod dual_in_place;
 pub(crate) mod dual_walk;
 pub mod loop_subdivision;
 pub mod midpoint;

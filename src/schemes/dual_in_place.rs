@@ -1,0 +1,198 @@
+//! The dual of a closed mesh the caller gives up (a previous level of a
+//! multi-level call), written over the input's own columns (issue 19's
+//! memory target: at most twice the exported arrays during a level).
+//!
+//! The dual is as large as its input, so building it beside its input, as
+//! [`super::dual`] does, held both: 3.2× the exported arrays from the second
+//! level on. Here the input's `he_prev` goes first (the walk rotates with
+//! `he_next` alone), the centroids replace the positions, and only the
+//! output's vertex column is new; every other output column takes over an
+//! input column once that column's last read is done:
+//!
+//! | output column | written into | by |
+//! | --- | --- | --- |
+//! | `he_vert` | a new column | the walk: `face(h)` at the id of corner h |
+//! | `he_next` | input `he_vert` | the walk: the id of the next corner around v |
+//! | `f_start` | input `v_out` | the walk: the id of v's first corner |
+//! | `v_out` | input `f_start` | the walk: each face's first corner |
+//! | `he_face`, `he_prev` | input `he_face`, `he_next` | the output faces walked from `f_start` |
+//!
+//! Measured (`examples/peak_levels.rs`, `examples/ab_dual_owned.rs`): 105
+//! bytes per output face on the 100k-quad torus from the second level on,
+//! 1.64× the exported arrays (1.92× at the sphere's triangle levels), and
+//! the same time per level as the borrowed dual.
+//!
+//! The numbering is the one-pass walk's ([`super::dual`]'s `step_one_pass`,
+//! vertices in order, each from `v_out` in rotation order, edges numbered by
+//! first crossing), so the output is the borrowed path's, bit for bit (the
+//! tests compare them).
+
+use super::level::{Level, Request};
+use crate::error::{MeshError, Result};
+use crate::mesh::{Columns, Mesh, NONE};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// [`super::dual::dual_level`] on an input the caller gives up (a previous level of a
+/// multi-level call): a closed mesh without point-spheres, asked for no
+/// stencils or origins, is dualized over its own columns
+/// ([`dual_in_place`], the same output bit for bit); anything else
+/// is [`super::dual::dual_level`]'s.
+pub fn dual_level_owned(m: Mesh, req: &Request) -> Result<Level> {
+    crate::cancel::check()?;
+    if req.stencils || req.origins || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+        return super::dual::dual_level(&m, req);
+    }
+    let (nv, nf) = (m.n_vertices(), m.n_faces());
+    let out = dual_in_place(m)?;
+    if super::face_parents::recording() {
+        // as the borrowed dual records it
+        let v = super::face_parents::VERT;
+        super::face_parents::record(Some(super::face_parents::Step { in_v: nv, in_f: nf, face: (0..nv as u32).map(|i| v | i).collect(), vertex: (0..nf as u32).collect() }));
+    }
+    Ok(Level::plain(out))
+}
+
+/// The dual of `m` (closed, without point-spheres: the caller checks), its
+/// columns reused.
+fn dual_in_place(m: Mesh) -> Result<Mesh> {
+    let (nv, nf, nh) = (m.n_vertices(), m.n_faces(), m.n_halfedges());
+    super::hosts::check_output_size("dual", nh, nf)?;
+    let Mesh { pos, mut v_out, he_next: mut next, he_prev, he_vert: mut vert, he_face: mut face, mut f_start, f_hole } = m;
+    // the walk below rotates with `next` alone
+    drop(he_prev);
+    drop(f_hole);
+    // the centroids, summed as `dual::face_centroid` sums them (same bits)
+    let mut cpos = Vec::with_capacity(nf);
+    for (f, &s) in f_start.iter().enumerate() {
+        crate::cancel::poll(f)?;
+        let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
+        loop {
+            sum += pos[vert[h as usize] as usize];
+            n += 1;
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
+        }
+        cpos.push(sum / n as f64);
+    }
+    drop(pos);
+    // The walk. Around vertex v the corners come in rotation order h₀, h₁, …
+    // (h_{j+1} = prev(h_j) ^ 1; collected backwards with rot⁻¹(g) =
+    // next(g ^ 1)). Corner h_j's side crosses edge(prev h_j) = h_{j+1} >> 1:
+    // its first crossing numbers the output edge, the second is the twin
+    // (`slot`, as `DualWalk` keys it).
+    let mut out_vert = vec![0u32; nh];
+    let mut slot = vec![0u32; nh / 2];
+    let (mut n_out, mut cyc, mut ids) = (0u32, Vec::new(), Vec::new());
+    f_start.fill(NONE); // becomes v_out: each centroid's first corner
+    for v in 0..nv {
+        crate::cancel::poll(v)?;
+        let s = v_out[v];
+        cyc.clear();
+        cyc.push(s);
+        let mut g = next[(s ^ 1) as usize];
+        while g != s {
+            cyc.push(g);
+            g = next[(g ^ 1) as usize];
+        }
+        cyc[1..].reverse();
+        ids.clear();
+        let k = cyc.len();
+        for j in 0..k {
+            let (h, after) = (cyc[j], if j + 1 < k { cyc[j + 1] } else { cyc[0] });
+            let sl = &mut slot[(after >> 1) as usize];
+            let i = if *sl == 0 {
+                n_out += 1;
+                *sl = n_out;
+                2 * (n_out - 1)
+            } else {
+                2 * (*sl - 1) + 1
+            };
+            ids.push(i);
+            let f = face[h as usize];
+            out_vert[i as usize] = f;
+            let w = &mut f_start[f as usize];
+            if *w == NONE {
+                *w = i;
+            }
+        }
+        for j in 1..k {
+            vert[ids[j - 1] as usize] = ids[j];
+        }
+        vert[ids[k - 1] as usize] = ids[0];
+        v_out[v] = ids[0];
+    }
+    drop(slot);
+    if 2 * n_out as usize != nh {
+        return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * n_out)));
+    }
+    let (out_next, out_f_start, out_v_out) = (vert, v_out, f_start);
+    // he_face into the input's `face` and he_prev into its `next` (neither
+    // read any more): output face v walked from its start (its corners are
+    // v's, so a longer walk would be a bug here, reported instead of looping)
+    let long = std::sync::atomic::AtomicBool::new(false);
+    {
+        let (pf, pp) = (super::hosts::SyncPtr(face.as_mut_ptr()), super::hosts::SyncPtr(next.as_mut_ptr()));
+        out_f_start.par_iter().enumerate().with_min_len(super::hosts::MIN_LEN).for_each(|(v, &s)| {
+            let (mut h, mut n) = (s, 0usize);
+            loop {
+                let nx = out_next[h as usize];
+                // SAFETY: every half-edge lies on one output face, whose task
+                // alone writes it and the previous-pointer of its successor.
+                unsafe {
+                    *pf.get().add(h as usize) = v as u32;
+                    *pp.get().add(nx as usize) = h;
+                }
+                h = nx;
+                n += 1;
+                if h == s || n > nh {
+                    break;
+                }
+            }
+            if n > nh {
+                long.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        });
+    }
+    if long.into_inner() {
+        return Err(MeshError::Invariant("dual: an output face does not close".into()));
+    }
+    let out_prev = next;
+    crate::cancel::check()?;
+    Mesh::from_columns(Columns { pos: cpos, v_out: out_v_out, he_next: out_next, he_prev: out_prev, he_vert: out_vert, he_face: face, f_start: out_f_start, f_hole: vec![false; nv] })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The owned level (written over the input's columns) is the borrowed
+    /// one, every column and position bit: closed inputs of the corpus
+    /// (self-loops, one-gons, two-gons, valence 1 and 2), a torus, a
+    /// Sierpinski output, a level's output given up again, and the inputs it
+    /// hands to the borrowed path (open, point-spheres).
+    #[test]
+    fn owned_level_equals_the_borrowed_one() {
+        let mut cases: Vec<(String, Mesh)> = crate::schemes::hosts::test_meshes::corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+        cases.extend(crate::schemes::hosts::test_meshes::open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
+        cases.push(("torus".into(), crate::primitives::torus(12, 8, 3.0, 1.0).unwrap()));
+        cases.push(("sierpinski".into(), crate::schemes::sierpinski::sierpinski_iterated(&crate::primitives::cube(), 2).unwrap()));
+        let bits = |m: &Mesh| m.pos.iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+        let req = Request::plain();
+        let mut in_place = 0;
+        for (name, m) in cases {
+            let a = crate::schemes::dual::dual_level(&m, &req).unwrap().mesh;
+            in_place += (m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0)) as usize;
+            let b = dual_level_owned(m.clone(), &req).unwrap().mesh;
+            assert_eq!(a, b, "{name}");
+            assert_eq!(bits(&a), bits(&b), "{name}");
+            let c = crate::schemes::dual::dual_level(&a, &req).unwrap().mesh;
+            let d = dual_level_owned(a, &req).unwrap().mesh;
+            assert_eq!(c, d, "{name} level 2");
+            assert_eq!(bits(&c), bits(&d), "{name} level 2");
+        }
+        assert!(in_place >= 10, "the cases must reach the in-place path: {in_place}");
+    }
+}
