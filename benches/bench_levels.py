@@ -37,6 +37,12 @@ Inputs: the 82k-triangle icosphere (``sphere``) and the 100k-quad torus
   topomesh is faster). Triangle-only peers (trimesh, VTK through pyvista,
   libigl) run on the sphere only; a peer whose estimated time (level-1 time ×
   growth^levels / 3) exceeds ``--budget`` seconds is skipped and named.
+  ``OpenSubdiv`` is Pixar's library itself (Far's uniform refinement and
+  primvar interpolation of the positions, one thread, timed inside the
+  test-only ``osd-petite`` binary as ``bench_osd.py`` does; built by
+  ``.ci/run``): Catmull-Clark on both inputs, Loop on the sphere. It has no
+  first-call or memory figure (–), and its one-thread time stands in its
+  two-thread rows too.
 
 With ``--readme PATH`` (default ``benches/README.md``; ``-`` prints only) the
 table replaces the section between ``<!-- issue19-table -->`` markers (added
@@ -54,6 +60,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent))  # tests.osd.petite_ref: OpenSubdiv's library as a peer
 from bench_subdivision import CASES, available, run_case  # noqa: E402
 
 SCHEMES = ["catmull_clark", "loop", "midpoint", "doo_sabin", "sqrt3", "simplest", "dual", "honeycomb", "vertex_truncation"]
@@ -64,7 +71,51 @@ MARK = ("<!-- issue19-table -->", "<!-- /issue19-table -->")
 
 
 def peers(scheme: str, inp: str) -> list[str]:
-    return [t for t in CASES[scheme][1][1:] if not (t in TRIANGLE_ONLY and inp != "sphere")]
+    ps = [t for t in CASES[scheme][1][1:] if not (t in TRIANGLE_ONLY and inp != "sphere")]
+    # OpenSubdiv's own library (Far, through the test-only osd-petite binary):
+    # Catmull-Clark on both inputs, Loop on triangles
+    if scheme == "catmull_clark" or (scheme == "loop" and inp == "sphere"):
+        ps.append(OSD)
+    return ps
+
+
+OSD = "OpenSubdiv"
+
+
+def osd_available() -> bool:
+    from tests.osd.petite_ref import available as why_not
+
+    return why_not() is None
+
+
+def run_osd(scheme: str, inp: str, level: int, runs: int, quick: bool, cache: dict) -> dict:
+    """OpenSubdiv's Far on one thread (topology + float32 positions, median of
+    `runs` after one untimed run, timed inside the binary: `bench_osd.py`).
+    Far has no first-call or memory figure here; its rows show them as –.
+    The same figure serves the one- and two-thread rows (Far refines on one)."""
+    key = (scheme, inp, level)
+    if key not in cache:
+        import tempfile
+
+        import numpy as np
+        from bench_subdivision import make_input
+        from tests.osd.petite_ref import _encode, binary
+
+        V, F = make_input(inp, quick)
+        sizes = np.full(len(F), F.shape[1], dtype=np.int64)
+        req = {"scheme": scheme, "levels": level, "boundary": "edge_and_corner", "vertices": np.asarray(V, dtype=np.float64),
+               "face_sizes": sizes, "face_indices": np.asarray(F, dtype=np.int64).ravel()}
+        with tempfile.TemporaryDirectory() as d:
+            (Path(d) / "req").write_text("1\n" + _encode(req) + "\n")
+            import subprocess
+
+            subprocess.run([str(binary()), "--time", str(runs), str(Path(d) / "req"), str(Path(d) / "resp")], check=True, timeout=3600)
+            words = (Path(d) / "resp").read_text().split()
+        if words[0] == "error":
+            cache[key] = {"error": " ".join(words)}
+        else:
+            cache[key] = {"warm": (float(words[0]) + float(words[1])) / 1e3, "faces": int(words[2])}
+    return cache[key]
 
 
 def main() -> None:
@@ -85,9 +136,10 @@ def main() -> None:
         return
     load0 = os.getloadavg()
     rows = []
+    osd_cache: dict = {}
     for scheme in a.schemes:
         for inp in a.inputs:
-            tools = ["topomesh"] + ([] if a.no_peers else [t for t in peers(scheme, inp) if available(t)])
+            tools = ["topomesh"] + ([] if a.no_peers else [t for t in peers(scheme, inp) if (osd_available() if t == OSD else available(t))])
             l1: dict = {}
             for th in a.threads:
                 for lv in a.levels:
@@ -99,7 +151,16 @@ def main() -> None:
                             if est is not None and est > a.budget:
                                 rows.append({**row, "skip": f"not run: ~{est:.0f} s per call estimated"})
                                 continue
-                        r = run_case(tool, scheme, inp, lv, th, a.runs, a.quick)
+                        if tool == OSD:
+                            r = run_osd(scheme, inp, lv, a.runs, a.quick, osd_cache)
+                            if "error" not in r:
+                                if lv == min(a.levels):
+                                    l1[(tool, th)] = r["warm"]
+                                rows.append({**row, "warm": r["warm"], "first": None, "faces": r["faces"], "grow": None, "grow_all": None, "export": None})
+                                print(f"{scheme:17s} {inp:6s} L{lv} t{th} {tool:12s} warm {r['warm'] * 1e3:9.1f} ms (Far, one thread)", flush=True)
+                                continue
+                        else:
+                            r = run_case(tool, scheme, inp, lv, th, a.runs, a.quick)
                         if "error" in r:
                             rows.append({**row, "skip": "error: " + r["error"][:70]})
                             continue
@@ -146,9 +207,9 @@ def table(rows: list, a, load0, load1) -> list[str]:
         base = find(scheme=r["scheme"], input=r["input"], level=min(a.levels), threads=r["threads"], tool=r["tool"])
         x1 = f"{ns / (base['warm'] / base['faces'] * 1e9):.2f}" if base else ""
         one = find(scheme=r["scheme"], input=r["input"], level=r["level"], threads=1, tool=r["tool"])
-        sp = f"{one['warm'] / r['warm']:.2f}×" if one and r["threads"] != 1 else ""
-        xe = f"{r['grow'] / r['export']:.2f}" if r["export"] else ""
-        xa = f"{r['grow_all'] / r['export']:.2f}" if r["export"] else ""
+        sp = f"{one['warm'] / r['warm']:.2f}×" if one and r["threads"] != 1 and r["tool"] != OSD else ""
+        xe = f"{r['grow'] / r['export']:.2f}" if r["export"] else "–"
+        xa = f"{r['grow_all'] / r['export']:.2f}" if r["export"] else "–"
         vs = ""
         if r["tool"] == "topomesh":
             ps = [p for p in rows if "warm" in p and p["tool"] != "topomesh" and (p["scheme"], p["input"], p["level"], p["threads"]) ==
@@ -156,8 +217,10 @@ def table(rows: list, a, load0, load1) -> list[str]:
             if ps:
                 best = min(ps, key=lambda p: p["warm"])
                 vs = f"{best['warm'] / r['warm']:.1f}× {best['tool']}"
-        out.append(head + f" {nf:,} | {r['warm'] * 1e3:.1f} | {r['first'] * 1e3:.1f} | {ns:.1f} | {r['first'] / nf * 1e9:.1f} | {x1} | "
-                          f"{nf / r['warm'] / 1e6:.1f} | {sp} | {r['grow'] / nf:.0f} | {xe} | {xa} | {vs} |")
+        first_ms, first_ns = (f"{r['first'] * 1e3:.1f}", f"{r['first'] / nf * 1e9:.1f}") if r["first"] is not None else ("–", "–")
+        grow = f"{r['grow'] / nf:.0f}" if r["grow"] is not None else "–"
+        out.append(head + f" {nf:,} | {r['warm'] * 1e3:.1f} | {first_ms} | {ns:.1f} | {first_ns} | {x1} | "
+                          f"{nf / r['warm'] / 1e6:.1f} | {sp} | {grow} | {xe} | {xa} | {vs} |")
     out += ["", *targets(rows, a), *step_table(rows), MARK[1]]
     return out
 
