@@ -7,8 +7,9 @@ the same schemes. Run with one command:
 Inputs: an icosphere with 81,920 triangles (Loop, midpoint, sqrt3) and a
 400×250 quad torus with 100,000 quads (Catmull-Clark, Doo-Sabin, simplest,
 dual). Every case (tool × scheme × input × levels × threads) runs in a fresh
-subprocess, so its peak RSS (``resource.getrusage(...).ru_maxrss``, which sees
-Rust and C++ allocations, unlike tracemalloc) is its own; the subprocess
+subprocess, so its peak RSS (``VmHWM`` of ``/proc/self/status``, which sees
+Rust and C++ allocations, unlike tracemalloc; not ``ru_maxrss``, which a
+child inherits from a large parent at ``exec``) is its own; the subprocess
 builds the input in the tool's native format, makes one untimed warm-up call,
 then times only the subdivision call: median of ``--runs`` (default 5) runs. "1 thread" sets
 RAYON_NUM_THREADS / OMP_NUM_THREADS / similar to 1; "all" leaves them unset.
@@ -167,6 +168,20 @@ def export_bytes(tool: str, out) -> int:
     return 0
 
 
+def hwm_kb() -> int:
+    """This process's peak RSS (``VmHWM``, kB). Not ``ru_maxrss``: Linux
+    carries the high-water mark of the memory a process replaced at ``exec``
+    into it, so a child spawned by a large parent (``subprocess`` uses vfork)
+    reads the parent's peak as its own."""
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1])
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+
+
 def rss_now_kb() -> int:
     with open("/proc/self/statm") as f:
         return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") // 1024
@@ -189,7 +204,7 @@ def worker(args) -> None:
     first, first_cpu = time.perf_counter() - t0, time.process_time() - c0
     # the first call's own peak: later calls add what the allocator kept of
     # earlier outputs (glibc's heap and arenas), not what the call needs
-    first_peak_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    first_peak_kb = hwm_kb()
     del del_out, state
     for _ in range(args.runs):
         state = setup()
@@ -204,7 +219,7 @@ def worker(args) -> None:
             except Exception:  # a peer whose output layout is not known here
                 n_bytes = 0
         del out, state
-    peak_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    peak_kb = hwm_kb()
     print(json.dumps({"times": times, "cpu": cpu, "faces": n_out, "peak_mb": peak_kb / 1024, "base_mb": base_kb / 1024,
                       "first_peak_mb": first_peak_kb / 1024,
                       "first": first, "first_cpu": first_cpu, "export_bytes": n_bytes}))
