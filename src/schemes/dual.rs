@@ -62,13 +62,17 @@ fn step(m: &Mesh) -> Result<Mesh> {
     // quads: 3.6 ms against 18 ms, and 9 ms on two threads), so the blocks
     // only pay off on many threads
     let out = if rayon::current_num_threads() < PARALLEL_FROM { step_one_pass(m)? } else { step_parallel(m)? };
+    record_parents(m.n_vertices(), m.n_faces());
+    Ok(out)
+}
+
+/// The face parents of a closed dual step (when they are being recorded):
+/// face v is born around vertex v, vertex f is face f's centroid.
+pub(super) fn record_parents(nv: usize, nf: usize) {
     if super::face_parents::recording() {
-        // face v is born around vertex v, vertex f is face f's centroid
-        let (nv, nf) = (m.n_vertices(), m.n_faces());
         let v = super::face_parents::VERT;
         super::face_parents::record(Some(super::face_parents::Step { in_v: nv, in_f: nf, face: (0..nv as u32).map(|i| v | i).collect(), vertex: (0..nf as u32).collect() }));
     }
-    Ok(out)
 }
 
 /// Threads from which [`step_parallel`] is used.
@@ -109,33 +113,32 @@ fn step_one_pass(m: &Mesh) -> Result<Mesh> {
     Mesh::from_columns(walk.finish()?)
 }
 
-/// [`face_centroid`] of every face in face order: the dual's positions,
+/// The corner mean of every face in face order: the dual's positions,
 /// which the fused builds that start with a dual (`compose::dual_dual`,
 /// `dual_loop`, `conway::truncate`) read without building it.
 pub(crate) fn centroids(m: &Mesh) -> Result<Vec<DVec3>> {
-    let next = &m.he_next;
-    let mut pos = Vec::with_capacity(m.n_faces());
-    for f in 0..m.n_faces() {
-        crate::cancel::poll(f)?;
-        pos.push(face_centroid(m, next, f));
-    }
-    Ok(pos)
+    centroids_of(&m.f_start, &m.he_next, &m.he_vert, &m.pos)
 }
 
-/// Corner mean of face `f`, summed from its first corner (the same bits as
-/// [`face_centroids`]).
-#[inline]
-pub(crate) fn face_centroid(m: &Mesh, next: &[u32], f: usize) -> DVec3 {
-    let s = m.f_start[f];
-    let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
-    loop {
-        sum += m.pos[m.he_vert[h as usize] as usize];
-        n += 1;
-        h = next[h as usize];
-        if h == s {
-            return sum / n as f64;
+/// [`centroids`] from the columns alone (the in-place dual holds them
+/// without a `Mesh`): each face's corner mean, summed from its first corner
+/// (the same bits as [`face_centroids`]).
+pub(crate) fn centroids_of(f_start: &[u32], next: &[u32], vert: &[u32], pos: &[DVec3]) -> Result<Vec<DVec3>> {
+    let mut out = Vec::with_capacity(f_start.len());
+    for (f, &s) in f_start.iter().enumerate() {
+        crate::cancel::poll(f)?;
+        let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
+        loop {
+            sum += pos[vert[h as usize] as usize];
+            n += 1;
+            h = next[h as usize];
+            if h == s {
+                break;
+            }
         }
+        out.push(sum / n as f64);
     }
+    Ok(out)
 }
 
 /// The dual in parallel blocks (several threads).

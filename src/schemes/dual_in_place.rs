@@ -34,7 +34,6 @@
 use super::level::{Level, Request};
 use crate::error::{MeshError, Result};
 use crate::mesh::{Columns, Mesh, NONE};
-use glam::DVec3;
 use rayon::prelude::*;
 
 /// [`super::dual::dual_level`] on an input the caller gives up (a previous level of a
@@ -49,11 +48,7 @@ pub fn dual_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     }
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let out = dual_in_place(m)?;
-    if super::face_parents::recording() {
-        // as the borrowed dual records it
-        let v = super::face_parents::VERT;
-        super::face_parents::record(Some(super::face_parents::Step { in_v: nv, in_f: nf, face: (0..nv as u32).map(|i| v | i).collect(), vertex: (0..nf as u32).collect() }));
-    }
+    super::dual::record_parents(nv, nf);
     Ok(Level::plain(out))
 }
 
@@ -66,21 +61,7 @@ fn dual_in_place(m: Mesh) -> Result<Mesh> {
     // the walk below rotates with `next` alone
     drop(he_prev);
     drop(f_hole);
-    // the centroids, summed as `dual::face_centroid` sums them (same bits)
-    let mut cpos = Vec::with_capacity(nf);
-    for (f, &s) in f_start.iter().enumerate() {
-        crate::cancel::poll(f)?;
-        let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
-        loop {
-            sum += pos[vert[h as usize] as usize];
-            n += 1;
-            h = next[h as usize];
-            if h == s {
-                break;
-            }
-        }
-        cpos.push(sum / n as f64);
-    }
+    let cpos = super::dual::centroids_of(&f_start, &next, &vert, &pos)?;
     drop(pos);
     // The walk. Around vertex v the corners come in rotation order h₀, h₁, …
     // (h_{j+1} = prev(h_j) ^ 1; collected backwards with rot⁻¹(g) =

@@ -94,7 +94,7 @@ impl DualWalk {
 
 /// The dual's vertex of a face whose corners `hs` carry the points `p(h)`:
 /// their mean, summed in corner order from zero as the dual sums a face's
-/// corners ([`super::dual::face_centroid`]), so the fused builds give the
+/// corners ([`super::dual::centroids_of`]), so the fused builds give the
 /// composition's bits.
 #[inline]
 pub(crate) fn corner_mean(hs: &[u32], p: impl Fn(usize) -> DVec3) -> DVec3 {
