@@ -217,6 +217,11 @@ impl Mesh {
         let o = self.v_out[v.idx()];
         (o & POINT == 0).then_some(HalfedgeId(o))
     }
+    /// Whether any vertex is a point-sphere (the schemes' one-pass and
+    /// in-place paths leave those meshes to their general path).
+    pub(crate) fn has_point_spheres(&self) -> bool {
+        self.v_out.iter().any(|&o| o & POINT != 0)
+    }
     /// The face of the point-sphere `v` belongs to, if it is one.
     #[inline]
     pub fn point_sphere_face(&self, v: VertexId) -> Option<FaceId> {

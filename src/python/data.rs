@@ -387,7 +387,7 @@ impl PyMesh {
         }
         if let Some(d) = corner {
             let n_corners: usize = m.faces().filter(|&f| !m.is_hole(f)).map(|f| m.face_degree(f)).sum();
-            if m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+            if m.has_point_spheres() {
                 return Err(arg_err("with_attributes: corner attributes need a mesh without point-spheres (their lone corner has no neighbourhood)"));
             }
             for (k, a) in d.iter() {

@@ -43,7 +43,7 @@ use rayon::prelude::*;
 /// is [`super::dual::dual_level`]'s.
 pub fn dual_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
-    if req.stencils || req.origins || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+    if req.stencils || req.origins || m.n_holes() > 0 || m.has_point_spheres() {
         return super::dual::dual_level(&m, req);
     }
     let (nv, nf) = (m.n_vertices(), m.n_faces());
@@ -87,14 +87,7 @@ fn dual_in_place(m: Mesh) -> Result<Mesh> {
         let k = cyc.len();
         for j in 0..k {
             let (h, after) = (cyc[j], if j + 1 < k { cyc[j + 1] } else { cyc[0] });
-            let sl = &mut slot[(after >> 1) as usize];
-            let i = if *sl == 0 {
-                n_out += 1;
-                *sl = n_out;
-                2 * (n_out - 1)
-            } else {
-                2 * (*sl - 1) + 1
-            };
+            let i = super::dual_walk::crossing(&mut slot[(after >> 1) as usize], &mut n_out);
             ids.push(i);
             let f = face[h as usize];
             out_vert[i as usize] = f;
@@ -110,9 +103,7 @@ fn dual_in_place(m: Mesh) -> Result<Mesh> {
         v_out[v] = ids[0];
     }
     drop(slot);
-    if 2 * n_out as usize != nh {
-        return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * n_out)));
-    }
+    super::dual_walk::all_crossed(nh, n_out)?;
     let (out_next, out_f_start, out_v_out) = (vert, v_out, f_start);
     // he_face into the input's `face` and he_prev into its `next` (neither
     // read any more): output face v walked from its start (its corners are
@@ -169,7 +160,7 @@ mod tests {
         let mut in_place = 0;
         for (name, m) in cases {
             let a = crate::schemes::dual::dual_level(&m, &req).unwrap().mesh;
-            in_place += (m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0)) as usize;
+            in_place += (m.n_holes() == 0 && !m.has_point_spheres()) as usize;
             let b = dual_level_owned(m.clone(), &req).unwrap().mesh;
             assert_eq!(a, b, "{name}");
             assert_eq!(bits(&a), bits(&b), "{name}");

@@ -36,14 +36,7 @@ impl DualWalk {
     /// and becomes this one.
     #[inline]
     pub(crate) fn put(&mut self, w: usize, v: u32, key: usize, last: &mut u32) {
-        let sl = &mut self.slot[key];
-        let i = if *sl == 0 {
-            self.n_out += 1;
-            *sl = self.n_out;
-            2 * (self.n_out - 1)
-        } else {
-            2 * (*sl - 1) + 1
-        };
+        let i = crossing(&mut self.slot[key], &mut self.n_out);
         let c = &mut self.cols;
         c.he_vert[i as usize] = v;
         c.he_face[i as usize] = w as u32;
@@ -71,25 +64,42 @@ impl DualWalk {
 
     /// The columns, once every key was crossed twice (every face closed).
     pub(crate) fn finish(self) -> Result<Columns> {
-        let nh = self.cols.he_next.len();
-        if 2 * self.n_out as usize != nh {
-            return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * self.n_out)));
-        }
+        all_crossed(self.cols.he_next.len(), self.n_out)?;
         Ok(self.cols)
     }
 
     /// [`finish`](Self::finish) for walks that closed no face yet: face `w`
     /// is closed at `lasts[w]` once the count is checked.
     pub(crate) fn finish_at(mut self, lasts: &[u32]) -> Result<Columns> {
-        let nh = self.cols.he_next.len();
-        if 2 * self.n_out as usize != nh {
-            return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * self.n_out)));
-        }
+        all_crossed(self.cols.he_next.len(), self.n_out)?;
         for (w, &last) in lasts.iter().enumerate() {
             self.close(w, last);
         }
         Ok(self.cols)
     }
+}
+
+/// The output half-edge of a side crossing a key whose slot is `slot` (0
+/// before its first crossing, else its output edge + 1): the first crossing
+/// makes output edge `n_out` (half-edge `2 n_out`), the second is its twin.
+/// [`DualWalk`] and the in-place dual (`dual_in_place`) number with it.
+#[inline]
+pub(crate) fn crossing(slot: &mut u32, n_out: &mut u32) -> u32 {
+    if *slot == 0 {
+        *n_out += 1;
+        *slot = *n_out;
+        2 * (*n_out - 1)
+    } else {
+        2 * (*slot - 1) + 1
+    }
+}
+
+/// Every key crossed twice: `n_out` edges for `nh` corners.
+pub(crate) fn all_crossed(nh: usize, n_out: u32) -> Result<()> {
+    if 2 * n_out as usize != nh {
+        return Err(MeshError::Invariant(format!("dual: {nh} corners but {} half-edges", 2 * n_out)));
+    }
+    Ok(())
 }
 
 /// The dual's vertex of a face whose corners `hs` carry the points `p(h)`:

@@ -497,7 +497,7 @@ pub fn check_fused(name: &str, m: &Mesh, fused: &dyn Fn(&Mesh) -> crate::error::
             let i = c.pos.len() / 2;
             c.pos[i].y = f64::from_bits(c.pos[i].y.to_bits() ^ 1);
             assert!(!same_bits(&c, &b), "{name}: one ulp unseen");
-            one_pass = m.n_holes() == 0 && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0);
+            one_pass = m.n_holes() == 0 && !m.has_point_spheres();
         }
         (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
         (a, b) => panic!("{name}: fused {:?}, composition {:?}", a.err(), b.err()),

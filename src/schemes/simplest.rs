@@ -154,7 +154,7 @@ fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
 /// input (open); anything else is [`simplest_level`]'s.
 pub fn simplest_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
-    if req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+    if req.stencils || req.origins || m.has_point_spheres() {
         return simplest_level(&m, req);
     }
     if m.n_holes() > 0 {

@@ -345,7 +345,7 @@ pub fn sqrt3_level(m: &Mesh, req: &Request) -> Result<Level> {
 /// `boundary::open_level`; anything else is [`sqrt3_level`]'s.
 pub fn sqrt3_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
-    if req.stencils || req.origins || m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0) {
+    if req.stencils || req.origins || m.has_point_spheres() {
         return sqrt3_level(&m, req);
     }
     if m.n_holes() > 0 {
