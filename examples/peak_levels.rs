@@ -91,7 +91,7 @@ fn main() {
     // the levels after the first of `iterations = L` on an input nobody else holds
     let owned: Option<fn(Mesh) -> topomesh::Result<Mesh>> = match scheme {
         "sqrt3" | "sqrt3_level" => Some(|m| topomesh::schemes::sqrt3::sqrt3_level_owned(m, &Request::plain()).map(|l| l.mesh)),
-        "dual" => Some(|m| topomesh::schemes::dual::dual_level_owned(m, &Request::plain()).map(|l| l.mesh)),
+        "dual" | "dual_level" => Some(|m| topomesh::schemes::dual::dual_level_owned(m, &Request::plain()).map(|l| l.mesh)),
         "simplest" | "simplest_level" => Some(|m| topomesh::schemes::simplest::simplest_level_owned(m, &Request::plain()).map(|l| l.mesh)),
         "honeycomb" => Some(|m| topomesh::schemes::honeycomb::honeycomb_level_owned(m, 0.5, None, &Request::plain()).map(|l| l.mesh)),
         "vertex_truncation" => Some(|m| topomesh::schemes::vertex_truncation::vertex_truncation_level_owned(m, Truncation::Chaikin, &Request::plain()).map(|l| l.mesh)),

@@ -31,20 +31,24 @@
 //! first crossing), so the output is the borrowed path's, bit for bit (the
 //! tests compare them).
 
+use super::dual_walk::faces_and_prev;
 use super::level::{Level, Request};
-use crate::error::{MeshError, Result};
+use crate::error::Result;
 use crate::mesh::{Columns, Mesh, NONE};
-use rayon::prelude::*;
 
 /// [`super::dual::dual_level`] on an input the caller gives up (a previous level of a
-/// multi-level call): a closed mesh without point-spheres, asked for no
-/// stencils or origins, is dualized over its own columns
-/// ([`dual_in_place`], the same output bit for bit); anything else
-/// is [`super::dual::dual_level`]'s.
+/// multi-level call), the same output bit for bit: a closed mesh without
+/// point-spheres, asked for no stencils or origins, is dualized over its own
+/// columns ([`dual_in_place`]); an open one, or one asked for stencils or
+/// origins, lends its columns to the open walk (`dual_open.rs`); a mesh
+/// with point-spheres is [`super::dual::dual_level`]'s.
 pub fn dual_level_owned(m: Mesh, req: &Request) -> Result<Level> {
     crate::cancel::check()?;
-    if req.stencils || req.origins || m.n_holes() > 0 || m.has_point_spheres() {
+    if m.has_point_spheres() {
         return super::dual::dual_level(&m, req);
+    }
+    if req.stencils || req.origins || m.n_holes() > 0 {
+        return super::dual_open::open_dual_level(super::dual_open::Given::Owned(m), req);
     }
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let out = dual_in_place(m)?;
@@ -74,15 +78,7 @@ fn dual_in_place(m: Mesh) -> Result<Mesh> {
     f_start.fill(NONE); // becomes v_out: each centroid's first corner
     for v in 0..nv {
         crate::cancel::poll(v)?;
-        let s = v_out[v];
-        cyc.clear();
-        cyc.push(s);
-        let mut g = next[(s ^ 1) as usize];
-        while g != s {
-            cyc.push(g);
-            g = next[(g ^ 1) as usize];
-        }
-        cyc[1..].reverse();
+        super::dual_walk::rotation(&next, v_out[v], &mut cyc);
         ids.clear();
         let k = cyc.len();
         for j in 0..k {
@@ -106,35 +102,8 @@ fn dual_in_place(m: Mesh) -> Result<Mesh> {
     super::dual_walk::all_crossed(nh, n_out)?;
     let (out_next, out_f_start, out_v_out) = (vert, v_out, f_start);
     // he_face into the input's `face` and he_prev into its `next` (neither
-    // read any more): output face v walked from its start (its corners are
-    // v's, so a longer walk would be a bug here, reported instead of looping)
-    let long = std::sync::atomic::AtomicBool::new(false);
-    {
-        let (pf, pp) = (super::hosts::SyncPtr(face.as_mut_ptr()), super::hosts::SyncPtr(next.as_mut_ptr()));
-        out_f_start.par_iter().enumerate().with_min_len(super::hosts::MIN_LEN).for_each(|(v, &s)| {
-            let (mut h, mut n) = (s, 0usize);
-            loop {
-                let nx = out_next[h as usize];
-                // SAFETY: every half-edge lies on one output face, whose task
-                // alone writes it and the previous-pointer of its successor.
-                unsafe {
-                    *pf.get().add(h as usize) = v as u32;
-                    *pp.get().add(nx as usize) = h;
-                }
-                h = nx;
-                n += 1;
-                if h == s || n > nh {
-                    break;
-                }
-            }
-            if n > nh {
-                long.store(true, std::sync::atomic::Ordering::Relaxed);
-            }
-        });
-    }
-    if long.into_inner() {
-        return Err(MeshError::Invariant("dual: an output face does not close".into()));
-    }
+    // read any more)
+    faces_and_prev(&out_next, &out_f_start, &mut face, &mut next)?;
     let out_prev = next;
     crate::cancel::check()?;
     Mesh::from_columns(Columns { pos: cpos, v_out: out_v_out, he_next: out_next, he_prev: out_prev, he_vert: out_vert, he_face: face, f_start: out_f_start, f_hole: vec![false; nv] })

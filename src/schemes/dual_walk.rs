@@ -102,6 +102,58 @@ pub(crate) fn all_crossed(nh: usize, n_out: u32) -> Result<()> {
     Ok(())
 }
 
+/// The rotation of the vertex whose outgoing half-edge is `s`, into `cyc`:
+/// h₀ = s, h₁, … with h_{j+1} = prev(h_j) ^ 1, collected backwards through
+/// `next` alone (rot⁻¹(g) = next(g ^ 1)), so the in-place duals can give
+/// up `he_prev` first. Corner h_j's side crosses edge(prev h_j) =
+/// h_{j+1} >> 1.
+pub(crate) fn rotation(next: &[u32], s: u32, cyc: &mut Vec<u32>) {
+    cyc.clear();
+    cyc.push(s);
+    let mut g = next[(s ^ 1) as usize];
+    while g != s {
+        cyc.push(g);
+        g = next[(g ^ 1) as usize];
+    }
+    cyc[1..].reverse();
+}
+
+/// The `he_face` and `he_prev` columns of output faces given by their
+/// starts and `next`: face w walked from `starts[w]`, in parallel. A walk
+/// longer than the half-edges (an output face that does not close: a bug
+/// in the caller's numbering) is reported instead of looping.
+pub(crate) fn faces_and_prev(next: &[u32], starts: &[u32], face: &mut [u32], prev: &mut [u32]) -> Result<()> {
+    use rayon::prelude::*;
+    let nh = next.len();
+    let long = std::sync::atomic::AtomicBool::new(false);
+    let (pf, pp) = (super::hosts::SyncPtr(face.as_mut_ptr()), super::hosts::SyncPtr(prev.as_mut_ptr()));
+    debug_assert!(face.len() == nh && prev.len() == nh);
+    starts.par_iter().enumerate().with_min_len(super::hosts::MIN_LEN).for_each(|(w, &s)| {
+        let (mut h, mut n) = (s, 0usize);
+        loop {
+            let nx = next[h as usize];
+            // SAFETY: every half-edge lies on one output face, whose task
+            // alone writes it and the previous-pointer of its successor.
+            unsafe {
+                *pf.get().add(h as usize) = w as u32;
+                *pp.get().add(nx as usize) = h;
+            }
+            h = nx;
+            n += 1;
+            if h == s || n > nh {
+                break;
+            }
+        }
+        if n > nh {
+            long.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+    });
+    if long.into_inner() {
+        return Err(MeshError::Invariant("dual: an output face does not close".into()));
+    }
+    Ok(())
+}
+
 /// The dual's vertex of a face whose corners `hs` carry the points `p(h)`:
 /// their mean, summed in corner order from zero as the dual sums a face's
 /// corners ([`super::dual::centroids_of`]), so the fused builds give the

@@ -22,6 +22,9 @@ pub mod catmull_clark;
 pub mod doo_sabin;
 pub mod dual;
 mod dual_in_place;
+mod dual_open;
+#[cfg(test)]
+mod dual_open_reference;
 pub(crate) mod dual_walk;
 pub mod loop_subdivision;
 pub mod midpoint;
