@@ -6,9 +6,12 @@
 //!
 //! It replaced a corner list and its closed-form twins handed to
 //! `Mesh::from_trusted_twins`, which held the lists, two layouts and the
-//! new columns at once: 2.1× the export at the first level, and 3.6–4.1×
-//! from the second on, where the previous level was held whole beside the
-//! next. A level the caller gives up ([`Given::Owned`], a multi-level
+//! new columns at once: 1.95–2.12× the export at the first level, and
+//! 3.4–4.1× from the second on, where the previous level was held whole
+//! beside the next (`examples/peak_levels.rs`, every 997th face removed
+//! from the sphere and the torus). Now 1.52–1.53× at the first level and
+//! 1.64–1.86× after; one thread, 1.4–1.9× faster (the builder's corner
+//! lists and layouts are gone). A level the caller gives up ([`Given::Owned`], a multi-level
 //! call) now lends its columns to the output as the closed in-place dual's
 //! (`dual_in_place.rs`) do:
 //!
