@@ -331,6 +331,30 @@ def test_vertex_truncation_keeps_holes(name):
     assert np.linalg.norm(new[:, None] - cuts[None], axis=2).min(axis=1).max() < 1e-12
 
 
+@pytest.mark.parametrize("name", ALL)
+@pytest.mark.parametrize("scheme", ["dual", "simplest"])
+def test_later_open_levels_consume_the_previous_bit_for_bit(name, scheme):
+    """A multi-level call gives each level after the first its input to
+    write over (issue 19: the open dual and simplest reuse its columns); the
+    result is the one of a call per level, bit for bit, with vertex
+    attributes carried along. (Not √3: its boundary rule alternates with
+    the level, so a call per level is not the same subdivision.)"""
+    plain = mesh(name)
+    # without data the later levels take the given-up path, with data the borrowed one
+    for m in (plain, plain.with_attributes(vertex={"w": np.arange(plain.n_vertices, dtype=float)[:, None] * [1.0, -0.5]})):
+        three = getattr(m, scheme)(iterations=3)
+        step = m
+        for _ in range(3):
+            step = getattr(step, scheme)()
+        assert three.n_holes == step.n_holes == m.n_holes
+        pairs = [(three.vertices, step.vertices), (three.face_indices, step.face_indices), (three.corner_twins, step.corner_twins)]
+        if m.vertex_attributes:
+            pairs.append((three.vertex_attributes["w"], step.vertex_attributes["w"]))
+        for a, b in pairs:
+            assert a.shape == b.shape and np.array_equal(a.view(np.uint8), b.view(np.uint8))
+        three.validate()
+
+
 @pytest.mark.parametrize("name", FOUR + ("mixed",))
 def test_rind_of_an_open_surface_is_its_closed_shell(name):
     m = mesh(name)
