@@ -253,6 +253,17 @@ fn real_faces(num: &Numbering, n_real: usize) -> impl Iterator<Item = u32> + '_ 
 /// corner mean, a boundary edge's midpoint, a boundary vertex itself.
 fn points(m: &Mesh, num: &Numbering, nv: usize, req: &Request) -> Result<(Vec<DVec3>, Option<Stencils>)> {
     let n_out = num.n_out();
+    let closed = num.holes.count() == 0;
+    // closed: the centroids exactly as the plain path sums them (along each
+    // cycle from its first corner: the same bits), rows only when asked for
+    let centroids = || {
+        let mut p = crate::mesh::zeroed_points(m.n_faces());
+        super::hosts::face_centroids_walk(m, &mut p);
+        crate::cancel::check().map(|_| p)
+    };
+    if closed && !req.stencils {
+        return Ok((centroids()?, None));
+    }
     // the rows' sources, in output order (freed before the walk)
     let real: Vec<u32> = real_faces(num, num.n_real as usize).collect();
     let bedges: Vec<u32> = num.bedges.marked().collect();
@@ -269,13 +280,8 @@ fn points(m: &Mesh, num: &Numbering, nv: usize, req: &Request) -> Result<(Vec<DV
             row.add(bverts[i - real.len() - bedges.len()], 1.0);
         }
     };
-    if num.holes.count() == 0 {
-        // closed: the centroids exactly as the plain path sums them (along
-        // each cycle from its first corner: the same bits)
-        let mut p = crate::mesh::zeroed_points(m.n_faces());
-        super::hosts::face_centroids_walk(m, &mut p);
-        crate::cancel::check()?;
-        Ok((p, if req.stencils { Some(Stencils::build(n_out, nv, fill)?) } else { None }))
+    if closed {
+        Ok((centroids()?, Some(Stencils::build(n_out, nv, fill)?)))
     } else {
         Stencils::points_and_rows(n_out, nv, &m.pos, req.stencils, fill)
     }

@@ -82,7 +82,8 @@ impl DualWalk {
 /// The output half-edge of a side crossing a key whose slot is `slot` (0
 /// before its first crossing, else its output edge + 1): the first crossing
 /// makes output edge `n_out` (half-edge `2 n_out`), the second is its twin.
-/// [`DualWalk`] and the in-place dual (`dual_in_place`) number with it.
+/// [`DualWalk`] and the in-place and open duals (`dual_in_place`,
+/// `dual_open`) number with it.
 #[inline]
 pub(crate) fn crossing(slot: &mut u32, n_out: &mut u32) -> u32 {
     if *slot == 0 {
