@@ -254,16 +254,18 @@ impl PyMesh {
     /// ``segments`` sides and radius ``thickness`` along every edge, joined
     /// at every vertex by strips between neighbouring columns and a top and
     /// a bottom cap (no cap at a valence-2 vertex; an n-gon closes a
-    /// valence-1 vertex's column). The columns end at TopMod's distance
+    /// valence-1 vertex's column; for odd n the bottom cap is a fan of
+    /// triangles around a centre, which keeps saddle joints from crossing). The columns end at TopMod's distance
     /// from each vertex plus a quarter of the thickness (TopMod's margin of
     /// a thousandth folded the joints between columns at right angles;
     /// ``docs/tools.md``).
     ///
     /// With V₁, V₂, V₃ the vertices of valence 1, 2, ≥ 3, n = ``segments``,
-    /// m = n // 2 and ε = 1 for even n (else 0): V' = 2nE,
-    /// E' = 3nE + (m + 1)(2E − V₁) − (1 + ε)V₂,
-    /// F' = nE + m(2E − V₁) + 2V₃ + (1 − ε)V₂ + V₁; the genus of each
-    /// component is E − V + 1 (the cycle rank of its edges).
+    /// m = n // 2, ε = 1 for even n (else 0) and S₃ = 2E − V₁ − 2V₂:
+    /// V' = 2nE + (1 − ε)V₃,
+    /// E' = 3nE + (m + 1)(2E − V₁) − (1 + ε)V₂ + 2(1 − ε)S₃,
+    /// F' = nE + m(2E − V₁) + (1 + ε)V₃ + (1 − ε)(V₂ + 2S₃) + V₁; the genus
+    /// of each component is E − V + 1 (the cycle rank of its edges).
     ///
     /// Parameters
     /// ----------
@@ -297,7 +299,8 @@ impl PyMesh {
         super::data::warn_dropped(&self.data, "wireframe_columns")?;
         super::finite_in("wireframe_columns", "thickness", thickness, f64::MIN_POSITIVE, MAX_LENGTH)?;
         let n = super::usize_in("wireframe_columns", "segments", segments, 3, 100)?;
-        let out = Counts::plain(2 * n as u64 * self.inner.n_edges() as u64, 6 * n as u64 * self.inner.n_edges() as u64, 4 * n as u64 * self.inner.n_edges() as u64);
+        // (odd n adds a fan centre per vertex; the edge and face bounds hold the fans' spokes and triangles)
+        let out = Counts::plain(2 * n as u64 * self.inner.n_edges() as u64 + self.inner.n_vertices() as u64, 6 * n as u64 * self.inner.n_edges() as u64, 4 * n as u64 * self.inner.n_edges() as u64);
         let need = crate::budget::level_bytes(&Counts::of(&self.inner), &out);
         super::detach(py, || crate::budget::check("wireframe_columns", "the output", need)).map_err(err)?;
         let m = super::detach(py, || self.inner.wireframe_columns(thickness, n)).map_err(err)?;

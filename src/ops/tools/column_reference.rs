@@ -27,7 +27,11 @@ pub(super) fn reference(m: &crate::Mesh, thickness: f64, n: usize) -> crate::Mes
             rung0(h, k)
         }
     };
-    let n_keys = n * (ne + nh) + (m32 as usize + 1) * nh;
+    // spoke of an odd bottom fan: one key per ring point at its rim
+    let spoke_base = (n * (ne + nh) + (m32 as usize + 1) * nh) as u32;
+    let spoke = |p: u32| spoke_base + p;
+    let n_keys = spoke_base as usize + n * nh;
+    let mut centre = (n * nh) as u32;
     let mut o = Out::new(pos, n_keys, 2 * n * ne, 8 * n * ne);
     // columns
     for e in m.edges() {
@@ -81,20 +85,37 @@ pub(super) fn reference(m: &crate::Mesh, thickness: f64, n: usize) -> crate::Mes
         }
         if k > 2 || !even {
             // reverse rotation: pred(h) = next(twin h)
+            let mut cap = Vec::new();
             loop {
                 let p = m.next(h.twin());
                 if even {
-                    o.c(r(h, m32), rung(p, m32));
+                    cap.push((r(h, m32), rung(p, m32)));
                 } else {
-                    o.c(r(h, m32), side(h, m32));
-                    o.c(r(h, m32 + 1), rung(p, m32));
+                    cap.push((r(h, m32), side(h, m32)));
+                    cap.push((r(h, m32 + 1), rung(p, m32)));
                 }
                 h = p;
                 if h == h0 {
                     break;
                 }
             }
-            o.end();
+            if even || k == 2 {
+                for (p, key) in cap {
+                    o.c(p, key);
+                }
+                o.end();
+            } else {
+                // odd n: a fan of triangles around the cap's centre
+                let kk = cap.len();
+                for i in 0..kk {
+                    let (p, q) = (cap[i].0, cap[(i + 1) % kk].0);
+                    o.c(p, cap[i].1);
+                    o.c(q, spoke(q));
+                    o.c(centre, spoke(p));
+                    o.end();
+                }
+                centre += 1;
+            }
         }
     }
     o.finish("wireframe_columns").unwrap()
