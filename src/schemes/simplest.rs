@@ -97,20 +97,21 @@ fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
     }
     let nfu = nf as u32;
     let mut cols = Columns { pos: Vec::new(), v_out, he_next: Vec::new(), he_prev: Vec::new(), he_vert: Vec::new(), he_face: Vec::new(), f_start, f_hole: vec![false; nf + nv] };
-    // the pair (2c, 2c + 1) of F-corner c = cidx[h], written from h (x = next h):
-    // next:  ci(x),        ci(prev (h ^ 1)) + 1
-    // prev:  ci(prev h),   ci(x ^ 1) + 1 (the slot before x's in its rotation is
-    //        next(x ^ 1)'s, whose side starts the edge of x ^ 1)
-    // vert:  h / 2,        x / 2
-    // face:  face h,       nf + vert x
+    // the pair (2c, 2c + 1) of F-corner c = cidx[h] in each column, written
+    // from h (x = next h); prev's second entry: the slot before x's in its
+    // rotation is next(x ^ 1)'s, whose side starts the edge of x ^ 1
+    let ci = |k: u32| 2 * cidx[k as usize];
+    let next_pair = |prev: &[u32], h: usize, x: usize| (ci(x as u32), ci(prev[h ^ 1]) + 1);
+    let prev_pair = |prev: &[u32], h: usize, x: usize| (ci(prev[h]), ci((x ^ 1) as u32) + 1);
+    let vert_pair = |h: usize, x: usize| ((h >> 1) as u32, (x >> 1) as u32);
+    let face_pair = |face: &[u32], vert: &[u32], h: usize, x: usize| (face[h], nfu + vert[x]);
     if matches!(src, Cow::Borrowed(_)) {
         // nothing to free: one pass writes the four columns
         let m: &Mesh = &src;
         let (next, prev, vert, face) = (&m.he_next, &m.he_prev, &m.he_vert, &m.he_face);
-        let ci = |k: u32| 2 * cidx[k as usize];
         let c4 = scatter(&cidx, |h| {
             let x = next[h] as usize;
-            [(ci(x as u32), ci(prev[h ^ 1]) + 1), (ci(prev[h]), ci((x ^ 1) as u32) + 1), ((h >> 1) as u32, (x >> 1) as u32), (face[h], nfu + vert[x])]
+            [next_pair(prev, h, x), prev_pair(prev, h, x), vert_pair(h, x), face_pair(face, vert, h, x)]
         })?;
         let [n, p, v, f] = c4;
         (cols.he_next, cols.he_prev, cols.he_vert, cols.he_face) = (n, p, v, f);
@@ -130,27 +131,23 @@ fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
     m.pos = Vec::new();
     {
         let (next, vert, face) = (&m.he_next, &m.he_vert, &m.he_face);
-        let c1 = scatter(&cidx, |h| {
-            let x = next[h] as usize;
-            [(face[h], nfu + vert[x])]
-        })?;
+        let c1 = scatter(&cidx, |h| [face_pair(face, vert, h, next[h] as usize)])?;
         let [f] = c1;
         cols.he_face = f;
     }
     (m.he_face, m.he_vert) = (Vec::new(), Vec::new());
     {
         let (next, prev) = (&m.he_next, &m.he_prev);
-        let ci = |k: u32| 2 * cidx[k as usize];
         let c2 = scatter(&cidx, |h| {
             let x = next[h] as usize;
-            [(ci(x as u32), ci(prev[h ^ 1]) + 1), (ci(prev[h]), ci((x ^ 1) as u32) + 1)]
+            [next_pair(prev, h, x), prev_pair(prev, h, x)]
         })?;
         let [n, p] = c2;
         (cols.he_next, cols.he_prev) = (n, p);
     }
     drop(m);
-    // vert[2c] = h / 2 through the ranks; then vert[2c + 1] = x / 2 is the
-    // entry of x's F-corner, which is the output's next of 2c
+    // vert[2c] = h / 2 (vert_pair's first) through the ranks; then
+    // vert[2c + 1] = x / 2 is the entry of x's F-corner, the output's next of 2c
     let mut vcol: Vec<u32> = Vec::with_capacity(2 * nh);
     {
         let pv = SyncPtr(vcol.as_mut_ptr());
