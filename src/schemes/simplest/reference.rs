@@ -1,4 +1,4 @@
-//! The builders `simplest.rs` used before it wrote the half-edge columns
+//! The builders `simplest` used before it wrote the half-edge columns
 //! itself (issue 19): corners and twins handed to
 //! [`Mesh::from_corner_twins`] (closed) and
 //! [`Mesh::from_corner_twins_with_holes`] (open). The direct fills must give
@@ -184,7 +184,7 @@ pub(super) fn open_level_via_twins(m: &Mesh, req: &Request) -> Result<Level> {
             }
         }
     }
-    let st = Stencils::build(ne + bverts.len(), nv, super::open_point_row(m, &bverts))?;
+    let st = Stencils::build(ne + bverts.len(), nv, super::open::open_point_row(m, &bverts))?;
     let pos = st.apply_points(&m.pos)?;
     let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
     let origins = if req.origins {
