@@ -168,7 +168,7 @@ def test_browser_pages(site: Path, page: str, title: str, heading: str, min_imag
 #: the sources each scheme page's formulas are taken from (module docs of the Rust schemes, the docs pages)
 FORMULA_SOURCES = {
     "schemes/subdivision.md": ["src/schemes/catmull_clark.rs", "src/schemes/doo_sabin/mod.rs", "src/schemes/doo_sabin/open.rs", "src/schemes/loop_subdivision.rs",
-                               "src/schemes/sqrt3/mod.rs", "src/schemes/sqrt3/boundary.rs", "src/schemes/simplest.rs", "src/schemes/midpoint.rs", "src/schemes/dual.rs"],
+                               "src/schemes/sqrt3/mod.rs", "src/schemes/sqrt3/boundary.rs", "src/schemes/simplest/mod.rs", "src/schemes/midpoint.rs", "src/schemes/dual.rs"],
     "schemes/high_genus.md": ["src/schemes/honeycomb.rs", "src/schemes/vertex_truncation.rs", "docs/ops.md"],
     "schemes/sierpinski.md": ["src/schemes/sierpinski.rs"],
     "schemes/menger.md": ["src/schemes/menger/mod.rs", "src/schemes/menger_sponge/mod.rs"],
