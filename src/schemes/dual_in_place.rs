@@ -120,11 +120,9 @@ mod tests {
     /// hands to the borrowed path (open, point-spheres).
     #[test]
     fn owned_level_equals_the_borrowed_one() {
-        let mut cases: Vec<(String, Mesh)> = crate::schemes::hosts::test_meshes::corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
-        cases.extend(crate::schemes::hosts::test_meshes::open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
-        cases.push(("torus".into(), crate::primitives::torus(12, 8, 3.0, 1.0).unwrap()));
+        use crate::schemes::hosts::test_meshes::{owned_level_cases, position_bits as bits};
+        let mut cases = owned_level_cases();
         cases.push(("sierpinski".into(), crate::schemes::sierpinski::sierpinski_iterated(&crate::primitives::cube(), 2).unwrap()));
-        let bits = |m: &Mesh| m.pos.iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
         let req = Request::plain();
         let mut in_place = 0;
         for (name, m) in cases {

@@ -512,3 +512,18 @@ pub fn check_fused(name: &str, m: &Mesh, fused: &dyn Fn(&Mesh) -> crate::error::
     }
     one_pass
 }
+
+/// The inputs every "a level given up equals the borrowed level" test runs
+/// on: the corpus (point-spheres, self-loops, two-gons), the open meshes and
+/// a torus, named.
+pub fn owned_level_cases() -> Vec<(String, Mesh)> {
+    let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
+    cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
+    cases.push(("torus".into(), crate::primitives::torus(12, 8, 3.0, 1.0).unwrap()));
+    cases
+}
+
+/// A mesh's positions as bits, for comparisons that must be exact.
+pub fn position_bits(m: &Mesh) -> Vec<[u64; 3]> {
+    m.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+}

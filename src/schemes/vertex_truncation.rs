@@ -235,14 +235,10 @@ mod tests {
 
     #[test]
     fn owned_level_equals_the_borrowed_one() {
-        use crate::schemes::hosts::test_meshes::{corpus, open_meshes};
+        use crate::schemes::hosts::test_meshes::{owned_level_cases, position_bits as bits};
         // the corpus (point-spheres, self-loops, two-gons), open meshes and a
         // second level, cuts apart and merged; positions compared bit for bit
-        let mut cases: Vec<(String, Mesh)> = corpus().into_iter().map(|(n, m)| (n.to_string(), m)).collect();
-        cases.extend(open_meshes().into_iter().map(|(n, m)| (n.to_string(), m)));
-        cases.push(("torus".into(), torus(12, 8, 3.0, 1.0).unwrap()));
-        let bits = |m: &Mesh| m.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect::<Vec<_>>();
-        for (name, m) in cases {
+        for (name, m) in owned_level_cases() {
             for mode in [Truncation::Chaikin, Truncation::Polyhedral { ratio: 0.5 }, Truncation::Polyhedral { ratio: 0.3 }] {
                 let req = Request::plain();
                 let a = vertex_truncation_level(&m, mode, &req).unwrap().mesh;
