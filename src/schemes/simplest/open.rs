@@ -28,9 +28,8 @@ use std::borrow::Cow;
 /// every hole corner is a second.
 /// The rows of an open level's points: the edge midpoints, then the kept
 /// boundary vertices `bverts`.
-pub(super) fn open_point_row<'a>(m: &'a Mesh, bverts: &'a [u32]) -> impl Fn(usize, &mut super::super::stencil::Row) + Sync + 'a {
-    // (the vertex column's length: an owned input's `he_next` may be gone)
-    let (ne, vert) = (m.he_vert.len() / 2, &m.he_vert);
+pub(super) fn open_point_row<'a>(vert: &'a [u32], bverts: &'a [u32]) -> impl Fn(usize, &mut super::super::stencil::Row) + Sync + 'a {
+    let ne = vert.len() / 2;
     move |i, row| {
         if i < ne {
             row.add(vert[2 * i], 0.5);
@@ -51,8 +50,10 @@ const HOLE: u32 = 1 << 31;
 
 /// [`open_level`]'s build; an input given up (`Cow::Owned`, a previous
 /// level of a multi-level call, issue 19) loses its vertex and face columns
-/// before the output's half-edge columns exist, and its connectivity before
-/// the positions do. The numbering's one table is `cidx`: the F-corner of
+/// before the output's half-edge columns exist, then its positions (the
+/// output's come first), its face and vertex columns (after the output's),
+/// and its connectivity (after the output's next and prev), so that little
+/// of it is alive beside the output. The numbering's one table is `cidx`: the F-corner of
 /// every real half-edge, the rank of every hole half-edge (tagged `HOLE`),
 /// which also answers "is h a hole side" once the face columns are gone.
 pub(super) fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
@@ -64,10 +65,16 @@ pub(super) fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level>
         Cow::Owned(m) => (Cow::Owned(std::mem::take(&mut m.v_out)), Cow::Owned(std::mem::take(&mut m.f_start)), Cow::Owned(std::mem::take(&mut m.f_hole))),
         Cow::Borrowed(m) => (Cow::Borrowed(&m.v_out[..]), Cow::Borrowed(&m.f_start[..]), Cow::Borrowed(&m.f_hole[..])),
     };
-    let m: &Mesh = &src;
+    // and the half-edge columns, each freed after its last reader
+    let (next_c, prev_c, vert_c, face_c): (Cow<[u32]>, Cow<[u32]>, Cow<[u32]>, Cow<[u32]>) = match &mut src {
+        Cow::Owned(m) => {
+            let t = |c: &mut Vec<u32>| Cow::Owned(std::mem::take(c));
+            (t(&mut m.he_next), t(&mut m.he_prev), t(&mut m.he_vert), t(&mut m.he_face))
+        }
+        Cow::Borrowed(m) => (Cow::Borrowed(&m.he_next[..]), Cow::Borrowed(&m.he_prev[..]), Cow::Borrowed(&m.he_vert[..]), Cow::Borrowed(&m.he_face[..])),
+    };
     check_output_size("simplest", 2 * nh + nh, ne + nv)?;
-    let (next, vert, face) = m.halfedge_columns();
-    let prev = &m.he_prev;
+    let (next, prev, vert, face) = (&*next_c, &*prev_c, &*vert_c, &*face_c);
     // boundary vertices, in order of their first hole half-edge, after the edge midpoints
     let mut bidx = vec![NONE; nv];
     let mut bverts = Vec::new();
@@ -108,10 +115,17 @@ pub(super) fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level>
         if bidx[v] != NONE {
             kept_out[bidx[v] as usize] = 2 * (n_fc + 2 * nb + 1);
         }
-        for x in super::super::creases::ring(m, v_out_in[v]) {
+        // the rotation from v_out, as `creases::ring` walks it
+        let s = v_out_in[v];
+        let mut x = s;
+        loop {
             if f_hole_in[face[x as usize] as usize] {
                 cidx[x as usize] = HOLE | nb;
                 nb += 1;
+            }
+            x = prev[x as usize] ^ 1;
+            if x == s {
+                break;
             }
         }
     }
@@ -193,53 +207,94 @@ pub(super) fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level>
         None
     };
     drop((v_out_in, f_start_in, f_hole_in));
-    // the positions come last, once the numbering's tables are freed
-    // (issue 19: peak memory)
-    let mut cols = Columns { pos: Vec::new(), v_out, he_next: vec![0; n_out_h], he_prev: vec![0; n_out_h], he_vert: vec![0; n_out_h], he_face: vec![0; n_out_h], f_start, f_hole };
-    {
-        let cp = |c: &mut Vec<u32>| super::super::hosts::SyncPtr(c.as_mut_ptr());
+    // the sides written from input half-edge h: (id, id of its next) and
+    // (vertex, face). Real h: its F-face side m(h) → m(next h) and its
+    // V-face side m(h) → m(prev h); hole h: the V-face of w, m(h) → w →
+    // m(prev h), and the hole's w → m(h) → (next corner)
+    let ids = |h: usize| -> ([(u32, u32); 4], usize) {
+        let rot = (prev[h] ^ 1) as usize;
+        if !hole(h) {
+            ([(he_f(h), he_f(next[h] as usize)), (he_slot(h), he_slot(rot)), (0, 0), (0, 0)], 2)
+        } else {
+            ([(he_slot(h), he_vx(h)), (he_vx(h), he_slot(rot)), (he_a(h), he_a1(h)), (he_a1(h), he_a(next[h] as usize))], 4)
+        }
+    };
+    let vals = |h: usize| -> [(u32, u32); 4] {
+        let (mid, f) = ((h >> 1) as u32, fid(face[h]));
+        if !hole(h) {
+            [(mid, f), (mid, vface(h)), (0, 0), (0, 0)]
+        } else {
+            let w = bv(vert[h]);
+            [(mid, vface(h)), (w, vface(h)), (w, f), (mid, f)]
+        }
+    };
+    let cp = |c: &mut Vec<u32>| super::super::hosts::SyncPtr(c.as_mut_ptr());
+    let mut cols = Columns { pos: Vec::new(), v_out, he_next: Vec::new(), he_prev: Vec::new(), he_vert: Vec::new(), he_face: Vec::new(), f_start, f_hole };
+    let st;
+    // SAFETY (every write below): the ids above are a bijection onto
+    // 0..n_out_h, each written once as some side's id and once as one
+    // side's next, by the task of that side's input half-edge
+    if let Cow::Borrowed(m) = &src {
+        // nothing to free: one pass writes the four columns, the positions
+        // come last, once the numbering's tables are freed
+        (cols.he_next, cols.he_prev, cols.he_vert, cols.he_face) = (vec![0; n_out_h], vec![0; n_out_h], vec![0; n_out_h], vec![0; n_out_h]);
         let (pn, pp, pv, pf) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face));
-        let put = |i: u32, n: u32, v: u32, f: u32| {
-            // SAFETY: every output half-edge is written once below (the ids
-            // above are a bijection onto 0..n_out_h), and is the next of one
-            unsafe {
-                *pn.get().add(i as usize) = n;
-                *pp.get().add(n as usize) = i;
-                *pv.get().add(i as usize) = v;
-                *pf.get().add(i as usize) = f;
-            }
-        };
         (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
             if crate::cancel::requested() {
                 return; // the check after the loop reports it
             }
-            let mid = (h >> 1) as u32;
-            let rot = (prev[h] ^ 1) as usize;
-            let f = fid(face[h]);
-            if !hole(h) {
-                // F-face side m(h) → m(next h); V-face side m(h) → m(prev h)
-                put(he_f(h), he_f(next[h] as usize), mid, f);
-                put(he_slot(h), he_slot(rot), mid, vface(h));
-            } else {
-                // V-face of w: m(h) → w → m(prev h); the hole: w → m(h) → (next corner)
-                let w = bv(vert[h]);
-                put(he_slot(h), he_vx(h), mid, vface(h));
-                put(he_vx(h), he_slot(rot), w, vface(h));
-                put(he_a(h), he_a1(h), w, f);
-                put(he_a1(h), he_a(next[h] as usize), mid, f);
+            let ((is, k), vs) = (ids(h), vals(h));
+            for ((i, n), (v, f)) in is.into_iter().zip(vs).take(k) {
+                unsafe {
+                    *pn.get().add(i as usize) = n;
+                    *pp.get().add(n as usize) = i;
+                    *pv.get().add(i as usize) = v;
+                    *pf.get().add(i as usize) = f;
+                }
             }
         });
+        crate::cancel::check()?;
+        drop((cidx, bidx, holes));
+        (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, open_point_row(vert, &bverts))?;
+    } else {
+        // given up: positions first, then the vertex and face columns, then
+        // next and prev, each input column freed after its last reader
+        (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &src.pos, req.stencils, open_point_row(vert, &bverts))?;
+        if let Cow::Owned(m) = &mut src {
+            m.pos = Vec::new();
+        }
+        (cols.he_vert, cols.he_face) = (vec![0; n_out_h], vec![0; n_out_h]);
+        let (pv, pf) = (cp(&mut cols.he_vert), cp(&mut cols.he_face));
+        (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+            if crate::cancel::requested() {
+                return;
+            }
+            let ((is, k), vs) = (ids(h), vals(h));
+            for ((i, _), (v, f)) in is.into_iter().zip(vs).take(k) {
+                unsafe {
+                    *pv.get().add(i as usize) = v;
+                    *pf.get().add(i as usize) = f;
+                }
+            }
+        });
+        crate::cancel::check()?;
+        drop((vert_c, face_c, bidx, holes, bverts));
+        (cols.he_next, cols.he_prev) = (vec![0; n_out_h], vec![0; n_out_h]);
+        let (pn, pp) = (cp(&mut cols.he_next), cp(&mut cols.he_prev));
+        (0..nh).into_par_iter().with_min_len(MIN_LEN).for_each(|h| {
+            if crate::cancel::requested() {
+                return;
+            }
+            let (is, k) = ids(h);
+            for (i, n) in is.into_iter().take(k) {
+                unsafe {
+                    *pn.get().add(i as usize) = n;
+                    *pp.get().add(n as usize) = i;
+                }
+            }
+        });
+        crate::cancel::check()?;        drop((next_c, prev_c, cidx));
     }
-    crate::cancel::check()?;
-    drop((cidx, bidx, holes));
-    if let Cow::Owned(m) = &mut src {
-        // the positions read the vertex positions and the vertex column only
-        (m.he_next, m.he_prev, m.he_face) = (Vec::new(), Vec::new(), Vec::new());
-    }
-    let m: &Mesh = &src;
-    // the rows are stored only when asked for (issue 19: peak memory)
-    let st;
-    (cols.pos, st) = Stencils::points_and_rows(n_out_v, nv, &m.pos, req.stencils, open_point_row(m, &bverts))?;
     drop(src);
     let mesh = Mesh::from_columns(cols)?;
     Ok(Level { mesh, stencils: st, origins, creases: None })

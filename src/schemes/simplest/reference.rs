@@ -184,7 +184,7 @@ pub(super) fn open_level_via_twins(m: &Mesh, req: &Request) -> Result<Level> {
             }
         }
     }
-    let st = Stencils::build(ne + bverts.len(), nv, super::open::open_point_row(m, &bverts))?;
+    let st = Stencils::build(ne + bverts.len(), nv, super::open::open_point_row(&m.he_vert, &bverts))?;
     let pos = st.apply_points(&m.pos)?;
     let mesh = Mesh::from_corner_twins_with_holes(pos, &sizes, &cv, &tw, holes)?;
     let origins = if req.origins {
