@@ -49,11 +49,12 @@ pub(super) fn open_level(m: &Mesh, req: &Request) -> Result<Level> {
 const HOLE: u32 = 1 << 31;
 
 /// [`open_level`]'s build; an input given up (`Cow::Owned`, a previous
-/// level of a multi-level call, issue 19) loses its vertex and face columns
-/// before the output's half-edge columns exist, then its positions (the
-/// output's come first), its face and vertex columns (after the output's),
-/// and its connectivity (after the output's next and prev), so that little
-/// of it is alive beside the output. The numbering's one table is `cidx`: the F-corner of
+/// level of a multi-level call, issue 19) loses its vertex starts, face
+/// starts and hole flags before the output's half-edge columns exist, then
+/// its positions once the output's are made, its vertex and face columns
+/// once the output's are written, and its next, prev and ranks last, so
+/// that little of it is alive beside the output. The numbering's one table
+/// is `cidx`: the F-corner of
 /// every real half-edge, the rank of every hole half-edge (tagged `HOLE`),
 /// which also answers "is h a hole side" once the face columns are gone.
 pub(super) fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level> {
