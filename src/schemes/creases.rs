@@ -340,6 +340,12 @@ pub enum EdgeRule {
 
 /// Outgoing half-edges around the tail of `o`, in rotation order.
 pub fn ring(m: &Mesh, o: u32) -> impl Iterator<Item = u32> + '_ {
+    ring_in(&m.he_prev, o)
+}
+
+/// [`ring`] over a bare prev column (a level that has taken its input's
+/// columns out of the mesh to free them one by one).
+pub fn ring_in(prev: &[u32], o: u32) -> impl Iterator<Item = u32> + '_ {
     let mut h = o;
     let mut first = true;
     std::iter::from_fn(move || {
@@ -348,7 +354,7 @@ pub fn ring(m: &Mesh, o: u32) -> impl Iterator<Item = u32> + '_ {
         }
         first = false;
         let r = h;
-        h = m.he_prev[h as usize] ^ 1;
+        h = prev[h as usize] ^ 1;
         Some(r)
     })
 }

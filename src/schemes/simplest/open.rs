@@ -116,17 +116,10 @@ pub(super) fn open_build(mut src: Cow<'_, Mesh>, req: &Request) -> Result<Level>
         if bidx[v] != NONE {
             kept_out[bidx[v] as usize] = 2 * (n_fc + 2 * nb + 1);
         }
-        // the rotation from v_out, as `creases::ring` walks it
-        let s = v_out_in[v];
-        let mut x = s;
-        loop {
+        for x in super::super::creases::ring_in(prev, v_out_in[v]) {
             if f_hole_in[face[x as usize] as usize] {
                 cidx[x as usize] = HOLE | nb;
                 nb += 1;
-            }
-            x = prev[x as usize] ^ 1;
-            if x == s {
-                break;
             }
         }
     }
