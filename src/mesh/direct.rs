@@ -52,6 +52,51 @@ impl Columns {
         c.v_out = vec![0; n_points];
         c
     }
+
+    /// [`Columns::new`] with the four half-edge columns allocated but not
+    /// written: empty, with room for `n_halfedges` entries each, which the
+    /// caller writes through their pointers (`as_mut_ptr`) and then declares
+    /// written ([`Columns::assume_filled`]). `vec![0; n]` is a `calloc`,
+    /// which on heap memory glibc reuses (every warm call) clears with a
+    /// `memset` on the calling thread: a serial pass over the level's largest
+    /// columns that also takes the page faults the parallel fill would have
+    /// shared (issue 19: Catmull-Clark's level 2 on two threads 112–121 →
+    /// 99–107 ms). Debug builds fill the room with `u32::MAX`, so an entry
+    /// the caller never writes fails [`Mesh::from_columns`]'s range check.
+    pub fn unfilled(pos: Vec<DVec3>, n_halfedges: usize, n_faces: usize) -> Columns {
+        let room = || {
+            let mut v: Vec<u32> = Vec::with_capacity(n_halfedges);
+            if cfg!(debug_assertions) {
+                v.spare_capacity_mut()[..n_halfedges].fill(std::mem::MaybeUninit::new(u32::MAX));
+            }
+            v
+        };
+        let nv = pos.len();
+        Columns { pos, v_out: vec![0; nv], he_next: room(), he_prev: room(), he_vert: room(), he_face: room(), f_start: vec![0; n_faces], f_hole: vec![false; n_faces] }
+    }
+
+    /// [`Columns::unfilled`] for `n_points` vertices whose positions the
+    /// caller sets later (as [`Columns::for_points`]).
+    pub fn for_points_unfilled(n_points: usize, n_halfedges: usize, n_faces: usize) -> Columns {
+        let mut c = Columns::unfilled(Vec::new(), n_halfedges, n_faces);
+        c.v_out = vec![0; n_points];
+        c
+    }
+
+    /// Declares the `n_halfedges` entries of the four half-edge columns of
+    /// [`Columns::unfilled`] written.
+    ///
+    /// # Safety
+    /// Every entry `0..n_halfedges` of `he_next`, `he_prev`, `he_vert` and
+    /// `he_face` was written through the columns' pointers (a fill that
+    /// was cancelled part way must return before this).
+    pub unsafe fn assume_filled(&mut self, n_halfedges: usize) {
+        for c in [&mut self.he_next, &mut self.he_prev, &mut self.he_vert, &mut self.he_face] {
+            assert!(c.is_empty() && n_halfedges <= c.capacity(), "assume_filled: columns of Columns::unfilled for {n_halfedges} half-edges");
+            // SAFETY: within the capacity, and written (the caller's contract)
+            unsafe { c.set_len(n_halfedges) };
+        }
+    }
 }
 
 /// `n` points at the origin from zeroed (calloc) memory: a fresh block's
@@ -334,6 +379,37 @@ mod tests {
         c.he_face.pop();
         assert!(Mesh::from_columns(c).unwrap_err().to_string().contains("lengths"));
         assert_eq!(Mesh::from_columns(Mesh::new().into_columns()).unwrap(), Mesh::new());
+    }
+
+    /// Unfilled columns written through their pointers give the mesh; an
+    /// entry left unwritten is refused in debug builds (the poison), which
+    /// is what lets the schemes' tests catch a fill that misses one.
+    #[test]
+    fn unfilled_columns_take_their_writes() {
+        let m = primitives::cube();
+        let full = m.clone().into_columns();
+        let nh = full.he_next.len();
+        let fill = |skip: Option<usize>| {
+            let mut c = Columns::unfilled(full.pos.clone(), nh, full.f_start.len());
+            c.v_out.copy_from_slice(&full.v_out);
+            c.f_start.copy_from_slice(&full.f_start);
+            for (dst, src) in [(&mut c.he_next, &full.he_next), (&mut c.he_prev, &full.he_prev), (&mut c.he_vert, &full.he_vert), (&mut c.he_face, &full.he_face)] {
+                let p = dst.as_mut_ptr();
+                for (i, &x) in src.iter().enumerate() {
+                    if Some(i) != skip {
+                        // SAFETY: within the room of `unfilled`
+                        unsafe { *p.add(i) = x };
+                    }
+                }
+            }
+            // SAFETY: every entry written, or (skip) the debug poison read
+            unsafe { c.assume_filled(nh) };
+            Mesh::from_columns(c)
+        };
+        assert_eq!(fill(None).unwrap(), m);
+        if cfg!(debug_assertions) {
+            assert!(fill(Some(5)).unwrap_err().to_string().contains("out of range"));
+        }
     }
 
     /// The cube from its exported corners and the half-edge ids of its own

@@ -193,7 +193,7 @@ fn step_parallel(m: &Mesh) -> Result<Mesh> {
     }
     let first_id = |h: u32| 2 * (ebase[vert[h as usize] as usize] + (rank[h as usize] >> 1));
     let id = |h: u32| if rank[h as usize] & 1 != 0 { first_id(h) } else { first_id(next[rot(h) as usize]) + 1 };
-    let mut cols = Columns::new(pos, nh, nv);
+    let mut cols = Columns::unfilled(pos, nh, nv);
     {
         let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
         let (pn, pp, pv, pf, ps) = (cp(&mut cols.he_next), cp(&mut cols.he_prev), cp(&mut cols.he_vert), cp(&mut cols.he_face), cp(&mut cols.f_start));
@@ -217,6 +217,8 @@ fn step_parallel(m: &Mesh) -> Result<Mesh> {
         });
     }
     crate::cancel::check()?;
+    // SAFETY: not cancelled, and `id` is a bijection onto 0..nh (above)
+    unsafe { cols.assume_filled(nh) };
     // the centroid of face f first shows up at the lowest slot of its corners
     cols.v_out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, o)| {
         let h = fl.corners(f).iter().copied().min_by_key(|&h| vl.vidx[h as usize]).unwrap_or(0);

@@ -195,7 +195,7 @@ pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout) -> Result<Pending> {
     let odd_first = |g: u32| 2 * (ebase[vert[g as usize] as usize] + (rank[g as usize] >> 1));
     let odd = |g: u32| if rank[g as usize] & 1 != 0 { odd_first(g) } else { odd_first(partner(g)) + 1 };
     let even = |g: u32| 2 * cidx[prev[g as usize] as usize] + 1;
-    let mut cols = Columns::for_points(nh + points.len(), 3 * nh, frame.n_faces(m));
+    let mut cols = Columns::for_points_unfilled(nh + points.len(), 3 * nh, frame.n_faces(m));
     let out = Out::of(&mut cols);
     // front faces: new vertex h at corner h, ids 2·cidx
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
@@ -241,6 +241,9 @@ pub(crate) fn honeycomb_columns(m: &Mesh, fl: &FaceLayout) -> Result<Pending> {
         }
     });
     crate::cancel::check()?;
+    // SAFETY: not cancelled: the front ids and the vertex faces' slots are a
+    // bijection onto the 3H half-edges (the count checked above)
+    unsafe { cols.assume_filled(3 * nh) };
     // new vertex h first shows up at its front corner
     cols.v_out[..nh].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(h, o)| *o = 2 * cidx[h]);
     Ok(Pending { cols, frame, points })
@@ -324,7 +327,7 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, merge: bool) -> Resu
     };
     let id0 = |h: u32| if rank[cidx[h as usize] as usize] & 1 != 0 { first0(h) } else { first0(h ^ 1) + 1 };
     let n_out = if merge { nh / 2 } else { nh };
-    let mut cols = Columns::for_points(n_cut + points.len(), n_front + nh, frame.n_faces(m));
+    let mut cols = Columns::for_points_unfilled(n_cut + points.len(), n_front + nh, frame.n_faces(m));
     let out = Out::of(&mut cols);
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
         let hs = fl.corners(f);
@@ -382,6 +385,9 @@ pub(crate) fn truncation_columns(m: &Mesh, fl: &FaceLayout, merge: bool) -> Resu
         }
     });
     crate::cancel::check()?;
+    // SAFETY: not cancelled: the front corners and the vertex faces' slots
+    // (twins of distinct front corners) are every half-edge
+    unsafe { cols.assume_filled(n_front + nh) };
     // a cut point first shows up in the front face that comes first
     cols.v_out[..n_out].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(x, o)| {
         *o = if merge {

@@ -143,7 +143,7 @@ pub(crate) fn fan_columns(m: &Mesh) -> Result<Option<Mesh>> {
             spoke1(f, hs[k - 1], k - 1, n, hs[0]) + 1
         }
     };
-    let mut cols = Columns::new(pos, b as usize, fb as usize);
+    let mut cols = Columns::unfilled(pos, b as usize, fb as usize);
     let out = Out::of(&mut cols);
     let fhole = SyncPtr(cols.f_hole.as_mut_ptr());
     (0..nf).into_par_iter().with_min_len(MIN_LEN).for_each(|f| {
@@ -176,6 +176,9 @@ pub(crate) fn fan_columns(m: &Mesh) -> Result<Option<Mesh>> {
         }
     });
     crate::cancel::check()?;
+    // SAFETY: not cancelled: every face's block wrote its corners, a
+    // bijection onto the b half-edges
+    unsafe { cols.assume_filled(b as usize) };
     // an input vertex first shows up at the lowest of its corners: per
     // outgoing g, its side corner, or in a fanned face past the first corner
     // spoke 1 of the corner before (head(prev g) = tail g), which comes earlier

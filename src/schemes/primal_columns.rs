@@ -362,7 +362,7 @@ fn fill(m: &Mesh, cidx: &[u32], fi: Vec<FaceInfo>, n_points: usize, want_sides: 
     if nh != nc {
         return Err(MeshError::Invariant(format!("primal host: {nc} corners but {nh} half-edges")));
     }
-    let mut cols = Columns::for_points(n_points, nh, nfo);
+    let mut cols = Columns::for_points_unfilled(n_points, nh, nfo);
     let ne_out = acc as usize;
     let mut sides = if want_sides { vec![NONE; ne_out] } else { Vec::new() };
     let ctx = &ctx;
@@ -462,6 +462,9 @@ fn fill(m: &Mesh, cidx: &[u32], fi: Vec<FaceInfo>, n_points: usize, want_sides: 
         }
     });
     crate::cancel::check()?;
+    // SAFETY: not cancelled, so every face's block ran, and the ids are a
+    // bijection onto the half-edges (above): every entry is written
+    unsafe { cols.assume_filled(nh) };
     // vertex points: the a corner of the outgoing half-edge first in face order
     cols.v_out[..nv as usize].par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, o)| {
         if crate::cancel::requested() {

@@ -248,7 +248,7 @@ impl Mesh {
             3 * n32 * e + if x & 1 == 0 { side_local(n32, j % n32, true) } else { side_local(n32, n32 - 1 - j % n32, false) }
         };
         let col_e = |e: u32, j: u32| 3 * n32 * e + col_local(n32, j % n32);
-        let mut cols = Columns::new(pos, 2 * n_edges, nf);
+        let mut cols = Columns::unfilled(pos, 2 * n_edges, nf);
         {
             let vop = SyncPtr(cols.v_out.as_mut_ptr());
             let out = Out::of(&mut cols);
@@ -379,6 +379,9 @@ impl Mesh {
             });
         }
         crate::cancel::check()?;
+        // SAFETY: not cancelled, and the ids are a bijection onto the
+        // half-edges (`columns_direct`'s SAFETY notes)
+        unsafe { cols.assume_filled(2 * n_edges) };
         Mesh::from_columns(cols)
     }
 }

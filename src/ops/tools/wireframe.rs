@@ -138,7 +138,7 @@ impl Mesh {
         };
         let (nvu, neu) = (nv as u32, ne as u32);
         let nf = 2 * nv + 2 * ne + nh;
-        let mut cols = Columns::new(pos, 10 * nh, nf);
+        let mut cols = Columns::unfilled(pos, 10 * nh, nf);
         {
             let out = Out::of(&mut cols);
             // SAFETY: the ids above are a bijection onto 0..10H, each written
@@ -178,6 +178,8 @@ impl Mesh {
             });
         }
         crate::cancel::check()?;
+        // SAFETY: not cancelled, and the ids are a bijection onto 0..10H
+        unsafe { cols.assume_filled(10 * nh) };
         // each face starts at its first corner, each point at its first corner
         for v in 0..nv {
             cols.f_start[v] = 2 * vl.off[v];

@@ -144,7 +144,7 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
     let (_, vert, face) = m.halfedge_columns();
     let (nc, n_out) = (k.n_corners(), k.n_faces());
     let b = holes_he.len();
-    let mut cols = Columns::new(Vec::new(), nc, n_out);
+    let mut cols = Columns::unfilled(Vec::new(), nc, n_out);
     cols.v_out = vec![0; nh + b];
     cols.f_hole[..nf].copy_from_slice(&m.f_hole);
     let mut co = if req.origins { vec![(EDGE, 0u32); nc] } else { Vec::new() };
@@ -189,6 +189,8 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         });
     }
     crate::cancel::check()?;
+    // SAFETY: not cancelled, and the ids are a bijection onto 0..nc (above)
+    unsafe { cols.assume_filled(nc) };
     // the rotation slots, bases and corner index are done with before the
     // positions (issue 19: the level's peak)
     drop(k);

@@ -179,7 +179,7 @@ fn columns(m: &Mesh) -> Result<Columns> {
     let id0 = |h: usize| if first0(h) { 2 * base[h] } else { 2 * e2(next[h ^ 1] as usize) + 1 };
     let id1 = |h: usize| if h & 1 == 0 { 2 * e1(h) } else { 2 * e1(h ^ 1) + 1 };
     let id2 = |h: usize| if first2(h) { 2 * e2(h) } else { 2 * base[(prev[h] ^ 1) as usize] + 1 };
-    let mut cols = Columns::for_points(nv + m.n_faces(), 3 * nh, nh);
+    let mut cols = Columns::for_points_unfilled(nv + m.n_faces(), 3 * nh, nh);
     let nvu = nv as u32;
     {
         let cp = |c: &mut Vec<u32>| super::hosts::SyncPtr(c.as_mut_ptr());
@@ -205,6 +205,8 @@ fn columns(m: &Mesh) -> Result<Columns> {
         });
     }
     crate::cancel::check()?;
+    // SAFETY: not cancelled, and the ids are a bijection onto 0..3H (above)
+    unsafe { cols.assume_filled(3 * nh) };
     // a vertex leaves from its first corner: old vertex v from the corner
     // 3h of its lowest outgoing h; centroid f from the lowest of 3(k ^ 1) + 1
     // and 3k + 2 over the half-edges k of f
