@@ -117,6 +117,29 @@ pub fn zeroed_points(n: usize) -> Vec<DVec3> {
     unsafe { Vec::from_raw_parts(ptr as *mut DVec3, len / 3, cap / 3) }
 }
 
+/// Room for `n` points that the caller writes in full (through
+/// `spare_capacity_mut`) before declaring them written with `set_len`: no
+/// `calloc`, whose `memset` of reused heap memory runs on one thread
+/// ([`Columns::unfilled`]). Debug builds fill the room with NaN, so a point
+/// never written shows in the tests' position comparisons.
+pub fn unfilled_points(n: usize) -> Vec<DVec3> {
+    let mut v = Vec::with_capacity(n);
+    if cfg!(debug_assertions) {
+        v.spare_capacity_mut()[..n].fill(std::mem::MaybeUninit::new(DVec3::NAN));
+    }
+    v
+}
+
+/// The points of `room`, once every one is written.
+///
+/// # Safety
+/// Every element of `room` was written.
+pub unsafe fn written(room: &[std::mem::MaybeUninit<DVec3>]) -> &[DVec3] {
+    // SAFETY: MaybeUninit<T> has T's layout, and the elements are
+    // initialized (the caller's contract)
+    unsafe { &*(room as *const [std::mem::MaybeUninit<DVec3>] as *const [DVec3]) }
+}
+
 /// Elements per task of the range check.
 const CHUNK: usize = 1 << 15;
 

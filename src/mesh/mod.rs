@@ -26,7 +26,7 @@ mod query;
 mod validate;
 
 pub use build::{BuildOptions, PolygonFaces};
-pub use direct::{zeroed_points, Columns};
+pub use direct::{unfilled_points, written, zeroed_points, Columns};
 pub use euler::Corner;
 pub use query::Histogram;
 

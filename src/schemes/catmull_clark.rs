@@ -27,7 +27,7 @@
 //! keep the direct computation above (the same weights, tested equal).
 
 use super::creases::{EdgeRule, LevelSharpness, Rule};
-use super::hosts::{check_output_size, face_centroids_walk, primal_host_late, FaceLayout, HOLE, MIN_LEN};
+use super::hosts::{check_output_size, face_centroids_into, primal_host_late, FaceLayout, HOLE, MIN_LEN};
 use super::level::{primal_edge_origins, with_point_spheres_level, Level, Origins, Request, EDGE, FACE, VERTEX};
 use super::stencil::{Row, Stencils};
 use crate::error::Result;
@@ -53,12 +53,14 @@ fn step(m: &Mesh) -> Result<Mesh> {
 fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces());
     let (_, vert, face) = m.halfedge_columns();
-    let mut pos = crate::mesh::zeroed_points(nv + ne + nf);
-    let (vp, rest) = pos.split_at_mut(nv);
+    // written in full below (no calloc: `unfilled_points`)
+    let mut pos = crate::mesh::unfilled_points(nv + ne + nf);
+    let (vp, rest) = pos.spare_capacity_mut()[..nv + ne + nf].split_at_mut(nv);
     let (ep, fp) = rest.split_at_mut(ne);
-    face_centroids_walk(m, fp);
+    face_centroids_into(m, fp);
     crate::cancel::check()?;
-    let fp = &*fp;
+    // SAFETY: not cancelled, so every centroid is written
+    let fp = unsafe { crate::mesh::written(fp) };
     let p = &m.pos;
     rayon::join(
         || {
@@ -67,7 +69,7 @@ fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
                     return;
                 }
                 let (a, b) = (2 * e, 2 * e + 1);
-                *out = (p[vert[a] as usize] + p[vert[b] as usize] + fp[face[a] as usize] + fp[face[b] as usize]) * 0.25;
+                out.write((p[vert[a] as usize] + p[vert[b] as usize] + fp[face[a] as usize] + fp[face[b] as usize]) * 0.25);
             })
         },
         || {
@@ -88,11 +90,13 @@ fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
                     }
                 }
                 let n = n as f64;
-                *out = p[v] * ((n - 2.0) / n) + sum / (n * n);
+                out.write(p[v] * ((n - 2.0) / n) + sum / (n * n));
             })
         },
     );
     crate::cancel::check()?;
+    // SAFETY: not cancelled: the three parts are written in full
+    unsafe { pos.set_len(nv + ne + nf) };
     Ok(pos)
 }
 

@@ -335,13 +335,21 @@ pub(crate) fn face_centroids(m: &Mesh, fl: &FaceLayout, out: &mut [DVec3]) {
 /// through `next` from its first half-edge, the same sums in the same
 /// order (so the same bits). Point-sphere faces are not allowed.
 pub(crate) fn face_centroids_walk(m: &Mesh, out: &mut [DVec3]) {
+    // SAFETY: only initialized values are written through the view
+    face_centroids_into(m, unsafe { &mut *(out as *mut [DVec3] as *mut [std::mem::MaybeUninit<DVec3>]) });
+}
+
+/// [`face_centroids_walk`] into room not yet written
+/// ([`crate::mesh::unfilled_points`]): every element is written unless
+/// cancelled.
+pub(crate) fn face_centroids_into(m: &Mesh, out: &mut [std::mem::MaybeUninit<DVec3>]) {
     out.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(f, c)| {
         // cancelled: leave the rest, callers poll right after
         if crate::cancel::requested() {
             return;
         }
         let (s, n) = face_vertex_sum(m, f);
-        *c = s / n as f64;
+        c.write(s / n as f64);
     });
 }
 

@@ -72,8 +72,9 @@ fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (_, vert, _) = m.halfedge_columns();
     let prev = &m.he_prev;
     let p = &m.pos;
-    let mut pos = crate::mesh::zeroed_points(nv + ne);
-    let (vp, ep) = pos.split_at_mut(nv);
+    // written in full below (no calloc: `unfilled_points`)
+    let mut pos = crate::mesh::unfilled_points(nv + ne);
+    let (vp, ep) = pos.spare_capacity_mut()[..nv + ne].split_at_mut(nv);
     rayon::join(
         || {
             ep.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(e, out)| {
@@ -83,7 +84,7 @@ fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
                 let (a, b) = (2 * e, 2 * e + 1);
                 let ab = p[vert[a] as usize] + p[vert[b] as usize];
                 let cd = p[vert[prev[a] as usize] as usize] + p[vert[prev[b] as usize] as usize];
-                *out = ab * 0.375 + cd * 0.125;
+                out.write(ab * 0.375 + cd * 0.125);
             })
         },
         || {
@@ -93,11 +94,13 @@ fn smooth_positions(m: &Mesh) -> Result<Vec<DVec3>> {
                 }
                 let (sum, n) = super::hosts::neighbor_sum(m, v);
                 let beta = loop_beta(n);
-                *out = p[v] * (1.0 - n as f64 * beta) + sum * beta;
+                out.write(p[v] * (1.0 - n as f64 * beta) + sum * beta);
             })
         },
     );
     crate::cancel::check()?;
+    // SAFETY: not cancelled: both parts are written in full
+    unsafe { pos.set_len(nv + ne) };
     Ok(pos)
 }
 
