@@ -98,11 +98,12 @@ fn step(m: &Mesh) -> Result<Mesh> {
 
     // --- positions: per face Σx, C, S, then per corner (in one task per
     // face: no per-face table of sums, 72 B per input face, alive at the peak)
-    let mut pos = crate::mesh::zeroed_points(nh);
+    // written in full below (no calloc: `unfilled_points`)
+    let mut pos = crate::mesh::unfilled_points(nh);
     // corner c belongs to the face whose range holds it: walk faces in parallel
     // by splitting the buffer along face offsets
-    let mut chunks: Vec<&mut [DVec3]> = Vec::with_capacity(nf);
-    let mut rest: &mut [DVec3] = &mut pos;
+    let mut chunks: Vec<&mut [std::mem::MaybeUninit<DVec3>]> = Vec::with_capacity(nf);
+    let mut rest = &mut pos.spare_capacity_mut()[..nh];
     for f in 0..nf {
         crate::cancel::poll(f)?;
         let (a, b) = rest.split_at_mut(fl.degree(f));
@@ -116,7 +117,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
         let hs = fl.corners(f);
         let n = hs.len();
         if n == 1 {
-            out[0] = p[vert[hs[0] as usize] as usize];
+            out[0].write(p[vert[hs[0] as usize] as usize]);
             return;
         }
         let [s, c, sn] = {
@@ -138,12 +139,15 @@ fn step(m: &Mesh) -> Result<Mesh> {
         let (ds, dc) = (std::f64::consts::TAU / nf64).sin_cos();
         let (mut ck, mut sk) = (1.0, 0.0);
         for (k, &h) in hs.iter().enumerate() {
-            out[k] = p[vert[h as usize] as usize] * 0.25 + base + (c * ck + sn * sk) * (0.5 / nf64);
+            out[k].write(p[vert[h as usize] as usize] * 0.25 + base + (c * ck + sn * sk) * (0.5 / nf64));
             (ck, sk) = (ck * dc - sk * ds, sk * dc + ck * ds);
         }
     });
 
     crate::cancel::check()?;
+    // SAFETY: not cancelled: the faces' chunks cover the nh corners, each
+    // written in full by its face's task
+    unsafe { pos.set_len(nh) };
     // --- connectivity, straight into the columns (issue 19). The corners
     // `from_corner_twins` was given: F-faces (layout corner c), E-faces
     // `[p(next a), p(a), p(next b), p(b)]`, V-faces (rotation slots). An

@@ -105,8 +105,9 @@ fn build(mut src: Cow<'_, Mesh>) -> Result<Mesh> {
 pub(super) fn positions(m: &Mesh) -> Result<Vec<DVec3>> {
     let (nv, nf) = (m.n_vertices(), m.n_faces());
     let p = &m.pos;
-    let mut pos = crate::mesh::zeroed_points(nv + nf);
-    let (vp, fp) = pos.split_at_mut(nv);
+    // written in full below (no calloc: `unfilled_points`)
+    let mut pos = crate::mesh::unfilled_points(nv + nf);
+    let (vp, fp) = pos.spare_capacity_mut()[..nv + nf].split_at_mut(nv);
     rayon::join(
         || {
             vp.par_iter_mut().with_min_len(MIN_LEN).enumerate().for_each(|(v, out)| {
@@ -115,15 +116,17 @@ pub(super) fn positions(m: &Mesh) -> Result<Vec<DVec3>> {
                 }
                 let (sum, n) = neighbor_sum(m, v);
                 let a = sqrt3_alpha(n);
-                *out = p[v] * (1.0 - a) + sum * (a / n as f64);
+                out.write(p[v] * (1.0 - a) + sum * (a / n as f64));
             })
         },
         || {
             // the check after the join reports a cancellation
-            super::hosts::face_centroids_walk(m, fp)
+            super::hosts::face_centroids_into(m, fp)
         },
     );
     crate::cancel::check()?;
+    // SAFETY: not cancelled: both parts are written in full
+    unsafe { pos.set_len(nv + nf) };
     Ok(pos)
 }
 
