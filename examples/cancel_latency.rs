@@ -23,7 +23,8 @@ fn main() {
             let r = f();
             let el = t.elapsed().as_secs_f64();
             h.join().unwrap();
-            cancel::reset();
+            // SAFETY: the cancelled call has returned and no other runs
+            unsafe { cancel::reset() };
             let lat = el - at; let _ = r.is_err();
             if !(lat <= worst.0) { worst = (lat, at); }
         }

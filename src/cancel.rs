@@ -2,7 +2,9 @@
 //!
 //! The Python binding sets it when Ctrl-C arrives while a call runs on its
 //! worker thread, waits for the worker to return [`MeshError::Interrupted`],
-//! and clears it. Loops poll [`check`] once per chunk or phase (a relaxed
+//! and clears it once no other call runs ([`reset_when_idle`]): a call must
+//! never see the flag cleared between a loop body that skipped its work and
+//! its next check, or it would take the skipped work as done. Loops poll [`check`] once per chunk or phase (a relaxed
 //! atomic load, about a nanosecond), never per element. A cancelled call
 //! returns an error and drops everything it built, so no partial state is
 //! left.
@@ -50,9 +52,70 @@ pub fn request() {
     CANCELLED.store(true, Ordering::Relaxed);
 }
 
-/// Clears the flag (after the cancelled call has returned).
-pub fn reset() {
+/// Clears the flag.
+///
+/// # Safety
+/// No call that polls the flag may be running, in any thread, unless it
+/// runs inside [`registered`] (whose calls [`reset_when_idle`] waits for).
+/// A call whose loop bodies skipped their work on seeing the flag reports
+/// it at its next [`check`]; cleared in between, that check passes, and the
+/// fills that write into memory never initialized
+/// ([`crate::mesh::Columns::unfilled`], [`crate::mesh::unfilled_points`])
+/// would then declare entries written that no body wrote.
+pub unsafe fn reset() {
     CANCELLED.store(false, Ordering::Relaxed);
+}
+
+/// Calls running inside [`registered`], and whether the flag is to be
+/// cleared once there are none (per process: a forked child starts over).
+struct Registry {
+    pid: u32,
+    running: usize,
+    clear_pending: bool,
+}
+
+static CALLS: std::sync::Mutex<Registry> = std::sync::Mutex::new(Registry { pid: 0, running: 0, clear_pending: false });
+
+fn calls() -> std::sync::MutexGuard<'static, Registry> {
+    let mut c = CALLS.lock().unwrap_or_else(|e| e.into_inner());
+    let pid = std::process::id();
+    if c.pid != pid {
+        // a parent's calls (after fork) do not run here
+        *c = Registry { pid, running: 0, clear_pending: false };
+    }
+    c
+}
+
+/// Runs `f` as a call that [`reset_when_idle`] waits for: the flag, once
+/// set, stays set until every registered call has returned, so a call never
+/// sees it cleared between a skipped loop body and its next check. The
+/// Python extension runs all its work through here.
+pub fn registered<T>(f: impl FnOnce() -> T) -> T {
+    struct Leave;
+    impl Drop for Leave {
+        fn drop(&mut self) {
+            let mut c = calls();
+            c.running -= 1;
+            if c.running == 0 && c.clear_pending {
+                c.clear_pending = false;
+                CANCELLED.store(false, Ordering::Relaxed);
+            }
+        }
+    }
+    calls().running += 1;
+    let _leave = Leave;
+    f()
+}
+
+/// Clears the flag now if no [`registered`] call runs, else when the last
+/// one returns (they all see it set until then, and stop at their next poll).
+pub fn reset_when_idle() {
+    let mut c = calls();
+    if c.running == 0 {
+        CANCELLED.store(false, Ordering::Relaxed);
+    } else {
+        c.clear_pending = true;
+    }
 }
 
 /// Elements per task of [`par_collect`].
@@ -102,6 +165,22 @@ fn par_collect_flag<T: Copy + Send + Sync>(flag: &AtomicBool, n: usize, f: impl 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// While a registered call runs, a reset waits for it; the last call
+    /// out clears. (The flag itself is left alone: the schemes' tests run
+    /// in parallel in this process and would stop; the core's tests make no
+    /// other registered call.)
+    #[test]
+    fn reset_waits_for_registered_calls() {
+        registered(|| {
+            reset_when_idle();
+            let c = calls();
+            assert!(c.clear_pending && c.running == 1);
+        });
+        let c = calls();
+        assert!(!c.clear_pending && c.running == 0);
+    }
+
 
     /// On a local flag: setting the process-wide one here would make the
     /// schemes tested in parallel skip work (a rayon body sees `requested()`)

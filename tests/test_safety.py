@@ -229,6 +229,61 @@ def test_ctrl_c_stops_within_half_a_second(setup, call):
     assert any(latency < 0.5 and exit_seconds < 2.0 for latency, exit_seconds in tries), tries
 
 
+_CONCURRENT_CHILD = r"""
+import os, signal, threading, time
+import topomesh
+m = topomesh.torus(300, 200)
+ref = m.catmull_clark(2)
+want = (ref.vertices.tobytes(), ref.face_sizes.tobytes(), ref.face_indices.tobytes())
+bad, ok, stopped = [0], [0], [0]
+done = threading.Event()
+def other_thread():
+    while not done.is_set():
+        try:
+            r = m.catmull_clark(2)
+        except KeyboardInterrupt:
+            stopped[0] += 1  # the Ctrl-C of the main thread's call stops this one too
+            continue
+        ok[0] += 1
+        bad[0] += (r.vertices.tobytes(), r.face_sizes.tobytes(), r.face_indices.tobytes()) != want
+t = threading.Thread(target=other_thread)
+t.start()
+big = topomesh.torus(1000, 1000)
+for k in range(6):
+    fired = threading.Event()
+    def fire():
+        os.kill(os.getpid(), signal.SIGINT)
+        fired.set()
+    try:
+        threading.Timer(0.05 + 0.04 * k, fire).start()
+        try:
+            big.loop(1)  # stopped by the signal, or earlier by the flag the other thread's call still holds set
+        finally:
+            fired.wait()
+        time.sleep(0.1)  # a signal that came after the call ended is raised here
+    except KeyboardInterrupt:
+        pass
+done.set()
+t.join()
+print(bad[0], ok[0], stopped[0])
+"""
+
+
+def test_ctrl_c_in_one_thread_never_corrupts_another_threads_call():
+    # the main thread's Ctrl-C sets the core's process-wide flag, which a
+    # call running in another Python thread polls too: its loop bodies skip
+    # their work and its next check must still see the flag, or it would
+    # take the skipped work (columns never written) as done. The flag is now
+    # cleared only once no call runs (`cancel::reset_when_idle`); before,
+    # the interrupted call's binding cleared it at once. Every call of the
+    # other thread either returns the reference output or an error.
+    p = subprocess.run([sys.executable, "-c", _CONCURRENT_CHILD], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    bad, ok, stopped = map(int, p.stdout.split())
+    # (stopped > 0: the other thread's calls were running when the flag was set)
+    assert bad == 0 and ok > 0 and stopped > 0, (bad, ok, stopped)
+
+
 # ----------------------------------------------------------- argument probe
 
 BAD = {"negative": -1, "huge": 2**70, "nan": math.nan, "inf": math.inf}

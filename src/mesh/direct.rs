@@ -89,7 +89,9 @@ impl Columns {
     /// # Safety
     /// Every entry `0..n_halfedges` of `he_next`, `he_prev`, `he_vert` and
     /// `he_face` was written through the columns' pointers (a fill that
-    /// was cancelled part way must return before this).
+    /// was cancelled part way must return before this: its check after the
+    /// loops sees the flag, which is never cleared while a call runs,
+    /// [`crate::cancel::reset`]).
     pub unsafe fn assume_filled(&mut self, n_halfedges: usize) {
         for c in [&mut self.he_next, &mut self.he_prev, &mut self.he_vert, &mut self.he_face] {
             assert!(c.is_empty() && n_halfedges <= c.capacity(), "assume_filled: columns of Columns::unfilled for {n_halfedges} half-edges");

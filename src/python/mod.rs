@@ -116,7 +116,8 @@ const POLL: std::time::Duration = std::time::Duration::from_millis(50);
 /// released except for a moment every 50 ms, checks for signals and calls
 /// `on_poll` (progress bars). On `KeyboardInterrupt` (or any error a signal
 /// handler raises) it sets the core's cancellation flag, waits for the worker
-/// to stop at its next poll, clears the flag and returns that error; the
+/// to stop at its next poll, clears the flag once no other call runs (they
+/// stop too: `crate::cancel::reset_when_idle`) and returns that error; the
 /// worker's partial results are dropped.
 pub(crate) fn run_interruptible_with<T: Send>(
     py: Python<'_>,
@@ -156,7 +157,8 @@ pub(crate) fn run_interruptible_with<T: Send>(
             if let Err(e) = polled {
                 crate::cancel::request();
                 let _ = py.detach(|| worker.join());
-                crate::cancel::reset();
+                // other calls may still be running: cleared once none is
+                crate::cancel::reset_when_idle();
                 return Err(e);
             }
         }

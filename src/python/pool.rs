@@ -41,8 +41,10 @@ fn pool() -> Option<Arc<ThreadPool>> {
 /// Runs `f` in this process's pool (inline when already on one of its
 /// threads, or when the pool could not start).
 pub(crate) fn run<R: Send>(f: impl FnOnce() -> R + Send) -> R {
-    match pool() {
+    // registered: the cancellation flag is never cleared while it runs
+    // (`crate::cancel::registered`)
+    crate::cancel::registered(|| match pool() {
         Some(p) => p.install(f),
         None => f(),
-    }
+    })
 }
