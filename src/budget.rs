@@ -185,16 +185,12 @@ pub struct Counts {
 }
 
 impl Counts {
-    /// Counts of `m`, in one pass over faces and edges, in parallel (it runs
-    /// before every level, when the other threads have nothing to do).
+    /// Counts of `m`, in one pass over faces and edges.
     pub fn of(m: &Mesh) -> Counts {
-        use rayon::prelude::*;
-        const CHUNK: usize = 1 << 14;
         let next = &m.he_next;
         let f3 = m
             .f_start
-            .par_iter()
-            .with_min_len(CHUNK)
+            .iter()
             .filter(|&&s| {
                 if s & POINT != 0 {
                     return false;
@@ -204,11 +200,11 @@ impl Counts {
                 a != s && b != s && next[b as usize] == s
             })
             .count() as u64;
-        let loops = m.he_vert.par_chunks_exact(2).with_min_len(CHUNK).filter(|p| p[0] == p[1]).count() as u64;
+        let loops = m.n_self_loops() as u64;
         let (holes, boundary) = if m.n_holes() == 0 {
             (0, 0)
         } else {
-            let b = m.he_face.par_iter().with_min_len(CHUNK).filter(|&&f| m.f_hole[f as usize]).count();
+            let b = (0..m.n_halfedges()).filter(|&h| m.f_hole[m.he_face[h] as usize]).count();
             (m.n_holes() as u64, b as u64)
         };
         Counts { holes, boundary, ..Counts::closed(m.n_vertices() as u64, m.n_edges() as u64, m.n_faces() as u64, f3, loops) }
