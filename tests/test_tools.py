@@ -71,17 +71,26 @@ def test_wireframe_columns(make, n):
     assert np.array_equal(m.vertices, before)
 
 
-@pytest.mark.filterwarnings("ignore::topomesh.GeometryWarning")
 @pytest.mark.parametrize("make", [lambda: topomesh.torus(6, 4), lambda: topomesh.genus_surface(2)])
 def test_wireframe_columns_curved(make):
-    # at the coarse torus' saddle vertices the joints can still cross (a
-    # GeometryWarning, docs/tools.md); the counts and the genus hold
+    # at the coarse torus' saddle vertices (n = 3, 4, 5) and the genus
+    # surface's valence-5 vertices (n = 8) the plain joints cross; the checked
+    # call moves those vertices' rings out until they do not (docs/tools.md):
+    # no GeometryWarning, no crossing, the same counts and connectivity
     m = make()
     v, e, f, g = counts(m)
-    for n in (3, 4):
-        c = m.wireframe_columns(0.05, n)
+    crossed = 0
+    for n in (3, 4, 5, 8):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            c = m.wireframe_columns(0.05, n)
+        plain = m.wireframe_columns(0.05, n, check_crossings=False)
         assert counts(c) == (*column_counts(m, n), e - v + 1)
         assert c.to_trimesh().is_watertight
+        assert len(c.self_intersections()) == 0
+        assert np.array_equal(c.face_indices, plain.face_indices) and np.array_equal(c.face_sizes, plain.face_sizes)
+        crossed += len(plain.self_intersections()) > 0
+    assert crossed >= 1  # the case is one the check had to mend
 
 
 @pytest.mark.parametrize("make", [lambda: topomesh.torus(24, 12), lambda: topomesh.genus_surface(2), lambda: topomesh.genus_surface(3)])
@@ -142,10 +151,10 @@ def test_wireframe_errors_and_input_untouched():
 def test_wireframe_tools_check_crossings_keyword():
     # the crossing report warns by default; check_crossings=False skips it and
     # changes nothing else (the report is most of the call on large inputs)
-    cube, torus = topomesh.cube(), topomesh.torus(6, 4)
+    cube, torus = topomesh.cube(), topomesh.torus(8, 3)
     for run, n_pairs in [
         (lambda **kw: cube.wireframe(1.5, **kw), 732),  # tubes deeper than the cube is wide
-        (lambda **kw: torus.wireframe_columns(0.05, 4, **kw), 36),  # joints at the torus' vertices
+        (lambda **kw: torus.wireframe_columns(0.2, 4, **kw), 242),  # fat columns on a three-sided torus, no room to move them
     ]:
         with pytest.warns(topomesh.GeometryWarning, match=f" {n_pairs} crossing triangle pairs"):
             a = run()
@@ -156,6 +165,13 @@ def test_wireframe_tools_check_crossings_keyword():
         assert np.array_equal(a.vertices, b.vertices)
         assert np.array_equal(a.face_indices, b.face_indices)
         assert np.array_equal(a.face_sizes, b.face_sizes)
+    # thinner columns there: the rings of the crossing joints move out (the
+    # vertices differ), fewer pairs are left, and the warning says how many
+    with pytest.warns(topomesh.GeometryWarning, match=r" 48 crossing triangle pairs \(160 before the rings of 24 vertices"):
+        a = torus.wireframe_columns(0.05, 4)
+    b = torus.wireframe_columns(0.05, 4, check_crossings=False)
+    assert (len(a.self_intersections()), len(b.self_intersections())) == (48, 160)
+    assert np.array_equal(a.face_indices, b.face_indices) and not np.array_equal(a.vertices, b.vertices)
 
 
 def test_object_tools_counts():

@@ -58,6 +58,10 @@
 //! (odd n), an n-gon per valence-1 vertex. χ' = 2V − 2E, so each component of genus g gives genus
 //! E − V + 1 (the cycle rank of its edge graph), as `wireframe`.
 //!
+//! Joints that still cross (strongly curved vertices) are moved out by
+//! [`Mesh::wireframe_columns_checked`] (`column_repair.rs`), which the Python
+//! call runs unless `check_crossings=False`.
+//!
 //! Refused with a `MeshError`: a self-loop or zero-length edge (no axis), a
 //! point-sphere (no edge), and an edge too short for its two rings (L at
 //! both ends reaching past each other; two edges along the same line, as the
@@ -91,10 +95,16 @@ impl Mesh {
             return Err(MeshError::InvalidArgument(format!("wireframe_columns: segments = {segments} must be in [3, 100]")));
         }
         // meshes at 1e±300 are modelled at unit size, the radius with them
-        crate::geometry::scale_free(self, |m, s| m.columns_unscaled(thickness / s, segments))
+        crate::geometry::scale_free(self, |m, s| m.columns_unscaled(thickness / s, segments, None))
     }
 
-    fn columns_unscaled(&self, thickness: f64, segments: usize) -> Result<Mesh> {
+    /// [`Mesh::wireframe_columns`] with the ring distance of vertex v
+    /// multiplied by `grow[v]` (`column_repair`; arguments checked there).
+    pub(super) fn columns_grown(&self, thickness: f64, segments: usize, grow: &[f64]) -> Result<Mesh> {
+        crate::geometry::scale_free(self, |m, s| m.columns_unscaled(thickness / s, segments, Some(grow)))
+    }
+
+    fn columns_unscaled(&self, thickness: f64, segments: usize, grow: Option<&[f64]>) -> Result<Mesh> {
         let t = thickness;
         if let Some(f) = self.faces().find(|&f| self.face_halfedge(f).is_none()) {
             return Err(MeshError::Precondition(format!("wireframe_columns: face {} is a point-sphere (a vertex without edges has no column)", f.0)));
@@ -150,6 +160,11 @@ impl Mesh {
             dist[v] = dist[v].max(l);
         }
         drop(ls);
+        if let Some(g) = grow {
+            for (d, &k) in dist.iter_mut().zip(g) {
+                *d *= k;
+            }
+        }
         for e in self.edges() {
             let h = e.halfedge();
             let (a, b) = (dist[self.vertex(h).idx()], dist[self.head(h).idx()]);

@@ -9,8 +9,10 @@ pub(crate) mod builder;
 mod object;
 mod wireframe;
 mod column;
+mod column_repair;
 pub mod hull;
 mod multi_handle;
 mod cut;
 
+pub use column_repair::CheckedColumns;
 pub use object::Planarized;
