@@ -122,7 +122,17 @@ pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], fir
 ///
 /// Cancellable like [`local_crossings`].
 pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool) -> Vec<(u32, u32)> {
+    crossing_pairs_in_pieces(p, tris, focus, coplanar, &[])
+}
+
+/// [`crossing_pairs`] where the caller knows some triangles to lie on one
+/// convex piece of surface (the lateral faces of a convex prism: they meet
+/// only along their shared sides and corners): triangles with the same
+/// `piece[i]` other than `u32::MAX` are not tested against each other. An
+/// empty `piece` is [`crossing_pairs`].
+pub fn crossing_pairs_in_pieces(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool, piece: &[u32]) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
+    debug_assert!(piece.is_empty() || piece.len() == tris.len());
     // the hierarchy's records, made once (boxes, ids and focus together:
     // no box table, centroid table or permutation besides them)
     let mut items: Vec<bvh::Item> = tris
@@ -149,6 +159,9 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
     items.retain(|b| !(b.lo.cmpgt(hi).any() || b.hi.cmplt(lo).any()));
     let tree = bvh::Bvh::new(items);
     let test = |i: u32, j: u32| {
+        if !piece.is_empty() && piece[i as usize] != u32::MAX && piece[i as usize] == piece[j as usize] {
+            return false;
+        }
         let (ti, tj) = (tris[i as usize], tris[j as usize]);
         // two sides shared (a face's own triangles): never a contact, and
         // a sixth of a wireframe's pairs; decided before reading the points
@@ -277,6 +290,19 @@ pub fn mesh_crossing_pairs(m: &crate::mesh::Mesh, coplanar: bool) -> Vec<(u32, u
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pieces_skip_only_their_own_pairs() {
+        // two crossing triangles and a third crossing the second
+        let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.3, 0.2, 1.0), DVec3::new(0.2, 0.3, 1.0), DVec3::new(0.25, -1.0, 0.25), DVec3::new(0.25, 1.0, 0.25), DVec3::new(0.25, 0.0, 0.3)];
+        let tris = [[0, 1, 2], [3, 4, 5], [6, 7, 8]];
+        let all = crossing_pairs(&p, &tris, None, true);
+        assert!(all.contains(&(0, 1)), "{all:?}");
+        assert_eq!(crossing_pairs_in_pieces(&p, &tris, None, true, &[]), all);
+        assert_eq!(crossing_pairs_in_pieces(&p, &tris, None, true, &[u32::MAX; 3]), all);
+        let some = crossing_pairs_in_pieces(&p, &tris, None, true, &[7, 7, u32::MAX]);
+        assert_eq!(some, all.iter().copied().filter(|&x| x != (0, 1)).collect::<Vec<_>>());
+    }
 
     #[test]
     fn triangle_crossing_predicate() {

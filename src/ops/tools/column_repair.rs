@@ -23,7 +23,10 @@
 //! and the check's. A round whose distances leave an edge no room for its
 //! rings ends the search. Outputs without crossings are the plain tool's.
 //! Cost: nothing beyond the check for a crossing-free output; otherwise up
-//! to [`ROUNDS`] more builds and checks.
+//! to [`ROUNDS`] more builds and checks. The check skips the pairs inside one
+//! column (the lateral faces of a convex prism never cross): the catalog's
+//! row (400×250 torus, n = 4, one thread), old and new builds alternated 3
+//! times, median of 3 calls: 4,027–4,034 → 3,646–3,725 ms (1.09×).
 
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -105,7 +108,11 @@ fn crossing_owners(out: &Mesh, n: usize, nh: usize, nv: usize, tail: &[u32]) -> 
     crate::cancel::check()?;
     let mut p = out.positions().to_vec();
     p.extend_from_slice(&t.points);
-    let pairs = crate::geometry::crossing::crossing_pairs(&p, &t.tris, None, true);
+    // a column's n quads are the lateral faces of a right prism over a
+    // regular n-gon (both rings share the up vector): they never cross
+    let ncol = (n * nh / 2) as u32;
+    let piece: Vec<u32> = t.tri_face.iter().map(|&f| if f < ncol { f / n as u32 } else { u32::MAX }).collect();
+    let pairs = crate::geometry::crossing::crossing_pairs_in_pieces(&p, &t.tris, None, true, &piece);
     crate::cancel::check()?;
     let mut owner = vec![false; nv];
     for &(a, b) in &pairs {
