@@ -156,7 +156,7 @@ def test_wireframe_tools_check_crossings_keyword():
         (lambda **kw: cube.wireframe(1.5, **kw), 732),  # tubes deeper than the cube is wide
         (lambda **kw: torus.wireframe_columns(0.2, 4, **kw), 242),  # fat columns on a three-sided torus, no room to move them
     ]:
-        with pytest.warns(topomesh.GeometryWarning, match=f" {n_pairs} crossing triangle pairs"):
+        with pytest.warns(topomesh.GeometryWarning, match=f" {n_pairs} crossing triangle pairs") as w:
             a = run()
         with warnings.catch_warnings():
             warnings.simplefilter("error")
@@ -165,6 +165,7 @@ def test_wireframe_tools_check_crossings_keyword():
         assert np.array_equal(a.vertices, b.vertices)
         assert np.array_equal(a.face_indices, b.face_indices)
         assert np.array_equal(a.face_sizes, b.face_sizes)
+    assert "no room to move" in str(w[-1].message)
     # thinner columns there: the rings of the crossing joints move out (the
     # vertices differ), fewer pairs are left, and the warning says how many
     with pytest.warns(topomesh.GeometryWarning, match=r" 48 crossing triangle pairs \(160 before the rings of 24 vertices"):

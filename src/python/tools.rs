@@ -313,9 +313,14 @@ impl PyMesh {
         }
         let c = super::run_interruptible(py, || self.inner.wireframe_columns_checked(thickness, n))?;
         if c.crossing_pairs > 0 {
+            let moved = if c.moved_vertices > 0 {
+                format!("{} before the rings of {} vertices were moved out", c.crossing_pairs_before, c.moved_vertices)
+            } else {
+                "the edges leave no room to move the crossing joints' rings out".to_string()
+            };
             let msg = format!(
-                "wireframe_columns: the columns and joints cross: {} crossing triangle pairs ({} before the rings of {} vertices were moved out; the mesh is a valid manifold but self-intersecting; try a smaller thickness or other segments)",
-                c.crossing_pairs, c.crossing_pairs_before, c.moved_vertices
+                "wireframe_columns: the columns and joints cross: {} crossing triangle pairs ({moved}; the mesh is a valid manifold but self-intersecting; try a smaller thickness or other segments)",
+                c.crossing_pairs
             );
             let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
             PyErr::warn(py, &py.get_type::<super::GeometryWarning>(), &msg, 1)?;
