@@ -19,8 +19,8 @@
 //! [`GROWTH`], rebuilds and re-checks the whole output. The crossing count
 //! is not monotone in the distances (a grown joint can meet its neighbour's),
 //! so the round with the fewest pairs is kept (the first such), rebuilt from
-//! its distances rather than held beside the others: memory stays one output
-//! and the check's. A round whose distances leave an edge no room for its
+//! its distances when a later round was built after it: one output is held
+//! at a time, beside the check's own memory. A round whose distances leave an edge no room for its
 //! rings ends the search. Outputs without crossings are the plain tool's.
 //! Cost: nothing beyond the check for a crossing-free output; otherwise up
 //! to [`ROUNDS`] more builds and checks. The check skips the pairs inside one
@@ -56,11 +56,13 @@ impl Mesh {
     /// `wireframe_columns`'s (and cancellation).
     pub fn wireframe_columns_checked(&self, thickness: f64, segments: usize) -> Result<CheckedColumns> {
         let (n, nh, nv) = (segments, self.n_halfedges(), self.n_vertices());
-        let mut out = self.wireframe_columns(thickness, segments)?;
-        let (before, mut owners) = crossing_owners(&out, n, nh, nv, &self.he_vert)?;
+        let first = self.wireframe_columns(thickness, segments)?;
+        let (before, mut owners) = crossing_owners(&first, n, nh, nv, &self.he_vert)?;
+        // the last round's mesh, when it is the best one so far
+        let mut out = Some(first);
         // the distances' factors now, and those of the best round (None: the plain build)
         let mut grow = vec![1.0f64; nv];
-        let (mut best, mut best_grow, mut out_is_best) = (before, None::<Vec<f64>>, true);
+        let (mut best, mut best_grow) = (before, None::<Vec<f64>>);
         for _ in 0..ROUNDS {
             if best == 0 {
                 break;
@@ -70,6 +72,8 @@ impl Mesh {
                     *g *= GROWTH;
                 }
             }
+            // one output at a time: the best round is rebuilt if a later one replaced it
+            out = None;
             let next = match self.columns_grown(thickness, segments, &grow) {
                 Ok(m) => m,
                 Err(e) => {
@@ -79,22 +83,18 @@ impl Mesh {
                     break;
                 }
             };
-            out = next;
-            let (k, o) = crossing_owners(&out, n, nh, nv, &self.he_vert)?;
+            let (k, o) = crossing_owners(&next, n, nh, nv, &self.he_vert)?;
             owners = o;
-            out_is_best = k < best;
-            if out_is_best {
-                (best, best_grow) = (k, Some(grow.clone()));
+            if k < best {
+                (best, best_grow, out) = (k, Some(grow.clone()), Some(next));
             }
         }
-        let mesh = if out_is_best {
-            out
-        } else {
-            drop(out);
-            match &best_grow {
+        let mesh = match out {
+            Some(m) => m,
+            None => match &best_grow {
                 None => self.wireframe_columns(thickness, segments)?,
                 Some(g) => self.columns_grown(thickness, segments, g)?,
-            }
+            },
         };
         let moved_vertices = best_grow.map_or(0, |g| g.iter().filter(|&&x| x != 1.0).count());
         Ok(CheckedColumns { mesh, crossing_pairs: best, crossing_pairs_before: before, moved_vertices })
