@@ -93,6 +93,23 @@ def test_wireframe_columns_curved(make):
     assert crossed >= 1  # the case is one the check had to mend
 
 
+def test_wireframe_columns_open_mesh_joints_moved_out():
+    # open meshes take the same check: the three-holed genus-2 patch's joints
+    # cross at n = 8 (156 pairs) and are moved out; the holes take no part
+    from tests.open_meshes import mesh
+
+    m = mesh("genus2_three_holes")
+    v, e = m.vertices.copy(), m.edges
+    t = 0.1 * float(np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).min())
+    plain = m.wireframe_columns(t, 8, check_crossings=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        c = m.wireframe_columns(t, 8)
+    assert len(plain.self_intersections()) > 0 and len(c.self_intersections()) == 0
+    assert counts(c) == counts(plain) and np.array_equal(c.face_indices, plain.face_indices)
+    assert np.array_equal(m.vertices, v)
+
+
 @pytest.mark.parametrize("make", [lambda: topomesh.torus(24, 12), lambda: topomesh.genus_surface(2), lambda: topomesh.genus_surface(3)])
 def test_wireframe_columns_quad_meshes_do_not_cross(make):
     # the joints between columns at right angles (every vertex of a quad
