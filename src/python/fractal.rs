@@ -1,6 +1,6 @@
 //! Fractal schemes: `Mesh.sierpinski` and `topomesh.menger_sponge`.
 
-use super::{big_int, GeometryWarning};
+use super::big_int;
 use crate::budget::predict;
 use super::mesh::PyMesh;
 use crate::schemes::{menger as mg, menger_sponge as sponge, sierpinski as sp};
@@ -195,8 +195,7 @@ impl PyMesh {
         let reports = reports.into_inner().unwrap_or_else(|e| e.into_inner());
         for (k, r) in reports.iter().enumerate() {
             if let Some(msg) = warning_text(k + 1, iterations, r) {
-                let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
-                PyErr::warn(py, &py.get_type::<GeometryWarning>(), &msg, 1)?;
+                super::warn_geometry(py, msg)?;
             }
         }
         if !report {

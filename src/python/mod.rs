@@ -41,6 +41,13 @@ pyo3::create_exception!(
     "A result that is a valid manifold but geometrically flawed (for example self-intersecting); the message says where and how much."
 );
 
+/// Raises `msg` as a `topomesh.GeometryWarning` at the caller's line (an
+/// error when warnings are errors).
+pub(crate) fn warn_geometry(py: Python<'_>, msg: String) -> PyResult<()> {
+    let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
+    PyErr::warn(py, &py.get_type::<GeometryWarning>(), &msg, 1)
+}
+
 /// Maps a core error to Python: `Interrupted` to `KeyboardInterrupt`, the
 /// rest to `topomesh.MeshError` (a `ValueError`).
 pub(crate) fn err(e: crate::MeshError) -> PyErr {

@@ -299,8 +299,7 @@ pub(crate) fn warn_new_crossings(py: Python<'_>, op: &str, before: &crate::Mesh,
         let msg = format!(
             "{op}: the new faces pass through the surface: {n} crossing triangle pairs (the mesh is a valid manifold but self-intersecting; choose other faces, weights or corners)"
         );
-        let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
-        PyErr::warn(py, &py.get_type::<super::GeometryWarning>(), &msg, 1)?;
+        super::warn_geometry(py, msg)?;
     }
     Ok(())
 }

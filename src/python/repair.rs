@@ -6,7 +6,7 @@
 use super::convert::{faces, i64_array, indices_1d, positions, vec3_array};
 use numpy::{PyArray1, PyArray2};
 use super::mesh::PyMesh;
-use super::{err, GeometryWarning};
+use super::err;
 use crate::repair::{inside_out_components, merge_vertices, repair_mesh, RepairReport};
 use crate::Mesh;
 use pyo3::prelude::*;
@@ -27,8 +27,7 @@ pub(crate) fn warn_inside_out(py: Python<'_>, m: &Mesh) -> PyResult<()> {
         if bad.len() == 1 { " is" } else { "s are" },
         listed.join(", ")
     );
-    let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
-    PyErr::warn(py, &py.get_type::<GeometryWarning>(), &msg, 1)
+    super::warn_geometry(py, msg)
 }
 
 fn report_dict<'py>(py: Python<'py>, r: &RepairReport) -> PyResult<Bound<'py, PyDict>> {

@@ -322,8 +322,7 @@ impl PyMesh {
                 "wireframe_columns: the columns and joints cross: {} crossing triangle pairs ({moved}; the mesh is a valid manifold but self-intersecting; try a smaller thickness or other segments)",
                 c.crossing_pairs
             );
-            let msg = std::ffi::CString::new(msg).expect("no NUL in the message");
-            PyErr::warn(py, &py.get_type::<super::GeometryWarning>(), &msg, 1)?;
+            super::warn_geometry(py, msg)?;
         }
         Ok(PyMesh::wrap(c.mesh))
     }
