@@ -33,7 +33,27 @@ fn main() {
         ("torus(8,3)", primitives::torus(8, 3, 1.0, 0.5).unwrap()),
         ("genus 2 CC", catmull_clark(&g2).unwrap()),
     ];
-    for (label, cases, ths) in [("survey", &survey, &[0.05, 0.2][..]), ("more", &more, &[0.05, 0.1, 0.2, 0.3][..])] {
+    // jittered tori and genus surfaces: every vertex moved by a tenth of the
+    // shortest edge (a fixed xorshift stream)
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut rnd = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut jittered: Vec<(&str, Mesh)> = Vec::new();
+    for (name, m) in [("torus(10,5)", primitives::torus(10, 5, 1.0, 0.4).unwrap()), ("torus(7,4)", primitives::torus(7, 4, 1.0, 0.5).unwrap()), ("genus 2", g2.clone()), ("genus 3", primitives::genus_surface(3).unwrap())] {
+        for _ in 0..3 {
+            let s = shortest(&m);
+            let mut j = m.clone();
+            for p in j.positions_mut() {
+                *p += glam::DVec3::new(rnd(), rnd(), rnd()) * 0.2 * s;
+            }
+            jittered.push((name, j));
+        }
+    }
+    for (label, cases, ths) in [("survey", &survey, &[0.05, 0.2][..]), ("more", &more, &[0.05, 0.1, 0.2, 0.3][..]), ("jittered", &jittered, &[0.05, 0.2][..])] {
         let (mut before, mut after, mut moved, mut runs) = (0, 0, 0, 0);
         for (name, m) in cases {
             let s = shortest(m);
