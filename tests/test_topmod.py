@@ -224,6 +224,19 @@ def test_open_meshes_are_refused():
     for f in (lambda m: m.stellate(), lambda m: m.root4(), lambda m: m.checkerboard(), lambda m: m.extrude(0)):
         with pytest.raises(topomesh.MeshError, match="boundary loop"):
             f(grid)
+    # every remeshing entry refuses under its own name (not that of a step
+    # inside a composition, such as root3's dual) and says why, without
+    # pointing to boundary rules it does not have; iterations=0 is the input
+    for e in topomesh.catalog("topmod"):
+        if "iterations" not in (getattr(topomesh.Mesh, e["method"]).__text_signature__ or ""):
+            continue
+        with pytest.raises(topomesh.MeshError) as info:
+            getattr(grid, e["method"])()
+        msg = str(info.value)
+        assert msg.startswith(f"{e['method']}: the mesh has 1 boundary loop (it is open); {e['method']} takes closed "
+                              "meshes only: it has no boundary rule"), msg
+        assert "_level" not in msg and "catmull_clark, loop" in msg, msg
+        assert getattr(grid, e["method"])(iterations=0) == grid
 
 
 EXTRUDE = {

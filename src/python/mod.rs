@@ -207,6 +207,12 @@ pub(crate) fn iterate_traced(
     step: impl Fn(&crate::Mesh) -> crate::Result<crate::Mesh> + Sync,
 ) -> PyResult<mesh::PyMesh> {
     use crate::schemes::face_parents::{compose_parents, traced};
+    // TopMod's remeshing entries have no boundary rule: an open mesh is
+    // refused under the entry's own name (a composition's inner step, e.g.
+    // root3's dual, would otherwise name itself)
+    if iterations > 0 {
+        crate::schemes::hosts::refuse_holes(name, mesh).map_err(err)?;
+    }
     // None: not wanted (no face attributes) or a level recorded nothing
     let start = (!data.face.is_empty()).then(|| (0..mesh.n_faces() as u32).collect::<Vec<u32>>());
     let (out, parents) = iterate_with(py, mesh, iterations, progress, name, predict, start, |src, st| {

@@ -212,20 +212,33 @@ impl VertexLayout {
     }
 }
 
+/// The smoothing schemes whose `*_level` functions carry boundary rules
+/// (the open-mesh issue); every other user of [`refuse_holes`] (TopMod's
+/// remeshing menu, the extrusions, Conway's operators) has none.
+const WITH_BOUNDARY_RULES: [&str; 9] = ["catmull_clark", "loop", "doo_sabin", "sqrt3", "simplest", "midpoint", "dual", "honeycomb", "vertex_truncation"];
+
 /// Refuses a mesh with hole faces (boundary loops) in the plain closed-mesh
 /// scheme functions, which would refine a hole like a real face and
-/// silently close it; their boundary rules live in the `*_level` functions.
+/// silently close it. The message says where boundary rules are, if any:
+/// in the smoothing schemes' `*_level` functions; the rest have none.
 pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
     let holes = m.n_holes();
     if holes == 0 {
         return Ok(());
     }
-    Err(crate::error::MeshError::Precondition(format!(
-        "{scheme}: the mesh has {holes} boundary loop{} (it is open); the plain {scheme} takes closed meshes only \
-         and would fill {}; its boundary rules are in {scheme}_level (which the Python methods call)",
-        if holes == 1 { "" } else { "s" },
-        if holes == 1 { "it" } else { "them" }
-    )))
+    let (s, them) = if holes == 1 { ("", "it") } else { ("s", "them") };
+    Err(crate::error::MeshError::Precondition(if WITH_BOUNDARY_RULES.contains(&scheme) {
+        format!(
+            "{scheme}: the mesh has {holes} boundary loop{s} (it is open); the plain {scheme} takes closed meshes only \
+             and would fill {them}; its boundary rules are in {scheme}_level (which the Python methods call)"
+        )
+    } else {
+        format!(
+            "{scheme}: the mesh has {holes} boundary loop{s} (it is open); {scheme} takes closed meshes only: it has no \
+             boundary rule and would refine each hole like a face, filling {them} (the smoothing schemes {} refine open meshes)",
+            WITH_BOUNDARY_RULES.join(", ")
+        )
+    }))
 }
 
 /// Runs `scheme` on `m` with its point-spheres set aside, then appends them

@@ -370,6 +370,11 @@ pub fn conway(notation: &str, seed: Option<&Mesh>) -> Result<Mesh> {
 /// the whole chain against the memory budget and the id limit; `name`
 /// names the call in errors.
 pub fn apply_all(name: &str, m: &Mesh, ops: &[Op]) -> Result<Mesh> {
+    // every operator refuses holes (no boundary rule): named here after the
+    // call ("tk", "truncate"), not after the step inside it that refused
+    if !ops.is_empty() {
+        crate::schemes::hosts::refuse_holes(name, m)?;
+    }
     check_chain(name, m, ops)?;
     let mut cur: Option<Mesh> = None;
     for op in ops {
