@@ -74,3 +74,42 @@ impl fmt::Display for MeshError {
 impl std::error::Error for MeshError {}
 
 pub type Result<T> = std::result::Result<T, MeshError>;
+
+/// A number as error messages show it: as written (`0.5`, `-1`, `1000`)
+/// between 1e-5 and 1e16 in magnitude, else in exponent form (`1e300`,
+/// `2.2250738585072014e-308`), where the plain form has hundreds of digits.
+pub(crate) fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `[lo, hi]` as an error message gives an argument's range: the smallest
+/// positive float as the lower bound reads `(0, hi]`.
+pub(crate) fn range(lo: f64, hi: f64) -> String {
+    if lo == f64::MIN_POSITIVE { format!("(0, {}]", num(hi)) } else { format!("[{}, {}]", num(lo), num(hi)) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{num, range};
+
+    #[test]
+    fn numbers_in_messages_stay_short() {
+        assert_eq!(num(0.5), "0.5");
+        assert_eq!(num(-1.0), "-1");
+        assert_eq!(num(1e15), "1000000000000000");
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(-2.5e-300), "-2.5e-300");
+        assert_eq!(num(f64::MIN_POSITIVE), "2.2250738585072014e-308");
+        assert_eq!(num(f64::NAN), "NaN");
+        assert_eq!(num(f64::NEG_INFINITY), "-inf");
+        assert_eq!(num(0.0), "0");
+        assert!(num(f64::MAX).len() < 30, "{}", num(f64::MAX));
+        assert_eq!(range(f64::MIN_POSITIVE, 1e15), "(0, 1000000000000000]");
+        assert_eq!(range(0.0, 1.0), "[0, 1]");
+        assert_eq!(range(-1e300, f64::MAX), "[-1e300, 1.7976931348623157e308]");
+    }
+}

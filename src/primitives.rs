@@ -130,7 +130,9 @@ pub fn torus(major: usize, minor: usize, major_radius: f64, minor_radius: f64) -
     }
     if !(major_radius > minor_radius && minor_radius > 0.0) || !major_radius.is_finite() {
         return Err(MeshError::InvalidArgument(format!(
-            "torus radii must satisfy major_radius > minor_radius > 0 (got {major_radius}, {minor_radius})"
+            "torus radii must satisfy major_radius > minor_radius > 0 (got {}, {})",
+            crate::error::num(major_radius),
+            crate::error::num(minor_radius)
         )));
     }
     // V = F = major·minor, E = 2V: refuse before allocating what cannot fit

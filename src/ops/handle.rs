@@ -68,7 +68,7 @@ impl Default for HandleShape {
 impl HandleShape {
     fn check(&self) -> Result<()> {
         let bad = |name: &str, x: f64, range: &str| {
-            Err(MeshError::InvalidArgument(format!("add_handle: {name} = {x} must be in {range}")))
+            Err(MeshError::InvalidArgument(format!("add_handle: {name} = {} must be in {range}", crate::error::num(x))))
         };
         if !(self.pinch.is_finite() && self.pinch > 0.0 && self.pinch <= 10.0) {
             return bad("pinch", self.pinch, "(0, 10]");

@@ -56,7 +56,7 @@ impl Rind {
     /// a thickness that flips an inner face against its outer twin (named).
     pub fn new(source: &Mesh, thickness: f64) -> Result<Rind> {
         if !(thickness.is_finite() && thickness > 0.0) {
-            return Err(MeshError::InvalidArgument(format!("rind: thickness {thickness} must be finite and positive")));
+            return Err(MeshError::InvalidArgument(format!("rind: thickness {} must be finite and positive", crate::error::num(thickness))));
         }
         if let Some(f) = source.faces().find(|&f| source.face_halfedge(f).is_none()) {
             return Err(MeshError::Precondition(format!("rind: face {} is a point-sphere; it has no rind", f.0)));
@@ -68,7 +68,7 @@ impl Rind {
         // positions: outer copy, then inner copy moved inward
         let mut pos = source.positions().to_vec();
         pos.extend(source.positions().iter().zip(&normals).map(|(&p, &n)| p - thickness * n));
-        Rind::from_shell(source, pos, &format!("thickness {thickness}"))
+        Rind::from_shell(source, pos, &format!("thickness {}", crate::error::num(thickness)))
     }
 
     /// The rind of `source` with the given positions: `pos` holds the outer

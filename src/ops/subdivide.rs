@@ -45,7 +45,7 @@ impl Mesh {
     pub fn subdivide_edge(&mut self, e: EdgeId, t: f64) -> Result<EdgeSplit> {
         check_edge(self, e)?;
         if !(0.0..=1.0).contains(&t) {
-            return Err(MeshError::InvalidArgument(format!("subdivide_edge: t = {t} is not in [0, 1]")));
+            return Err(MeshError::InvalidArgument(format!("subdivide_edge: t = {} is not in [0, 1]", crate::error::num(t))));
         }
         let h = e.halfedge();
         let (v1, v2) = (self.vertex(h), self.head(h));

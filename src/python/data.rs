@@ -169,7 +169,7 @@ fn frozen_copy<'py>(py: Python<'py>, a: &Bound<'py, PyAny>, dtype: Option<&str>)
 /// Sharpness values: finite and >= 0, or +inf (stored as OpenSubdiv's 10).
 fn sharpness_value(call: &str, what: &str, s: f64) -> PyResult<f64> {
     if s.is_nan() || s < 0.0 {
-        return Err(arg_err(format!("{call}: {what} has sharpness {s}; sharpness must be >= 0 (inf or >= 10: infinitely sharp)")));
+        return Err(arg_err(format!("{call}: {what} has sharpness {}; sharpness must be >= 0 (inf or >= 10: infinitely sharp)", crate::error::num(s))));
     }
     Ok(if s >= INFINITE { INFINITE } else { s })
 }

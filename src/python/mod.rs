@@ -102,11 +102,14 @@ pub(crate) fn usize_in(call: &str, name: &str, v: i128, lo: usize, hi: usize) ->
 }
 
 /// A finite float argument in `[lo, hi]`, else a `MeshError` naming it.
+/// `lo = f64::MIN_POSITIVE` means positive: `(0, hi]`, subnormals included,
+/// as the message says.
 pub(crate) fn finite_in(call: &str, name: &str, x: f64, lo: f64, hi: f64) -> PyResult<f64> {
-    if x.is_finite() && x >= lo && x <= hi {
+    let above = if lo == f64::MIN_POSITIVE { x > 0.0 } else { x >= lo };
+    if x.is_finite() && above && x <= hi {
         Ok(x)
     } else {
-        Err(arg_err(format!("{call}: {name} = {x} is out of range; it must be a finite number in [{lo}, {hi}]")))
+        Err(arg_err(format!("{call}: {name} = {} is out of range; it must be a finite number in {}", crate::error::num(x), crate::error::range(lo, hi))))
     }
 }
 

@@ -107,7 +107,7 @@ impl PyMesh {
         tolerance: f64,
     ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>)> {
         if !(tolerance.is_finite() && tolerance >= 0.0) {
-            return Err(super::arg_err(format!("weld: tolerance = {tolerance} must be a finite number >= 0")));
+            return Err(super::arg_err(format!("weld: tolerance = {} must be a finite number >= 0", crate::error::num(tolerance))));
         }
         let pos = positions(py, vertices)?;
         if let Some(v) = pos.iter().position(|p| !p.is_finite()) {

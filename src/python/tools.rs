@@ -241,7 +241,7 @@ impl PyMesh {
                 .map_err(|e| match e {
                     // the hub is built from the moved face corners: name the parameters that moved them
                     crate::MeshError::Interrupted => err(e),
-                    e => arg_err(format!("multi_face_handle (scale = {scale}, extrude = {extrude}): {e}")),
+                    e => arg_err(format!("multi_face_handle (scale = {}, extrude = {}): {e}", crate::error::num(scale), crate::error::num(extrude))),
                 })?,
             "closest_edge" => super::detach(py, || self.inner.multi_face_handle_edges(&fs)).map_err(err)?.0,
             a => return Err(arg_err(format!("multi_face_handle: algorithm = {a:?} is not 'convex_hull' or 'closest_edge'"))),

@@ -214,7 +214,7 @@ impl PyMesh {
     #[pyo3(signature = (iterations = 1, alpha = 0.5625, progress = false))]
     fn corner_cutting(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, alpha: f64, progress: bool) -> PyResult<PyMesh> {
         if !(alpha.is_finite() && alpha >= 1.0 / 3.0 && alpha < 1.0) {
-            return Err(arg_err(format!("corner_cutting: alpha = {alpha} is out of range; it must be a finite number in [1/3, 1)")));
+            return Err(arg_err(format!("corner_cutting: alpha = {} is out of range; it must be a finite number in [1/3, 1)", crate::error::num(alpha))));
         }
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "corner_cutting", p_dual_host, |m| cc::corner_cutting(m, alpha))
     }
@@ -437,6 +437,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 0.7, progress = false))]
     fn dual_12_6_4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        let scale = finite_in("dual_12_6_4", "scale", scale, f64::MIN_POSITIVE, 1.0)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_12_6_4", p_dual_1264, |m| t64::dual_12_6_4(m, scale))
     }
 
@@ -445,6 +446,8 @@ impl PyMesh {
     /// Per iteration V' = V + E + F, E' = 6E, F' = 4E (all triangles).
     #[pyo3(signature = (iterations = 1, scale = 0.7, progress = false))]
     fn remesh_12_6_4(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, progress: bool) -> PyResult<PyMesh> {
+        // checked here, not by the dual 12.6.4 inside, so that the error names this call
+        let scale = finite_in("remesh_12_6_4", "scale", scale, f64::MIN_POSITIVE, 1.0)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "remesh_12_6_4", p_1264, |m| compose::remesh_12_6_4(m, scale))
     }
 
@@ -467,6 +470,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, thickness = 0.33, progress = false))]
     fn checkerboard(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
+        let thickness = finite_in("checkerboard", "thickness", thickness, f64::MIN_POSITIVE, 0.5)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "checkerboard", p_checker, |m| cb::checkerboard(m, thickness))
     }
 
@@ -475,6 +479,8 @@ impl PyMesh {
     /// Per iteration V' = V + 4E, E' = 9E, F' = F + 4E.
     #[pyo3(signature = (iterations = 1, thickness = 0.33, progress = false))]
     fn dual_checkerboard(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, thickness: f64, progress: bool) -> PyResult<PyMesh> {
+        // checked here, not by the checkerboard inside, so that the error names this call
+        let thickness = finite_in("dual_checkerboard", "thickness", thickness, f64::MIN_POSITIVE, 0.5)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "dual_checkerboard", p_checker, |m| compose::dual_checkerboard(m, thickness))
     }
 
@@ -513,7 +519,7 @@ impl PyMesh {
     #[pyo3(signature = (iterations = 1, scale = 1.0, length = 1.0, progress = false))]
     fn doo_sabin_bc_new(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, length: f64, progress: bool) -> PyResult<PyMesh> {
         if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
-            return Err(arg_err(format!("doo_sabin_bc_new: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
+            return Err(arg_err(format!("doo_sabin_bc_new: scale = {} is out of range; it must be a finite number in (0, 2]", crate::error::num(scale))));
         }
         let l = finite_in("doo_sabin_bc_new", "length", length, 0.0, 1.0)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "doo_sabin_bc_new", p_doo_sabin_bc_new, |m| dsn::doo_sabin_bc_new(m, scale, l))
@@ -543,7 +549,7 @@ impl PyMesh {
     fn dome(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, scale: f64, progress: bool) -> PyResult<PyMesh> {
         let l = finite_in("dome", "length", length, 0.0, 2.0)?;
         if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
-            return Err(arg_err(format!("dome: scale = {scale} is out of range; it must be a finite number in (0, 2]")));
+            return Err(arg_err(format!("dome: scale = {} is out of range; it must be a finite number in (0, 2]", crate::error::num(scale))));
         }
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "dome", p_dome, |m| ex::dome(m, l, scale))
     }

@@ -124,7 +124,7 @@ pub fn repair(positions: &[DVec3], sizes: &[i64], indices: &[i64], tolerance: Op
         }
         Some(t) if t.is_finite() && t >= 0.0 => t,
         Some(t) => {
-            return Err(MeshError::InvalidArgument(format!("repair: tolerance = {t} must be a finite number >= 0")));
+            return Err(MeshError::InvalidArgument(format!("repair: tolerance = {} must be a finite number >= 0", crate::error::num(t))));
         }
     };
     let mut report = RepairReport { tolerance: tol, ..Default::default() };

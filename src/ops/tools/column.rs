@@ -89,7 +89,7 @@ impl Mesh {
     pub fn wireframe_columns(&self, thickness: f64, segments: usize) -> Result<Mesh> {
         let t = thickness;
         if !(t.is_finite() && t > 0.0) {
-            return Err(MeshError::InvalidArgument(format!("wireframe_columns: thickness = {t} must be finite and positive")));
+            return Err(MeshError::InvalidArgument(format!("wireframe_columns: thickness = {} must be finite and positive", crate::error::num(t))));
         }
         if !(3..=100).contains(&segments) {
             return Err(MeshError::InvalidArgument(format!("wireframe_columns: segments = {segments} must be in [3, 100]")));

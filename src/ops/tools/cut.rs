@@ -37,7 +37,7 @@ struct Cut {
 
 fn check_offset(call: &str, offset: f64) -> Result<()> {
     if !(offset.is_finite() && offset > 0.0 && offset <= 2.0) {
-        return Err(MeshError::InvalidArgument(format!("{call}: offset = {offset} must be in (0, 2] (a fraction of the edge lengths)")));
+        return Err(MeshError::InvalidArgument(format!("{call}: offset = {} must be in (0, 2] (a fraction of the edge lengths)", crate::error::num(offset))));
     }
     Ok(())
 }

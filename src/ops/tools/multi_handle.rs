@@ -336,7 +336,7 @@ impl Mesh {
             pos.extend_from_slice(self.positions());
         }
         let src = if scale < 1.0 { self.clone() } else { let mut s = self.clone(); for p in s.positions_mut() { *p = scaled(*p, scale); } s };
-        Rind::from_shell(&src, pos, &format!("scale {scale}"))
+        Rind::from_shell(&src, pos, &format!("scale {}", crate::error::num(scale)))
     }
 }
 

@@ -113,7 +113,7 @@ impl Mesh {
     /// planes of its faces (Newell normal, centroid), once, and reports nothing.
     pub fn planarize(&mut self, iterations: usize, tol: f64) -> Result<Planarized> {
         if !(tol.is_finite() && tol >= 0.0) {
-            return Err(MeshError::InvalidArgument(format!("planarize: tol = {tol} must be finite and >= 0")));
+            return Err(MeshError::InvalidArgument(format!("planarize: tol = {} must be finite and >= 0", crate::error::num(tol))));
         }
         let initial_residual = self.planarity_residual();
         let mut residual = initial_residual;
@@ -162,7 +162,7 @@ impl Mesh {
                 return Err(MeshError::InvalidArgument(format!("spherize: center = {c} must be finite")));
             }
             if let Some(r) = radius.filter(|r| !(r.is_finite() && *r > 0.0)) {
-                return Err(MeshError::InvalidArgument(format!("spherize: radius = {r} must be finite and positive")));
+                return Err(MeshError::InvalidArgument(format!("spherize: radius = {} must be finite and positive", crate::error::num(r))));
             }
             let out = crate::geometry::scale_free(self, |m, s| {
                 let mut m = m.clone();
@@ -178,7 +178,7 @@ impl Mesh {
         }
         let r = radius.unwrap_or_else(|| self.pos.iter().map(|p| (*p - c).length()).sum::<f64>() / nv as f64);
         if !(r.is_finite() && r > 0.0) {
-            return Err(MeshError::InvalidArgument(format!("spherize: radius = {r} must be finite and positive")));
+            return Err(MeshError::InvalidArgument(format!("spherize: radius = {} must be finite and positive", crate::error::num(r))));
         }
         if let Some(v) = self.pos.iter().position(|p| (*p - c).length() <= 1e-12 * r) {
             return Err(MeshError::Precondition(format!("spherize: vertex {v} lies at the centre; it has no direction")));
@@ -405,7 +405,7 @@ impl Mesh {
     pub fn split_valence2_vertices(&mut self, offset: Option<f64>) -> Result<usize> {
         if let Some(o) = offset {
             if !(o.is_finite() && o > 0.0) {
-                return Err(MeshError::InvalidArgument(format!("split_valence2_vertices: offset = {o} must be finite and positive")));
+                return Err(MeshError::InvalidArgument(format!("split_valence2_vertices: offset = {} must be finite and positive", crate::error::num(o))));
             }
         }
         let todo: Vec<VertexId> = self

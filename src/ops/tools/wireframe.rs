@@ -37,7 +37,7 @@ impl Mesh {
         let width = width.unwrap_or(thickness);
         for (name, x) in [("thickness", thickness), ("width", width)] {
             if !(x.is_finite() && x > 0.0) {
-                return Err(MeshError::InvalidArgument(format!("wireframe: {name} = {x} must be finite and positive")));
+                return Err(MeshError::InvalidArgument(format!("wireframe: {name} = {} must be finite and positive", crate::error::num(x))));
             }
         }
         // meshes at 1e±300 are framed at unit size, their lengths with them

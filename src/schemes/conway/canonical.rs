@@ -141,7 +141,7 @@ impl Topology {
 pub fn canonicalize(m: &Mesh, iterations: usize, tol: f64) -> Result<(Mesh, f64)> {
     // positions are scaled to unit size first, so a step above 1 is no convergence
     if !(0.0..=1.0).contains(&tol) {
-        return Err(MeshError::InvalidArgument(format!("canonicalize: tol = {tol} is outside [0, 1] (positions are scaled to unit size)")));
+        return Err(MeshError::InvalidArgument(format!("canonicalize: tol = {} is outside [0, 1] (positions are scaled to unit size)", crate::error::num(tol))));
     }
     crate::schemes::hosts::refuse_holes("canonicalize", m)?;
     let topo = Topology::of(m);

@@ -24,7 +24,7 @@ use crate::schemes::hosts::with_point_spheres;
 /// it; default 0.33). See the module docs.
 pub fn checkerboard(m: &Mesh, thickness: f64) -> Result<Mesh> {
     if !(thickness.is_finite() && thickness > 0.0 && thickness <= 0.5) {
-        return Err(MeshError::InvalidArgument(format!("checkerboard: thickness = {thickness} must be in (0, 0.5]")));
+        return Err(MeshError::InvalidArgument(format!("checkerboard: thickness = {} must be in (0, 0.5]", crate::error::num(thickness))));
     }
     with_point_spheres("checkerboard", m, |m| {
         let i = In::new(m)?;

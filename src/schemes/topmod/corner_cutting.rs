@@ -130,7 +130,7 @@ fn turns_from_the_table_are_exact() {
 /// range; default 9/16). See the module docs.
 pub fn corner_cutting(m: &Mesh, alpha: f64) -> Result<Mesh> {
     if !(alpha.is_finite() && (1.0 / 3.0 - 1e-12..1.0).contains(&alpha)) {
-        return Err(MeshError::InvalidArgument(format!("corner_cutting: alpha = {alpha} must be in [1/3, 1)")));
+        return Err(MeshError::InvalidArgument(format!("corner_cutting: alpha = {} must be in [1/3, 1)", crate::error::num(alpha))));
     }
     with_point_spheres("corner_cutting", m, |m| {
         let i = In::new(m)?;
@@ -154,7 +154,7 @@ pub fn corner_cutting(m: &Mesh, alpha: f64) -> Result<Mesh> {
 /// UI range; default 0.25). See the module docs.
 pub fn modified_corner_cutting(m: &Mesh, thickness: f64) -> Result<Mesh> {
     if !(thickness.is_finite() && (0.0..=1.0).contains(&thickness)) {
-        return Err(MeshError::InvalidArgument(format!("modified_corner_cutting: thickness = {thickness} must be in [0, 1]")));
+        return Err(MeshError::InvalidArgument(format!("modified_corner_cutting: thickness = {} must be in [0, 1]", crate::error::num(thickness))));
     }
     with_point_spheres("modified_corner_cutting", m, |m| {
         let i = In::new(m)?;

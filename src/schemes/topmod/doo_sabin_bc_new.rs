@@ -34,10 +34,10 @@ use glam::DVec3;
 /// TopMod's Doo-Sabin BC New. See the module docs.
 pub fn doo_sabin_bc_new(m: &Mesh, scale: f64, length: f64) -> Result<Mesh> {
     if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
-        return Err(MeshError::InvalidArgument(format!("doo_sabin_bc_new: scale = {scale} must be in (0, 2]")));
+        return Err(MeshError::InvalidArgument(format!("doo_sabin_bc_new: scale = {} must be in (0, 2]", crate::error::num(scale))));
     }
     if !(length.is_finite() && (0.0..=1.0).contains(&length)) {
-        return Err(MeshError::InvalidArgument(format!("doo_sabin_bc_new: length = {length} must be in [0, 1]")));
+        return Err(MeshError::InvalidArgument(format!("doo_sabin_bc_new: length = {} must be in [0, 1]", crate::error::num(length))));
     }
     with_point_spheres("doo_sabin_bc_new", m, |m| step(m, scale, length))
 }

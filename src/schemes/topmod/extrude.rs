@@ -58,17 +58,21 @@ impl Kind {
     /// Python names: `"cubical"`, `"doo_sabin"`, `"octahedral"`, `"stellate"`,
     /// `"double_stellate"`, `"dome"`.
     pub fn parse(s: &str) -> Option<Kind> {
-        Some(match s {
-            "cubical" => Kind::Cubical,
-            "doo_sabin" => Kind::DooSabin,
-            "octahedral" => Kind::Octahedral,
-            "stellate" => Kind::Stellate,
-            "double_stellate" => Kind::DoubleStellate,
-            "dome" => Kind::Dome,
-            "dodecahedral" => Kind::Dodecahedral,
-            "icosahedral" => Kind::Icosahedral,
-            _ => return None,
-        })
+        Self::ALL.into_iter().find(|k| k.name() == s)
+    }
+    const ALL: [Kind; 8] = [Kind::Cubical, Kind::DooSabin, Kind::Octahedral, Kind::Stellate, Kind::DoubleStellate, Kind::Dome, Kind::Dodecahedral, Kind::Icosahedral];
+    /// The Python name (error messages say `kind 'cubical'`, as the user wrote it).
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Cubical => "cubical",
+            Kind::DooSabin => "doo_sabin",
+            Kind::Octahedral => "octahedral",
+            Kind::Stellate => "stellate",
+            Kind::DoubleStellate => "double_stellate",
+            Kind::Dome => "dome",
+            Kind::Dodecahedral => "dodecahedral",
+            Kind::Icosahedral => "icosahedral",
+        }
     }
     pub const NAMES: &'static str = "'cubical', 'doo_sabin', 'octahedral', 'stellate', 'double_stellate', 'dome', 'dodecahedral', 'icosahedral'";
     /// TopMod's default length (`sExtrudeDist` = 2, `sDomeExtrudeLengthFactor` = 1;
@@ -129,12 +133,12 @@ pub struct Extrusion {
 impl Extrusion {
     /// Checks the ranges of the module docs; errors name the parameter.
     pub fn check(&self) -> Result<()> {
-        let bad = |what: &str, x: String, range: &str| Err(MeshError::InvalidArgument(format!("extrude: {what} = {x} must be {range} for kind {:?}", self.kind)));
+        let bad = |what: &str, x: String, range: &str| Err(MeshError::InvalidArgument(format!("extrude: {what} = {x} must be {range} for kind '{}'", self.kind.name())));
         if !(self.length.is_finite() && self.length >= 0.0) {
-            return bad("length", self.length.to_string(), "finite and >= 0");
+            return bad("length", crate::error::num(self.length), "finite and >= 0");
         }
         if !(self.scale.is_finite() && self.scale > 0.0 && self.scale <= 10.0) {
-            return bad("scale", self.scale.to_string(), "in (0, 10]");
+            return bad("scale", crate::error::num(self.scale), "in (0, 10]");
         }
         let (lo, hi) = match self.kind {
             Kind::Cubical | Kind::Octahedral => (0.0, 360.0),
@@ -146,26 +150,26 @@ impl Extrusion {
         if platonic {
             // TopMod's dodecahedral and icosahedral extrusions take an angle and three lengths instead
             if self.length != 0.0 {
-                return bad("length", self.length.to_string(), "left unset (this kind takes lengths)");
+                return bad("length", crate::error::num(self.length), "left unset (this kind takes lengths)");
             }
             if self.scale != 1.0 {
-                return bad("scale", self.scale.to_string(), "1 (this kind takes lengths)");
+                return bad("scale", crate::error::num(self.scale), "1 (this kind takes lengths)");
             }
             if let Some(a) = self.angle {
                 if !(a.is_finite() && (0.0..=180.0).contains(&a)) {
-                    return bad("angle", a.to_string(), "in [0, 180]");
+                    return bad("angle", crate::error::num(a), "in [0, 180]");
                 }
             }
             if let Some(l) = self.lengths {
                 if let Some(x) = l.iter().find(|x| !(x.is_finite() && (0.0..=100.0).contains(*x))) {
-                    return bad("lengths", x.to_string(), "each in [0, 100]");
+                    return bad("lengths", crate::error::num(*x), "each in [0, 100]");
                 }
             }
         } else if self.angle.is_some() || self.lengths.is_some() {
             return bad(if self.angle.is_some() { "angle" } else { "lengths" }, "given".into(), "unset (only 'dodecahedral' and 'icosahedral' take it)");
         }
         if !(self.twist.is_finite() && self.twist >= lo && self.twist <= hi) {
-            return bad("twist", self.twist.to_string(), &format!("in [{lo}, {hi}]"));
+            return bad("twist", crate::error::num(self.twist), &format!("in [{lo}, {hi}]"));
         }
         let multi = matches!(self.kind, Kind::Cubical | Kind::DooSabin | Kind::Octahedral) || platonic;
         if self.segments == 0 || (!multi && self.segments != 1) {
@@ -286,10 +290,10 @@ fn extrude_step(m: &Mesh, faces: &[usize], ex: &Extrusion) -> Result<Mesh> {
 /// `scale` in (0, 2] (TopMod's ranges; defaults 1).
 pub fn dome(m: &Mesh, length: f64, scale: f64) -> Result<Mesh> {
     if !(length.is_finite() && (0.0..=2.0).contains(&length)) {
-        return Err(MeshError::InvalidArgument(format!("dome: length = {length} must be in [0, 2]")));
+        return Err(MeshError::InvalidArgument(format!("dome: length = {} must be in [0, 2]", crate::error::num(length))));
     }
     if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
-        return Err(MeshError::InvalidArgument(format!("dome: scale = {scale} must be in (0, 2]")));
+        return Err(MeshError::InvalidArgument(format!("dome: scale = {} must be in (0, 2]", crate::error::num(scale))));
     }
     let split = super::linear::split_edges(m, 4)?;
     let s = [(0.0, 1.6), (0.3, 1.7), (0.18, 1.6), (0.1, 1.4), (0.05, 1.2), (0.025, 1.1), (0.01, 0.01)];

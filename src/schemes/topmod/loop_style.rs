@@ -33,7 +33,7 @@ fn unit(name: &str, what: &str, x: f64) -> Result<()> {
     if x.is_finite() && (0.0..=1.0).contains(&x) {
         Ok(())
     } else {
-        Err(MeshError::InvalidArgument(format!("{name}: {what} = {x} must be in [0, 1]")))
+        Err(MeshError::InvalidArgument(format!("{name}: {what} = {} must be in [0, 1]", crate::error::num(x))))
     }
 }
 
@@ -172,7 +172,7 @@ pub(crate) fn root4_positions(i: &In<'_>, weight: f64, twist: f64) -> Vec<DVec3>
 /// centres.
 pub fn fractal(m: &Mesh, offset: f64) -> Result<Mesh> {
     if !(offset.is_finite() && (0.0..=2.0).contains(&offset)) {
-        return Err(MeshError::InvalidArgument(format!("fractal: offset = {offset} must be in [0, 2]")));
+        return Err(MeshError::InvalidArgument(format!("fractal: offset = {} must be in [0, 2]", crate::error::num(offset))));
     }
     with_point_spheres("fractal", m, |m| {
         let i = In::new(m)?;

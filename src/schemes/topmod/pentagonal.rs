@@ -30,7 +30,7 @@ use glam::DVec3;
 /// module docs.
 pub fn pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
     if !(offset.is_finite() && (0.0..=1.0).contains(&offset)) {
-        return Err(MeshError::InvalidArgument(format!("pentagonalize: offset = {offset} must be in [0, 1]")));
+        return Err(MeshError::InvalidArgument(format!("pentagonalize: offset = {} must be in [0, 1]", crate::error::num(offset))));
     }
     with_point_spheres("pentagonalize", m, |m| {
         let i = In::new(m)?;
@@ -69,7 +69,7 @@ pub fn pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
 /// 0.75). See the module docs.
 pub fn pentagon_preserving(m: &Mesh, scale: f64) -> Result<Mesh> {
     if !(scale.is_finite() && (0.0..=1.0).contains(&scale)) {
-        return Err(MeshError::InvalidArgument(format!("pentagon_preserving: scale = {scale} must be in [0, 1]")));
+        return Err(MeshError::InvalidArgument(format!("pentagon_preserving: scale = {} must be in [0, 1]", crate::error::num(scale))));
     }
     with_point_spheres("pentagon_preserving", m, |m| {
         let i = In::new(m)?;

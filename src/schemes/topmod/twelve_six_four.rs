@@ -23,7 +23,7 @@ use glam::DVec3;
 /// module docs.
 pub fn dual_12_6_4(m: &Mesh, scale: f64) -> Result<Mesh> {
     if !(scale.is_finite() && scale > 0.0 && scale <= 1.0) {
-        return Err(MeshError::InvalidArgument(format!("dual_12_6_4: scale = {scale} must be in (0, 1]")));
+        return Err(MeshError::InvalidArgument(format!("dual_12_6_4: scale = {} must be in (0, 1]", crate::error::num(scale))));
     }
     with_point_spheres("dual_12_6_4", m, |m| {
         let i = In::new(m)?;
