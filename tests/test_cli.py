@@ -39,6 +39,28 @@ def test_errors_are_one_line_with_status_2(tmp_path, capsys):
     assert "unknown scheme 'bogus'" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("cmd", [["convert"], ["subdivide", "--scheme", "loop"], ["sierpinski"], ["menger"]])
+def test_output_is_checked_before_the_work(tmp_path, capsys, cmd):
+    """An output the save would refuse (an unknown extension, a missing
+    directory) is reported before the input is read or anything computed:
+    the input here does not exist, and the error names the output; nothing
+    is left in the output's directory."""
+    src = str(tmp_path / "missing.obj")
+    for out, why in ((tmp_path / "o.xyz", "unsupported extension '.xyz'"), (tmp_path / "no" / "o.obj", "cannot write")):
+        assert cli.main([cmd[0], src, str(out), *cmd[1:]]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith(f"topomesh: error: {out}: ") and why in err and "missing.obj" not in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_iterations_is_the_long_form_of_n(tmp_path):
+    src, a, b = tmp_path / "c.obj", tmp_path / "a.obj", tmp_path / "b.obj"
+    topomesh.cube().save(src)
+    assert cli.main(["subdivide", str(src), str(a), "--scheme", "root3", "-n", "2"]) == 0
+    assert cli.main(["subdivide", str(src), str(b), "--scheme", "root3", "--iterations", "2"]) == 0
+    assert topomesh.load(a) == topomesh.load(b) == topomesh.cube().root3(iterations=2)
+
+
 def test_gallery_writes_meshes_renders_and_table(tmp_path):
     names = ["cube", "genus3"]
     rows = gallery.run(tmp_path, only=names, progress=False)

@@ -3,7 +3,8 @@
     topomesh gallery OUTDIR              every built-in mesh: OBJ + PNG + summary table
     topomesh info FILE                   counts, genus, watertight per trimesh and manifold3d
     topomesh convert IN OUT              between NPZ, PLY, OBJ, OFF, STL (binary) and 3MF
-    topomesh subdivide IN OUT --scheme S -n K   S: a scheme, a TopMod remeshing or a Conway operator (method names)
+    topomesh subdivide IN OUT --scheme S -n K   S: a scheme, a TopMod remeshing or a Conway operator (method names);
+                                         -n is also spelled --iterations
     topomesh sierpinski IN OUT -n K
     topomesh menger IN OUT -n K [--thickness D] [--offset per_face|merged]
 
@@ -11,7 +12,7 @@ Every command that reads a file takes ``--boundaries {keep,refuse}``, ``--allow-
 and ``--repair`` (passed to :func:`topomesh.load`): open meshes are read and kept open unless
 ``--boundaries refuse``; ``--close-boundaries`` (keep, the default) is accepted for old scripts. Errors are one line on stderr, never a
 traceback: bad input (``MeshError``) exits with status 2, Ctrl-C with 130, a file or other
-failure with 1. Warnings (``GeometryWarning``, e.g. an STL that is not closed) are one line too.
+failure with 1. The output path is checked (extension, writable directory) before any work. Warnings (``GeometryWarning``, e.g. an STL that is not closed) are one line too.
 """
 
 from __future__ import annotations
@@ -95,8 +96,18 @@ def cmd_info(a: argparse.Namespace) -> int:
     return 0
 
 
+def _output(path: str) -> str:
+    """The output path, checked before the work: a long subdivision must not
+    end in "unsupported extension" or "no such directory"."""
+    from topomesh.io import check_writable
+
+    check_writable(path)
+    return path
+
+
 def cmd_convert(a: argparse.Namespace) -> int:
-    _load(a, a.input).save(a.output)
+    out = _output(a.output)
+    _load(a, a.input).save(out)
     return 0
 
 
@@ -111,18 +122,21 @@ def cmd_gallery(a: argparse.Namespace) -> int:
 def cmd_subdivide(a: argparse.Namespace) -> int:
     if a.scheme not in SCHEMES:
         raise MeshError(f"unknown scheme {a.scheme!r}; available: {', '.join(SCHEMES)}")
-    _iterate(_load(a, a.input), a.scheme, a.n).save(a.output)
+    out = _output(a.output)
+    _iterate(_load(a, a.input), a.scheme, a.n).save(out)
     return 0
 
 
 def cmd_sierpinski(a: argparse.Namespace) -> int:
-    _iterate(_load(a, a.input), "sierpinski", a.n).save(a.output)
+    out = _output(a.output)
+    _iterate(_load(a, a.input), "sierpinski", a.n).save(out)
     return 0
 
 
 def cmd_menger(a: argparse.Namespace) -> int:
     kw = {} if a.thickness is None else {"thickness": a.thickness}
-    _iterate(_load(a, a.input), "menger", a.n, offset=a.offset, **kw).save(a.output)
+    out = _output(a.output)
+    _iterate(_load(a, a.input), "menger", a.n, offset=a.offset, **kw).save(out)
     return 0
 
 
@@ -164,17 +178,18 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("input")
     s.add_argument("output")
     s.add_argument("--scheme", required=True, help=f"one of: {', '.join(SCHEMES)}")
-    s.add_argument("-n", type=int, default=1, help="iterations (default 1)")
+    # --iterations: the Python keyword, for users coming from the API
+    s.add_argument("-n", "--iterations", dest="n", type=int, default=1, help="iterations (default 1)")
     s.set_defaults(func=cmd_subdivide)
     si = sub.add_parser("sierpinski", parents=[reads], help="Sierpinski subdivision (high genus)")
     si.add_argument("input")
     si.add_argument("output")
-    si.add_argument("-n", type=int, default=1)
+    si.add_argument("-n", "--iterations", dest="n", type=int, default=1, help="iterations (default 1)")
     si.set_defaults(func=cmd_sierpinski)
     me = sub.add_parser("menger", parents=[reads], help="generalized Menger sponge")
     me.add_argument("input")
     me.add_argument("output")
-    me.add_argument("-n", type=int, default=1)
+    me.add_argument("-n", "--iterations", dest="n", type=int, default=1, help="iterations (default 1)")
     me.add_argument("--thickness", type=float, default=None)
     me.add_argument("--offset", choices=["per_face", "merged"], default="per_face",
                     help="inner surface construction (Mesh.menger's offset): per_face (default) is crossing-free on "

@@ -152,6 +152,22 @@ def _suffix(path: PathLike, formats: tuple) -> str:
     return s
 
 
+def check_writable(path: PathLike) -> None:
+    """Raise :class:`MeshError` naming ``path`` when :func:`save` could not
+    write it: an extension it does not write, or a directory that is missing
+    or not writable (a temporary file is made there and removed). The
+    command line checks its output this way before a long computation."""
+    _suffix(path, SAVE_FORMATS)
+    name = os.fspath(path)
+    target = Path(path)
+    try:
+        fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    except OSError as e:
+        raise MeshError(f"{name}: cannot write ({e.strerror or e})") from e
+    os.close(fd)
+    os.unlink(tmp)
+
+
 def _from_state(vertices, face_sizes, face_indices, corner_twins, data=None) -> Mesh:
     """Unpickling: the exact rebuild of :meth:`Mesh.from_flat` with twins, and its creases and attributes."""
     m = Mesh.from_flat(vertices, face_sizes, face_indices, twins=corner_twins)
