@@ -179,7 +179,8 @@ impl PyMesh {
         };
         if let (mg::Offset::PerFace, Some(a)) = (offset, collapse_angle) {
             return Err(super::err(crate::error::MeshError::InvalidArgument(format!(
-                "menger: collapse_angle = {a} applies to offset=\"merged\" only (the dissertation's edge collapses, VII.4); the per-face construction, the default, collapses no edge"
+                "menger: collapse_angle = {} applies to offset=\"merged\" only (the dissertation's edge collapses, VII.4); the per-face construction, the default, collapses no edge",
+                crate::error::num(a)
             ))));
         }
         let collapse_angle = collapse_angle.unwrap_or(mg::MengerOptions::default().collapse_angle);

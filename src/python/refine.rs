@@ -117,7 +117,8 @@ impl PyMesh {
             "chaikin" if ratio == 0.25 => Truncation::Chaikin,
             "chaikin" => {
                 return Err(arg_err(format!(
-                    "vertex_truncation: ratio = {ratio} needs mode='polyhedral' (mode='chaikin' always cuts at 1/4 and 3/4)"
+                    "vertex_truncation: ratio = {} needs mode='polyhedral' (mode='chaikin' always cuts at 1/4 and 3/4)",
+                    crate::error::num(ratio)
                 )))
             }
             "polyhedral" => Truncation::Polyhedral { ratio },

@@ -362,13 +362,15 @@ fn edge_point(pos: &[DVec3], a: u32, b: u32, t: f64) -> DVec3 {
 pub fn check_args(t: f64, tension: Option<f64>) -> Result<()> {
     if !(0.0..=1.0).contains(&t) {
         return Err(MeshError::InvalidArgument(format!(
-            "honeycomb: t = {t} is outside [0, 1] (eq. 1 takes a point on each edge)"
+            "honeycomb: t = {} is outside [0, 1] (eq. 1 takes a point on each edge)",
+            crate::error::num(t)
         )));
     }
     if let Some(a) = tension {
         if !(0.0..=1.0).contains(&a) {
             return Err(MeshError::InvalidArgument(format!(
-                "honeycomb: tension = {a} is outside [0, 1] (eq. 2 needs 0 <= a <= 1 for non-negative weights)"
+                "honeycomb: tension = {} is outside [0, 1] (eq. 2 needs 0 <= a <= 1 for non-negative weights)",
+                crate::error::num(a)
             )));
         }
     }

@@ -98,7 +98,8 @@ impl Truncation {
             Ok(())
         } else {
             Err(MeshError::InvalidArgument(format!(
-                "vertex_truncation: ratio = {r} is outside (0, 0.5] (the fraction of each edge cut off at each end)"
+                "vertex_truncation: ratio = {} is outside (0, 0.5] (the fraction of each edge cut off at each end)",
+                crate::error::num(r)
             )))
         }
     }

@@ -77,7 +77,7 @@ impl Mesh {
             let point = pts.iter().sum::<DVec3>() / pts.len() as f64;
             cuts.push(Cut { seed: vid, normal: normals[v], point, what: format!("vertex {v}") });
         }
-        self.apply_cuts("cut_vertices", cuts)
+        self.apply_cuts("cut_vertices", cuts, offset)
     }
 
     /// **Cut by edge** (module docs): each edge of `edges` cut off by a
@@ -118,7 +118,7 @@ impl Mesh {
             let normal = (fnorm[self.face(h).idx()] + fnorm[self.face(h.twin()).idx()]).normalize_or_zero();
             cuts.push(Cut { seed: self.vertex(h), normal, point, what: format!("edge {e}") });
         }
-        self.apply_cuts("cut_edges", cuts)
+        self.apply_cuts("cut_edges", cuts, offset)
     }
 
     /// **Cut by face** (module docs): each face of `faces` sliced off by a
@@ -159,19 +159,22 @@ impl Mesh {
             let seed = self.face_vertices(fid).max_by(|&a, &b| normal.dot(self.position(a)).total_cmp(&normal.dot(self.position(b)))).unwrap();
             cuts.push(Cut { seed, normal, point, what: format!("face {f}") });
         }
-        self.apply_cuts("cut_faces", cuts)
+        self.apply_cuts("cut_faces", cuts, offset)
     }
 
-    /// Applies cuts in batches of non-touching regions.
-    fn apply_cuts(&self, call: &str, cuts: Vec<Cut>) -> Result<(Mesh, usize)> {
+    /// Applies cuts in batches of non-touching regions (`offset` only names
+    /// itself in the error of a cut that removes nothing).
+    fn apply_cuts(&self, call: &str, cuts: Vec<Cut>, offset: f64) -> Result<(Mesh, usize)> {
         for c in &cuts {
             if c.normal == DVec3::ZERO {
                 return Err(MeshError::Precondition(format!("{call}: {} has no normal to cut along", c.what)));
             }
             if c.normal.dot(self.position(c.seed) - c.point) <= 0.0 {
                 return Err(MeshError::Precondition(format!(
-                    "{call}: {} lies on or below its cutting plane (a saddle or a flat spot); nothing to cut off",
-                    c.what
+                    "{call}: {} lies on or below its cutting plane (a saddle or a flat spot, or offset = {} too small to move \
+                     the plane off it); nothing to cut off",
+                    c.what,
+                    crate::error::num(offset)
                 )));
             }
         }

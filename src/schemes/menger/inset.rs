@@ -33,13 +33,13 @@ pub(super) fn faces_and_insets(m: &Mesh, o: &MengerOptions, red: Option<&Reducti
         return Err(MeshError::InvalidArgument(format!(
             "menger: thickness must be positive{} (got {})",
             if o.relative { " and below 1/2 of the face width" } else { "" },
-            o.thickness
+            crate::error::num(o.thickness)
         )));
     }
     if !(o.collapse_angle.is_finite() && (0.0..=180.0).contains(&o.collapse_angle)) {
         return Err(MeshError::InvalidArgument(format!(
             "menger: collapse_angle = {} is out of range; it must be a finite angle in [0, 180] degrees",
-            o.collapse_angle
+            crate::error::num(o.collapse_angle)
         )));
     }
     let nh = m.n_halfedges();
