@@ -597,3 +597,29 @@ def test_cached_queries_agree():
     m = T.genus_surface(3)
     assert m.genus == m.genus == 3
     assert m.n_components == m.n_components == 1
+
+
+def test_multi_edges_in_obj_name_the_flag_that_reads_them(tmp_path):
+    """A mesh with multi-edges written as OBJ has several face sides on one
+    vertex pair; read without ``allow_multi_edges=True`` the error says to
+    pass it (an odd count, a real non-manifold edge, gets no such hint)."""
+    hinted = 0
+    for name in NAMES:
+        m = CORPUS[name]
+        p = tmp_path / f"{name}.obj"
+        try:
+            m.save(p)
+        except MeshError:
+            continue  # no faithful OBJ (test_polygon_formats_round_trip_or_refuse)
+        try:
+            T.load(p, close_boundaries=m.n_holes > 0)
+        except MeshError as e:
+            assert "pass allow_multi_edges=True" in str(e) and "is used by" in str(e), str(e)
+            _same(m, T.load(p, allow_multi_edges=True, close_boundaries=m.n_holes > 0))
+            hinted += 1
+    assert hinted >= 1
+    tri = tmp_path / "fin.obj"  # three triangles on one edge: no pairing reads it
+    tri.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
+    with pytest.raises(MeshError, match=r"is used by 3 face sides") as info:
+        T.load(tri)
+    assert "allow_multi_edges" not in str(info.value)

@@ -120,7 +120,14 @@ fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boun
     let c = crate::budget::Counts::plain(pos.len() as u64, idx.len() as u64 / 2, sizes.len() as u64);
     let m = super::run_interruptible(py, || {
         crate::budget::check("from_polygons", &format!("a mesh of {} faces", sizes.len()), crate::budget::build_bytes(&c))?;
-        Mesh::from_polygons(pos, sizes, idx, opts)
+        Mesh::from_polygons(pos, sizes, idx, opts).map_err(|e| match e {
+            // an even number of sides on one vertex pair is how a mesh with
+            // multi-edges is written (OBJ, OFF, polygon arrays): say how to read it back
+            crate::MeshError::NonManifoldEdge { ref faces, .. } if !allow_multi_edges && faces.len() % 2 == 0 => crate::MeshError::InvalidArgument(format!(
+                "{e} (if these are several edges between the same two vertices, as a mesh with multi-edges is written, pass allow_multi_edges=True)"
+            )),
+            e => e,
+        })
     })?;
     super::repair::warn_inside_out(py, &m)?;
     Ok(PyMesh::wrap(m))
