@@ -185,6 +185,6 @@ const RECORDED: &[(&str, u64)] = &[
     ("wireframe_columns", 0x7f38de62a9b2a025), // re-recorded: ring margin 0.25 t (issue 16)
     // changed on purpose (issue 16): the union with the hub keeps the input's
     // edge ids (columns concatenated); vertices, faces and twins as before
-    ("multi_face_handle", 0x5eccacbbc8ab6f41),
+    ("multi_face_handle", 0x813176ecf1c89482),
     ("multi_face_handle_edges", 0x9dbf2208276d79df),
 ];
