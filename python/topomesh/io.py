@@ -158,14 +158,20 @@ def check_writable(path: PathLike) -> None:
     or not writable (a temporary file is made there and removed). The
     command line checks its output this way before a long computation."""
     _suffix(path, SAVE_FORMATS)
-    name = os.fspath(path)
+    os.unlink(_temp_beside(path))
+
+
+def _temp_beside(path: PathLike) -> str:
+    """A new empty temporary file in ``path``'s directory (where a save
+    renames it over ``path``); an unwritable place is a :class:`MeshError`
+    naming ``path``."""
     target = Path(path)
     try:
         fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
     except OSError as e:
-        raise MeshError(f"{name}: cannot write ({e.strerror or e})") from e
+        raise MeshError(f"{os.fspath(path)}: cannot write ({e.strerror or e})") from e
     os.close(fd)
-    os.unlink(tmp)
+    return tmp
 
 
 def _from_state(vertices, face_sizes, face_indices, corner_twins, data=None) -> Mesh:
@@ -365,11 +371,7 @@ def _atomic_write(path: PathLike, write: Callable[[str], None]) -> None:
     as it was. I/O errors become :class:`MeshError` naming ``path``."""
     target = Path(path)
     name = os.fspath(path)
-    try:
-        fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    except OSError as e:
-        raise MeshError(f"{name}: cannot write ({e.strerror or e})") from e
-    os.close(fd)
+    tmp = _temp_beside(path)
     try:
         write(tmp)
         try:
