@@ -261,19 +261,18 @@ fn hull_of(points: &[DVec3]) -> Result<(Mesh, Vec<usize>)> {
         if needle(t) {
             continue;
         }
-        let [a, b, c] = corners(t);
         for j in 0..3 {
             let g = h.tris[t].nb[j] as usize;
-            if g > t && !needle(g) {
-                // exactly coplanar, or within the rounding of coordinates
-                // such as the dodecahedron's (golden-ratio) pentagons, seen
-                // from both triangles: a sliver (a point added just outside
-                // a face's side) lies within the tolerance of its steep
-                // neighbour's plane while that neighbour's far corner is far
-                // from the sliver's, and a one-sided test glued such
-                // neighbours into pinched polygons that do not close
-                let opp = p[far(t, g) as usize];
-                if side(a, b, c, opp) != 0.0 && dist(t, opp).max(dist(g, p[far(g, t) as usize])) <= tol {
+            // (pairs already joined, the exactly coplanar ones among them, are done)
+            if g > t && !needle(g) && root(&mut uf, slot[t]) != root(&mut uf, slot[g]) {
+                // within the rounding of coordinates such as the
+                // dodecahedron's (golden-ratio) pentagons, seen from both
+                // triangles: a sliver (a point added just outside a face's
+                // side) lies within the tolerance of its steep neighbour's
+                // plane while that neighbour's far corner is far from the
+                // sliver's, and a one-sided test glued such neighbours into
+                // pinched polygons that do not close
+                if dist(t, p[far(t, g) as usize]).max(dist(g, p[far(g, t) as usize])) <= tol {
                     union(&mut uf, slot[t], slot[g]);
                 }
             }
