@@ -87,7 +87,9 @@ pub(crate) fn num(x: f64) -> String {
 }
 
 /// `[lo, hi]` as an error message gives an argument's range: the smallest
-/// positive float as the lower bound reads `(0, hi]`.
+/// positive float as the lower bound reads `(0, hi]`. (The Python layer's
+/// argument checks use it; the core only tests it.)
+#[cfg_attr(not(feature = "python"), allow(dead_code))]
 pub(crate) fn range(lo: f64, hi: f64) -> String {
     if lo == f64::MIN_POSITIVE { format!("(0, {}]", num(hi)) } else { format!("[{}, {}]", num(lo), num(hi)) }
 }
