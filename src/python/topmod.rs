@@ -518,9 +518,7 @@ impl PyMesh {
     /// Mesh
     #[pyo3(signature = (iterations = 1, scale = 1.0, length = 1.0, progress = false))]
     fn doo_sabin_bc_new(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, scale: f64, length: f64, progress: bool) -> PyResult<PyMesh> {
-        if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
-            return Err(arg_err(format!("doo_sabin_bc_new: scale = {} is out of range; it must be a finite number in (0, 2]", crate::error::num(scale))));
-        }
+        let scale = finite_in("doo_sabin_bc_new", "scale", scale, f64::MIN_POSITIVE, 2.0)?;
         let l = finite_in("doo_sabin_bc_new", "length", length, 0.0, 1.0)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "doo_sabin_bc_new", p_doo_sabin_bc_new, |m| dsn::doo_sabin_bc_new(m, scale, l))
     }
@@ -548,9 +546,7 @@ impl PyMesh {
     #[pyo3(signature = (iterations = 1, length = 1.0, scale = 1.0, progress = false))]
     fn dome(&self, py: Python<'_>, #[pyo3(from_py_with = big_int)] iterations: i128, length: f64, scale: f64, progress: bool) -> PyResult<PyMesh> {
         let l = finite_in("dome", "length", length, 0.0, 2.0)?;
-        if !(scale.is_finite() && scale > 0.0 && scale <= 2.0) {
-            return Err(arg_err(format!("dome: scale = {} is out of range; it must be a finite number in (0, 2]", crate::error::num(scale))));
-        }
+        let scale = finite_in("dome", "scale", scale, f64::MIN_POSITIVE, 2.0)?;
         iterate_traced(py, &self.inner, &self.data, iterations, progress, "dome", p_dome, |m| ex::dome(m, l, scale))
     }
 
