@@ -269,6 +269,10 @@ impl Mesh {
             }
             y
         };
+        // two faces merge into one cycle, which keeps fa's id: only fb's
+        // sides change face (relabelling the whole cycle made merging a
+        // quad into a growing face cost the face's size each time)
+        let from_b: Vec<HalfedgeId> = if fa != fb { self.face_halfedges_from(b).skip(1).collect() } else { Vec::new() };
         let seeds: Vec<HalfedgeId> = [pa, pb].into_iter().filter(|&x| !gone(x)).collect();
         let targets: Vec<HalfedgeId> = seeds.iter().map(|&x| skip(self, x)).collect();
         for (&x, &y) in seeds.iter().zip(&targets) {
@@ -279,8 +283,18 @@ impl Mesh {
         let mut free_faces: Vec<FaceId> = if fa == fb { vec![fa] } else { vec![fa, fb] };
         // a merged face is a hole only if both sides were
         let hole = self.f_hole[fa.idx()] && self.f_hole[fb.idx()];
+        if fa != fb {
+            if let Some(&c) = seeds.first() {
+                free_faces.remove(0);
+                self.f_start[fa.idx()] = c.0;
+                self.f_hole[fa.idx()] = hole;
+                for h in from_b {
+                    self.he_face[h.idx()] = fa.0;
+                }
+            }
+        }
         let mut cycles: Vec<HalfedgeId> = Vec::new();
-        for &s in &seeds {
+        for &s in seeds.iter().filter(|_| fa == fb) {
             if cycles.iter().any(|&c| self.face_halfedges_from(c).any(|h| h == s)) {
                 continue;
             }
