@@ -81,10 +81,7 @@ fn new_faces(before: &Mesh, after: &Mesh) -> Vec<bool> {
                 return false;
             }
             cycle(after, f, &mut a);
-            let old = |g: FaceId, b: &mut Vec<u32>| !before.is_hole(g) && {
-                cycle(before, g, b);
-                same_cycle(&a, b)
-            };
+            let old = |g: FaceId, b: &mut Vec<u32>| !before.is_hole(g) && cycle_of_len(before, g, a.len(), b) && same_cycle(&a, b);
             if f.idx() < before.n_faces() && old(f, &mut b) {
                 return false;
             }
@@ -111,6 +108,21 @@ fn new_faces(before: &Mesh, after: &Mesh) -> Vec<bool> {
 fn cycle(m: &Mesh, f: FaceId, out: &mut Vec<u32>) {
     out.clear();
     out.extend(m.face_vertices(f).map(|v| v.0));
+}
+
+/// `cycle` when face `f` has `n` corners, else false after reading at most
+/// n + 1 of them: a face beside a 100,000-gon of `before` is compared with
+/// it at the cost of its own size (collecting the whole 100,000-gon for
+/// every face around it made the check quadratic).
+fn cycle_of_len(m: &Mesh, f: FaceId, n: usize, out: &mut Vec<u32>) -> bool {
+    out.clear();
+    for v in m.face_vertices(f) {
+        if out.len() == n {
+            return false;
+        }
+        out.push(v.0);
+    }
+    out.len() == n
 }
 
 /// Whether `b` is `a` read from another corner.
