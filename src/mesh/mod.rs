@@ -20,6 +20,7 @@ pub mod build;
 mod boundary;
 mod direct;
 mod euler;
+mod batch;
 mod export;
 mod twins;
 mod query;

@@ -11,6 +11,7 @@ mod wireframe;
 mod column;
 mod column_repair;
 pub mod hull;
+mod closest_sides;
 mod multi_handle;
 mod cut;
 

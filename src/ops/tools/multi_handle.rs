@@ -15,17 +15,20 @@
 //! faces is a candidate bridge, the quad `[a, b, c, d]` of side a→b of one
 //! face and side c→d of the other. A candidate is kept when that quad is
 //! planar within 5° (the dot product of its normals at two opposite
-//! corners, taken at points a quarter along the sides, above cos 5°) and,
-//! for three or more faces, its normal is not within 5° of the normal of the
-//! plane through the two faces' centroids and the selection's centroid
-//! (TopMod; with two faces that plane is undefined and the test is left
-//! out). Candidates are taken by increasing distance of the sides'
+//! corners, taken at points a quarter along the sides, above cos 5°) and
+//! its normal is not within 5° of the normal of the plane through the two
+//! faces' centroids and the selection's centroid (TopMod; where that plane
+//! is undefined, always with two faces and with centroids in line to a
+//! relative 1e-10, the test is left out, where TopMod refuses every pair).
+//! Candidates are taken by increasing distance of the sides'
 //! midpoints, each side used once; each bridge is two InsertEdges, a–d and
 //! b–c, either left out when those corners are already neighbours (a bridge
 //! beside an earlier one shares its edge). Last, TopMod's `edgeCleanup` of
 //! the new edges: one with the same face on both sides, or between faces
-//! whose unit normals agree within 1e-5, is deleted. The search is over all
-//! pairs of selected sides (quadratic in their number, as in TopMod); the
+//! whose unit normals agree within 1e-5, is deleted. TopMod sorts every
+//! pair of selected sides (quadratic in their number); `closest_sides` finds
+//! the same bridges in the same order with a k-d tree (n log n when most
+//! sides have a valid partner nearby, quadratic only when few have); the
 //! counts follow the operators: per InsertEdge E + 1 and F + 1 (a face split)
 //! or genus + 1 / components − 1 (two faces joined), per deletion their
 //! inverse.
@@ -35,6 +38,13 @@ use crate::error::{MeshError, Result};
 use crate::mesh::{Corner, FaceId, HalfedgeId, Mesh};
 use crate::ops::Rind;
 use glam::DVec3;
+
+/// How `bridge_pairs` finds the closest-edge bridges.
+enum Search {
+    Tree,
+    #[cfg(test)]
+    Brute,
+}
 
 impl Mesh {
     /// The disjoint union of this mesh and `other` (other's vertices, faces
@@ -218,6 +228,45 @@ impl Mesh {
     pub fn multi_face_handle_edges(&self, faces: &[usize]) -> Result<(Mesh, usize)> {
         let name = "multi_face_handle(algorithm='closest_edge')";
         self.check_handle_faces(name, faces)?;
+        let (sides, pairs) = self.bridge_pairs(faces, Search::Tree)?;
+        if pairs.is_empty() {
+            return Err(MeshError::Precondition(format!("{name}: no two sides of different faces span a planar quad (within 5°); nothing to bridge")));
+        }
+        let mut m = self.clone();
+        let first_new = m.n_edges();
+        let mut bridges = 0;
+        for &(x, y) in &pairs {
+            let (h1, h2) = (sides[x].1, sides[y].1);
+            let (n1, n2) = (m.next(h1), m.next(h2));
+            let neighbours = |m: &Mesh, u: HalfedgeId, w: HalfedgeId| m.next(u) == w || m.prev(u) == w;
+            for (u, w) in [(h1, n2), (n1, h2)] {
+                if !neighbours(&m, u, w) {
+                    m.insert_edge(Corner::Halfedge(u), Corner::Halfedge(w))?;
+                }
+            }
+            bridges += 1;
+        }
+        // TopMod's edgeCleanup of the new edges, all at once (one DeleteEdge
+        // at a time relabels the growing merged face each time: a second for
+        // two 16,000-gon caps)
+        let normal = |m: &Mesh, f: FaceId| m.face_unit_normal(f);
+        let doomed: Vec<usize> = (first_new..m.n_edges())
+            .filter(|&e| {
+                let h = HalfedgeId::new(2 * e);
+                let (f, g) = (m.face(h), m.face(h.twin()));
+                f == g || (normal(&m, f).dot(normal(&m, g)) - 1.0).abs() < 1e-5
+            })
+            .collect();
+        m.delete_edges(&doomed.iter().map(|&e| crate::mesh::EdgeId(e as u32)).collect::<Vec<_>>())?;
+        Ok((m, bridges))
+    }
+
+    /// The closest-edge handle's bridges (module docs): the selected faces'
+    /// sides (face's index in `faces`, half-edge) and pairs of indices into
+    /// them (lower first), in the order TopMod's sorted candidate list
+    /// takes them; `Search::Brute` builds that list (quadratic), the tree
+    /// finds the same pairs without it (`closest_sides`).
+    fn bridge_pairs(&self, faces: &[usize], search: Search) -> Result<(Vec<(usize, HalfedgeId)>, Vec<(usize, usize)>)> {
         let p = |h: HalfedgeId| self.position(self.vertex(h));
         let q = |h: HalfedgeId| self.position(self.head(h));
         let cen: Vec<DVec3> = faces
@@ -230,65 +279,40 @@ impl Mesh {
         let cc = cen.iter().sum::<DVec3>() / cen.len() as f64;
         let sides: Vec<(usize, HalfedgeId)> = faces.iter().enumerate().flat_map(|(i, &f)| self.face_halfedges(FaceId::new(f)).map(move |h| (i, h))).collect();
         let cos5 = 5f64.to_radians().cos();
-        let mut cand: Vec<(f64, usize, usize)> = Vec::new();
-        for x in 0..sides.len() {
-            crate::cancel::poll(x)?;
-            for y in x + 1..sides.len() {
-                let ((i, h1), (j, h2)) = (sides[x], sides[y]);
-                if i == j {
-                    continue;
-                }
-                let (a, b, c, d) = (p(h1), q(h1), p(h2), q(h2));
-                let (a1, b1) = (0.75 * a + 0.25 * b, 0.25 * a + 0.75 * b);
-                let (c1, d1) = (0.75 * c + 0.25 * d, 0.25 * c + 0.75 * d);
-                let n11 = (d1 - a1).cross(b1 - a1).normalize_or_zero();
-                let n21 = (b1 - c1).cross(d1 - c1).normalize_or_zero();
-                let normal = (n11 + n21).normalize_or_zero();
-                let plane = (cen[i] - cc).cross(cen[j] - cc).normalize_or_zero();
-                let faces_ok = plane == DVec3::ZERO || plane.dot(normal).abs() < cos5;
-                if n11.dot(n21) > cos5 && faces_ok {
-                    cand.push((((a + b) - (c + d)).length() * 0.5, x, y));
-                }
+        // side x (a → b) and side y (c → d), x < y, as TopMod computes them
+        let dist = |x: usize, y: usize| {
+            let ((_, h1), (_, h2)) = (sides[x], sides[y]);
+            ((p(h1) + q(h1)) - (p(h2) + q(h2))).length() * 0.5
+        };
+        let valid = |x: usize, y: usize| {
+            let ((i, h1), (j, h2)) = (sides[x], sides[y]);
+            let (a, b, c, d) = (p(h1), q(h1), p(h2), q(h2));
+            let (a1, b1) = (0.75 * a + 0.25 * b, 0.25 * a + 0.75 * b);
+            let (c1, d1) = (0.75 * c + 0.25 * d, 0.25 * c + 0.75 * d);
+            let n11 = (d1 - a1).cross(b1 - a1).normalize_or_zero();
+            let n21 = (b1 - c1).cross(d1 - c1).normalize_or_zero();
+            let normal = (n11 + n21).normalize_or_zero();
+            // undefined (the test left out) when the centroids are collinear
+            // with cc up to rounding: normalizing that rounding noise gave an
+            // arbitrary direction, which refused the bridges of two facing
+            // caps near one arbitrary plane (TopMod normalizes above 1e-10,
+            // an absolute size, and refuses every pair with two faces)
+            let (u, v) = (cen[i] - cc, cen[j] - cc);
+            let c = u.cross(v);
+            let plane = if c.length() <= 1e-10 * u.length() * v.length() { DVec3::ZERO } else { c.normalize_or_zero() };
+            let faces_ok = plane == DVec3::ZERO || plane.dot(normal).abs() < cos5;
+            n11.dot(n21) > cos5 && faces_ok
+        };
+        let group: Vec<u32> = sides.iter().map(|&(i, _)| i as u32).collect();
+        let pairs = match search {
+            Search::Tree => {
+                let mid: Vec<DVec3> = sides.iter().map(|&(_, h)| (p(h) + q(h)) * 0.5).collect();
+                super::closest_sides::greedy_pairs(&mid, &group, dist, valid)?
             }
-        }
-        if cand.is_empty() {
-            return Err(MeshError::Precondition(format!("{name}: no two sides of different faces span a planar quad (within 5°); nothing to bridge")));
-        }
-        cand.sort_by(|u, v| u.0.total_cmp(&v.0));
-        let mut used = vec![false; sides.len()];
-        let mut m = self.clone();
-        let first_new = m.n_edges();
-        let mut bridges = 0;
-        for &(_, x, y) in &cand {
-            if used[x] || used[y] {
-                continue;
-            }
-            used[x] = true;
-            used[y] = true;
-            let (h1, h2) = (sides[x].1, sides[y].1);
-            let (n1, n2) = (m.next(h1), m.next(h2));
-            let neighbours = |m: &Mesh, u: HalfedgeId, w: HalfedgeId| m.next(u) == w || m.prev(u) == w;
-            for (u, w) in [(h1, n2), (n1, h2)] {
-                if !neighbours(&m, u, w) {
-                    m.insert_edge(Corner::Halfedge(u), Corner::Halfedge(w))?;
-                }
-            }
-            bridges += 1;
-        }
-        // TopMod's edgeCleanup of the new edges, highest id first (deletion
-        // moves the last edge into the freed id)
-        let normal = |m: &Mesh, f: FaceId| m.face_unit_normal(f);
-        let doomed: Vec<usize> = (first_new..m.n_edges())
-            .filter(|&e| {
-                let h = HalfedgeId::new(2 * e);
-                let (f, g) = (m.face(h), m.face(h.twin()));
-                f == g || (normal(&m, f).dot(normal(&m, g)) - 1.0).abs() < 1e-5
-            })
-            .collect();
-        for &e in doomed.iter().rev() {
-            m.delete_edge(crate::mesh::EdgeId(e as u32))?;
-        }
-        Ok((m, bridges))
+            #[cfg(test)]
+            Search::Brute => super::closest_sides::brute_pairs_for_tests(sides.len(), &group, dist, valid),
+        };
+        Ok((sides, pairs))
     }
 
     /// The mesh with every face's orientation reversed: half-edge h keeps
@@ -344,6 +368,7 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::super::super::testing::*;
+    use super::Search;
     use crate::primitives;
 
     fn face_at(m: &crate::Mesh, p: [f64; 3]) -> usize {
@@ -427,6 +452,43 @@ mod tests {
         assert!(e > e0);
         assert!(g.multi_face_handle_edges(&sel[..1]).is_err());
         assert!(g.multi_face_handle_edges(&[sel[0], sel[0]]).unwrap_err().to_string().contains("twice"));
+    }
+
+
+    #[test]
+    fn bridges_are_topmods_sorted_pairs() {
+        // the tree search against TopMod's sorted list of every pair: prism
+        // and antiprism caps (all bridges at one distance: ties), faces of a
+        // grid cube and of a jittered torus, two to five faces
+        use crate::schemes::conway::seeds;
+        let mut meshes: Vec<(String, crate::Mesh, Vec<usize>)> = Vec::new();
+        for n in [3, 4, 5, 17, 64, 301] {
+            let m = seeds::prism(n).unwrap();
+            let caps: Vec<usize> = (0..m.n_faces()).filter(|&f| m.face_degree(crate::FaceId::new(f)) == n).collect();
+            meshes.push((format!("prism {n}"), m, caps));
+            let m = seeds::antiprism(n).unwrap();
+            let caps: Vec<usize> = (0..m.n_faces()).filter(|&f| m.face_degree(crate::FaceId::new(f)) == n).collect();
+            meshes.push((format!("antiprism {n}"), m, caps));
+        }
+        let g = grid_cube(4);
+        for sel in [vec![0, 20], vec![3, 40, 77], vec![1, 2, 3, 4, 5], vec![10, 11]] {
+            meshes.push((format!("grid cube {sel:?}"), g.clone(), sel));
+        }
+        let mut t = primitives::torus(24, 12, 3.0, 1.0).unwrap();
+        for (i, p) in t.positions_mut().iter_mut().enumerate() {
+            p.z += ((i * 37 % 11) as f64 - 5.0) * 0.01;
+        }
+        for sel in [vec![0, 1], vec![0, 144], vec![5, 50, 150, 250], vec![7, 8, 31, 32]] {
+            meshes.push((format!("torus {sel:?}"), t.clone(), sel));
+        }
+        let mut pairs = 0;
+        for (name, m, sel) in &meshes {
+            let (_, tree) = m.bridge_pairs(sel, Search::Tree).unwrap();
+            let (_, brute) = m.bridge_pairs(sel, Search::Brute).unwrap();
+            assert_eq!(tree, brute, "{name}");
+            pairs += tree.len();
+        }
+        assert!(pairs > 400, "too few bridges to compare ({pairs})");
     }
 
     #[test]

@@ -186,5 +186,9 @@ const RECORDED: &[(&str, u64)] = &[
     // changed on purpose (issue 16): the union with the hub keeps the input's
     // edge ids (columns concatenated); vertices, faces and twins as before
     ("multi_face_handle", 0x813176ecf1c89482),
-    ("multi_face_handle_edges", 0x9dbf2208276d79df),
+    // changed on purpose (issue 16): with two faces the centroid-plane test
+    // is left out as documented (rounding noise was normalized into a plane
+    // and refused bridges: star_prism's); the cleanup deletes its edges at
+    // once (faces renumbered; the other inputs' faces are the same cycles)
+    ("multi_face_handle_edges", 0x376bcbba0adc263b),
 ];
