@@ -40,6 +40,23 @@ def test_wireframe_genus_formula(make):
         assert len(w.self_intersections()) == 0
 
 
+def test_crossing_report_stops_counting_at_a_million():
+    # a wireframe far thicker than its edges folds every tube through its
+    # neighbours: 88 M crossing pairs for P8000 (28 s to count them all);
+    # the warning counts a million and says so, and the mesh is the same
+    m = topomesh.conway("P2000")
+    with pytest.warns(topomesh.GeometryWarning, match=r"at least 1000000 crossing triangle pairs"):
+        w = m.wireframe(0.1)
+    plain = m.wireframe(0.1, check_crossings=False)
+    assert np.array_equal(w.vertices, plain.vertices)
+    assert np.array_equal(w.face_indices, plain.face_indices)
+    # below the limit the exact count is reported
+    with pytest.warns(topomesh.GeometryWarning) as rec:
+        topomesh.conway("P60").wireframe(0.5)
+    msg = str(rec[0].message)
+    assert "at least" not in msg and int(msg.split("surface: ")[1].split()[0]) > 2000
+
+
 def column_counts(m, n):
     # the counts of docs/tools.md: V1, V2, V3 vertices of valence 1, 2, >= 3
     e, k = m.n_edges, n // 2

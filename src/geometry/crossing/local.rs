@@ -4,7 +4,6 @@
 //! output (issue 16: a two-face handle on a 100k-face torus spent 30 ms
 //! here, triangulating and hashing the whole mesh, for a 1–5 ms tool).
 
-use super::crossing_pairs;
 use crate::mesh::{FaceId, Mesh, VertexId};
 use glam::DVec3;
 
@@ -19,8 +18,14 @@ use glam::DVec3;
 /// their vertices (the faces that could share a diagonal or a multi-edge
 /// with them, `triangulate_faces`), the rest of the mesh is not read.
 ///
-/// Cancellable like [`crossing_pairs`].
+/// Cancellable like [`super::crossing_pairs`].
 pub fn crossings_of_new_faces(before: &Mesh, after: &Mesh) -> usize {
+    crossings_of_new_faces_upto(before, after, usize::MAX).0
+}
+
+/// [`crossings_of_new_faces`] counting up to `limit` pairs, and whether it
+/// stopped there (`crossing_pairs_upto`).
+pub fn crossings_of_new_faces_upto(before: &Mesh, after: &Mesh, limit: usize) -> (usize, bool) {
     let new_face = new_faces(before, after);
     let pos = after.positions();
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
@@ -31,7 +36,7 @@ pub fn crossings_of_new_faces(before: &Mesh, after: &Mesh) -> usize {
         }
     }
     if lo.cmpgt(hi).any() || crate::cancel::requested() {
-        return 0; // no new face with a corner
+        return (0, false); // no new face with a corner
     }
     // faces whose box meets the new faces' box, then every face around
     // their vertices
@@ -61,7 +66,8 @@ pub fn crossings_of_new_faces(before: &Mesh, after: &Mesh) -> usize {
     let focus: Vec<bool> = t.tri_face.iter().map(|&f| new_face[f as usize]).collect();
     let mut p = pos.to_vec();
     p.extend_from_slice(&t.points);
-    crossing_pairs(&p, &t.tris, Some(&focus), true).len()
+    let (pairs, stopped) = super::crossing_pairs_upto(&p, &t.tris, Some(&focus), true, &[], limit);
+    (pairs.len(), stopped)
 }
 
 /// Per face of `after`: a real face whose vertex cycle (up to rotation) is
@@ -133,6 +139,7 @@ fn same_cycle(a: &[u32], b: &[u32]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::crossing::crossing_pairs;
 
     /// New faces found by id and around a vertex equal those by a set of
     /// all cycles (the first implementation) on handles, a wireframe and a
@@ -213,5 +220,20 @@ mod tests {
             crossing += (n > 0) as usize;
         }
         assert!(crossing >= 3, "the cases must include crossings: {crossing}");
+    }
+
+    #[test]
+    fn counting_stops_at_the_limit() {
+        // a wireframe far thicker than its edges: every tube through its
+        // neighbours, thousands of crossing pairs
+        let m = crate::schemes::conway::seeds::prism(60).unwrap();
+        let out = m.wireframe(0.5, None).unwrap();
+        let empty = Mesh::new();
+        let all = crossings_of_new_faces(&empty, &out);
+        assert!(all > 2000, "{all} pairs: the case must cross a lot");
+        assert_eq!(crossings_of_new_faces_upto(&empty, &out, all), (all, true));
+        assert_eq!(crossings_of_new_faces_upto(&empty, &out, all + 1), (all, false));
+        let (some, stopped) = crossings_of_new_faces_upto(&empty, &out, 500);
+        assert!(stopped && (500..all).contains(&some), "{some} of {all}");
     }
 }

@@ -15,7 +15,7 @@ mod bvh;
 mod local;
 mod predicate;
 
-pub use local::crossings_of_new_faces;
+pub use local::{crossings_of_new_faces, crossings_of_new_faces_upto};
 
 #[cfg(test)]
 pub(crate) use predicate::{contact_parts, meet_without_rejection, separated_for_test};
@@ -131,6 +131,14 @@ pub fn crossing_pairs(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, co
 /// `piece[i]` other than `u32::MAX` are not tested against each other. An
 /// empty `piece` is [`crossing_pairs`].
 pub fn crossing_pairs_in_pieces(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool, piece: &[u32]) -> Vec<(u32, u32)> {
+    crossing_pairs_upto(p, tris, focus, coplanar, piece, usize::MAX).0
+}
+
+/// [`crossing_pairs_in_pieces`] until `limit` pairs are found, and whether
+/// it stopped there (then the pairs are `limit` or a few more of them, not
+/// all): a report of a surface folded through itself everywhere costs what
+/// `limit` pairs cost, not the quadratically many it has.
+pub fn crossing_pairs_upto(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]>, coplanar: bool, piece: &[u32], limit: usize) -> (Vec<(u32, u32)>, bool) {
     use rayon::prelude::*;
     debug_assert!(piece.is_empty() || piece.len() == tris.len());
     // the hierarchy's records, made once (boxes, ids and focus together:
@@ -144,7 +152,7 @@ pub fn crossing_pairs_in_pieces(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[
         })
         .collect();
     if crate::cancel::requested() {
-        return Vec::new();
+        return (Vec::new(), false);
     }
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     let mut n_focus = 0usize;
@@ -154,7 +162,7 @@ pub fn crossing_pairs_in_pieces(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[
         n_focus += 1;
     }
     if n_focus == 0 {
-        return Vec::new();
+        return (Vec::new(), false);
     }
     items.retain(|b| !(b.lo.cmpgt(hi).any() || b.hi.cmplt(lo).any()));
     let tree = bvh::Bvh::new(items);
@@ -170,10 +178,10 @@ pub fn crossing_pairs_in_pieces(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[
         }
         triangles_meet(ti, ti.map(|v| p[v as usize]), tj, tj.map(|v| p[v as usize]), coplanar)
     };
-    let mut found = tree.pairs(&test);
+    let (mut found, stopped) = tree.pairs_upto(&test, limit);
     found.par_sort_unstable();
     found.dedup();
-    found
+    (found, stopped)
 }
 
 /// The uniform-grid scan [`crossing_pairs`] used before its hierarchy: the
