@@ -88,6 +88,37 @@ pub fn doo_sabin_weight(n: usize, i: usize) -> f64 {
     }
 }
 
+/// The Doo-Sabin points of the corners of a face with corners `hs` (n ≥ 2,
+/// in layout order), in O(n): with αⱼ = (3 + 2 cos(2πj/n)) / 4n (plus 1/4
+/// at j = 0), Σⱼ α₍ⱼ₋ₖ₎ pⱼ = pₖ/4 + 3Σp/4n + (C cos θₖ + S sin θₖ)/2n with
+/// C = Σ pⱼ cos θⱼ, S = Σ pⱼ sin θⱼ (θⱼ = 2πj/n), the cosines and sines
+/// by the angle-addition recurrence.
+fn face_corner_points(p: &[DVec3], vert: &[u32], hs: &[u32], mut put: impl FnMut(usize, DVec3)) {
+    let n = hs.len();
+    let [s, c, sn] = {
+        let mut s = [DVec3::ZERO; 3];
+        let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
+        let (mut cs, mut sn) = (1.0, 0.0);
+        for &h in hs {
+            let x = p[vert[h as usize] as usize];
+            s[0] += x;
+            s[1] += x * cs;
+            s[2] += x * sn;
+            // (cos, sin) of the next multiple of 2π/n
+            (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
+        }
+        s
+    };
+    let nf64 = n as f64;
+    let base = s * (0.75 / nf64);
+    let (ds, dc) = (std::f64::consts::TAU / nf64).sin_cos();
+    let (mut ck, mut sk) = (1.0, 0.0);
+    for (k, &h) in hs.iter().enumerate() {
+        put(k, p[vert[h as usize] as usize] * 0.25 + base + (c * ck + sn * sk) * (0.5 / nf64));
+        (ck, sk) = (ck * dc - sk * ds, sk * dc + ck * ds);
+    }
+}
+
 fn step(m: &Mesh) -> Result<Mesh> {
     check_output_size("doo_sabin", 4 * m.n_halfedges(), m.n_halfedges())?;
     let fl = FaceLayout::new(m)?;
@@ -120,28 +151,9 @@ fn step(m: &Mesh) -> Result<Mesh> {
             out[0].write(p[vert[hs[0] as usize] as usize]);
             return;
         }
-        let [s, c, sn] = {
-            let mut s = [DVec3::ZERO; 3];
-            let (ds, dc) = (std::f64::consts::TAU / n as f64).sin_cos();
-            let (mut cs, mut sn) = (1.0, 0.0);
-            for &h in hs {
-                let x = p[vert[h as usize] as usize];
-                s[0] += x;
-                s[1] += x * cs;
-                s[2] += x * sn;
-                // (cos, sin) of the next multiple of 2π/n
-                (cs, sn) = (cs * dc - sn * ds, sn * dc + cs * ds);
-            }
-            s
-        };
-        let nf64 = n as f64;
-        let base = s * (0.75 / nf64);
-        let (ds, dc) = (std::f64::consts::TAU / nf64).sin_cos();
-        let (mut ck, mut sk) = (1.0, 0.0);
-        for (k, &h) in hs.iter().enumerate() {
-            out[k].write(p[vert[h as usize] as usize] * 0.25 + base + (c * ck + sn * sk) * (0.5 / nf64));
-            (ck, sk) = (ck * dc - sk * ds, sk * dc + ck * ds);
-        }
+        face_corner_points(p, vert, hs, |k, x| {
+            out[k].write(x);
+        });
     });
 
     crate::cancel::check()?;

@@ -137,6 +137,10 @@ impl Corners<'_> {
 
 /// Doo-Sabin on a mesh with holes, with the Chaikin boundary of the module
 /// docs. Positions are `S · P`.
+/// Real faces with more corners than this get their corner points from the
+/// face's sums (`face_corner_points`, O(n)) instead of their dense rows.
+const DENSE_MAX: usize = 64;
+
 pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
     let fl = FaceLayout::new(m)?;
     let (k, holes_he) = corners(m, &fl)?;
@@ -216,10 +220,23 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         let f = face[h] as usize;
         let hs = &fh[off[f] as usize..off[f + 1] as usize];
         let (n, k) = (hs.len(), i - off[f] as usize);
+        if n > DENSE_MAX && !req.stencils {
+            return; // written below in O(n)
+        }
         for (j, &g) in hs.iter().enumerate() {
             row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
         }
     })?;
+    // corner points of large real faces from the face's sums, as the closed
+    // step computes them: the dense rows cost n² per n-gon (a 32,000-gon
+    // took 15 s); written whether or not the rows are kept, so the
+    // positions are the same bits either way
+    let mut pos = pos;
+    for f in (0..nf).filter(|&f| !m.f_hole[f] && (off[f + 1] - off[f]) as usize > DENSE_MAX) {
+        crate::cancel::poll(f)?;
+        let (a, b) = (off[f] as usize, off[f + 1] as usize);
+        super::face_corner_points(&m.pos, vert, &fh[a..b], |k, x| pos[a + k] = x);
+    }
     cols.pos = pos;
     let mesh = Mesh::from_columns(cols)?;
     let origins = if req.origins {

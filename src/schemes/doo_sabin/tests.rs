@@ -166,3 +166,36 @@ fn open_columns_equal_the_general_builder() {
         }
     }
 }
+
+/// A real face above `open::DENSE_MAX` corners on an open mesh (a cup: a
+/// 200-gon bottom, a tube, the top a hole): its corner points come from the
+/// face's sums in O(n), the same bits with and without stencils, within
+/// rounding of the dense rows (`check_level`), and the closed step's bits
+/// for the same face.
+#[test]
+fn large_faces_of_open_meshes_take_the_sums() {
+    let k = 200;
+    let tube = open_tube(k, 2);
+    // cap the bottom hole with a real face, keep the top one open
+    let mut faces: Vec<Vec<u32>> = tube.faces().filter(|&f| !tube.is_hole(f)).map(|f| tube.face_vertices(f).map(|v| v.0).collect()).collect();
+    faces.push((0..k as u32).rev().collect());
+    let sizes: Vec<i64> = faces.iter().map(|f| f.len() as i64).collect();
+    let idx: Vec<i64> = faces.iter().flatten().map(|&v| v as i64).collect();
+    let cup = Mesh::from_polygons(tube.positions().to_vec(), &sizes, &idx, crate::mesh::BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+    assert_eq!((cup.n_holes(), *cup.face_size_histogram().keys().max().unwrap()), (1, k));
+    let full = full_request();
+    let lv = doo_sabin_level(&cup, &full).unwrap();
+    check_level("cup", &cup, &lv);
+    let plain = doo_sabin_level(&cup, &Request::plain()).unwrap();
+    assert!(same_bits(&plain.mesh, &lv.mesh));
+    // the closed step on the same mesh with its hole made a real face
+    // writes the bottom's corners with the same function and order
+    let mut closed = cup.clone();
+    closed.f_hole.iter_mut().for_each(|h| *h = false);
+    let c = doo_sabin(&closed).unwrap();
+    let bottom = (0..cup.n_faces()).find(|&f| cup.face_degree(crate::FaceId::new(f)) == k && !cup.f_hole[f]).unwrap();
+    let fl = crate::schemes::hosts::FaceLayout::new(&cup).unwrap();
+    for i in fl.off[bottom] as usize..fl.off[bottom + 1] as usize {
+        assert_eq!(lv.mesh.positions()[i].to_array().map(f64::to_bits), c.positions()[i].to_array().map(f64::to_bits), "corner {i}");
+    }
+}
