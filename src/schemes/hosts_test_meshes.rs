@@ -342,6 +342,19 @@ pub fn open_tube(n: usize, m: usize) -> Mesh {
     Mesh::from_polygons(pos, &vec![4i64; n * m], &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap()
 }
 
+/// An open tube of `k` quads around and two rings high, its bottom a real
+/// k-gon, its top a hole: an open mesh with one large real face.
+pub fn cup(k: usize) -> Mesh {
+    let tube = open_tube(k, 2);
+    let mut faces: Vec<Vec<u32>> = tube.faces().filter(|&f| !tube.is_hole(f)).map(|f| tube.face_vertices(f).map(|v| v.0).collect()).collect();
+    faces.push((0..k as u32).rev().collect());
+    let sizes: Vec<i64> = faces.iter().map(|f| f.len() as i64).collect();
+    let idx: Vec<i64> = faces.iter().flatten().map(|&v| v as i64).collect();
+    let cup = Mesh::from_polygons(tube.positions().to_vec(), &sizes, &idx, BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
+    assert_eq!((cup.n_holes(), *cup.face_size_histogram().keys().max().unwrap()), (1, k));
+    cup
+}
+
 /// Every output of a level with stencils and origins: the mesh is valid,
 /// `S · P` is the output positions, and the origins are in range.
 pub fn check_level(name: &str, m: &Mesh, lv: &crate::schemes::level::Level) {

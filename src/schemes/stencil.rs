@@ -36,6 +36,21 @@ pub struct Row<'a> {
 }
 
 impl Row<'_> {
+    /// Whether the terms are applied as they come (positions only, no
+    /// rows stored): then [`Row::add_applied`] may add a point directly.
+    #[inline]
+    pub fn applying(&self) -> bool {
+        self.apply.is_some()
+    }
+
+    /// Adds `x · w` to the point of a row that is applied as it comes (a
+    /// point already combined from the columns, e.g. a large face's mean).
+    #[inline]
+    pub fn add_applied(&mut self, x: DVec3, w: f64) {
+        debug_assert!(self.applying(), "add_applied on a stored row");
+        self.point += x * w;
+    }
+
     #[inline]
     pub fn add(&mut self, col: u32, w: f64) {
         match self.apply {

@@ -175,14 +175,7 @@ fn open_columns_equal_the_general_builder() {
 #[test]
 fn large_faces_of_open_meshes_take_the_sums() {
     let k = 200;
-    let tube = open_tube(k, 2);
-    // cap the bottom hole with a real face, keep the top one open
-    let mut faces: Vec<Vec<u32>> = tube.faces().filter(|&f| !tube.is_hole(f)).map(|f| tube.face_vertices(f).map(|v| v.0).collect()).collect();
-    faces.push((0..k as u32).rev().collect());
-    let sizes: Vec<i64> = faces.iter().map(|f| f.len() as i64).collect();
-    let idx: Vec<i64> = faces.iter().flatten().map(|&v| v as i64).collect();
-    let cup = Mesh::from_polygons(tube.positions().to_vec(), &sizes, &idx, crate::mesh::BuildOptions { close_boundaries: true, ..Default::default() }).unwrap();
-    assert_eq!((cup.n_holes(), *cup.face_size_histogram().keys().max().unwrap()), (1, k));
+    let cup = cup(k);
     let full = full_request();
     let lv = doo_sabin_level(&cup, &full).unwrap();
     check_level("cup", &cup, &lv);
