@@ -88,6 +88,16 @@ impl Mesh {
         }
         // faces: untouched ones in order, then the new cycles
         let mut face = vec![u32::MAX; nh];
+        let label = |face: &mut [u32], s: u32, id: u32| {
+            let mut h = s;
+            loop {
+                face[h as usize] = id;
+                h = next[h as usize];
+                if h == s {
+                    break;
+                }
+            }
+        };
         let mut f_start = Vec::with_capacity(self.n_faces());
         let mut f_hole = Vec::with_capacity(self.n_faces());
         for f in 0..self.n_faces() {
@@ -102,14 +112,7 @@ impl Mesh {
             } else {
                 let s = remap(s);
                 f_start.push(s);
-                let mut h = s;
-                loop {
-                    face[h as usize] = id;
-                    h = next[h as usize];
-                    if h == s {
-                        break;
-                    }
-                }
+                label(&mut face, s, id);
             }
             f_hole.push(self.f_hole[f]);
         }
@@ -118,14 +121,7 @@ impl Mesh {
                 continue;
             }
             let id = f_start.len() as u32;
-            let mut h = s;
-            loop {
-                face[h as usize] = id;
-                h = next[h as usize];
-                if h == s {
-                    break;
-                }
-            }
+            label(&mut face, s, id);
             f_start.push(s);
             // no touched face was a hole
             f_hole.push(false);
@@ -215,13 +211,8 @@ mod tests {
             meshes.push(m);
             meshes.push(split);
         }
-        let mut state = 0x2545f4914f6cdd1du64;
-        let mut rnd = |n: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % n as u64) as usize
-        };
+        let mut rng = crate::test_rng::Xorshift::new(0x2545f4914f6cdd1d);
+        let mut rnd = |n: usize| (rng.next_u64() % n as u64) as usize;
         let (mut compared, mut batched) = (0, 0);
         for (i, m) in meshes.iter().enumerate() {
             for trial in 0..40 {

@@ -286,46 +286,35 @@ pub(crate) fn brute_pairs_for_tests(n: usize, group: &[u32], dist: impl Fn(usize
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Xorshift;
 
-    /// A small deterministic generator (xorshift), so the cases repeat.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-        fn below(&mut self, n: u64) -> u64 {
-            self.next() % n
-        }
-        fn unit(&mut self) -> f64 {
-            (self.next() >> 11) as f64 / (1u64 << 53) as f64
-        }
+    /// The tests' generator with a bound: uniform below `n`.
+    fn below(rng: &mut Xorshift, n: u64) -> u64 {
+        rng.next_u64() % n
     }
 
     #[test]
     fn tree_equals_the_sorted_pairs() {
         // clusters, lattices (many equal distances), few and many groups,
         // pairs refused by a hash of their indices or by direction
-        let mut rng = Rng(0x9e3779b97f4a7c15);
+        let mut rng = Xorshift::new(0x9e3779b97f4a7c15);
         let mut taken = 0;
         for case in 0..600 {
-            let n = 2 + rng.below(if case % 10 == 0 { 400 } else { 60 }) as usize;
-            let groups = 1 + rng.below(6) as u32;
+            let n = 2 + below(&mut rng, if case % 10 == 0 { 400 } else { 60 }) as usize;
+            let groups = 1 + below(&mut rng, 6) as u32;
             let lattice = case % 3 == 0;
             let pts: Vec<DVec3> = (0..n)
                 .map(|_| {
                     if lattice {
-                        DVec3::new(rng.below(4) as f64, rng.below(4) as f64, rng.below(2) as f64)
+                        DVec3::new(below(&mut rng, 4) as f64, below(&mut rng, 4) as f64, below(&mut rng, 2) as f64)
                     } else {
-                        let c = rng.below(3) as f64 * 10.0;
+                        let c = below(&mut rng, 3) as f64 * 10.0;
                         DVec3::new(c + rng.unit(), rng.unit() * 0.1, c * rng.unit())
                     }
                 })
                 .collect();
-            let group: Vec<u32> = (0..n).map(|_| rng.below(groups as u64) as u32).collect();
-            let refuse = rng.below(4);
+            let group: Vec<u32> = (0..n).map(|_| below(&mut rng, groups as u64) as u32).collect();
+            let refuse = below(&mut rng, 4);
             let dist = |x: usize, y: usize| (pts[x] - pts[y]).length();
             let valid = |x: usize, y: usize| match refuse {
                 0 => true,
