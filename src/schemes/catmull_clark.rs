@@ -156,7 +156,7 @@ fn level_step(m: &Mesh, req: &Request) -> Result<Level> {
 /// smooth closed mesh (no stencils built), else through the stencils.
 pub fn catmull_clark_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
     let fl = std::cell::OnceCell::new();
-    super::level::level_with_data(m, req, data, catmull_clark_level, |a, k| {
+    super::level::level_with_data_linear(m, req, data, catmull_clark_level, |a, k| {
         let fl = super::level::once(&fl, || FaceLayout::new(m))?;
         smooth_apply(m, fl, a, k)
     })
@@ -388,6 +388,49 @@ mod tests {
             let worst = a.iter().zip(b).map(|(x, y)| (*x - *y).length()).fold(0.0, f64::max);
             assert!(worst <= 1e-12, "{name}: positions-only rows differ from S·P by {worst}");
             assert!(a.iter().zip(b).any(|(x, y)| x != y), "{name}: the large face did not take its mean");
+        }
+    }
+
+    /// Data on a mesh with a large real face go through the positions-only
+    /// level (`level_with_data_linear`): within rounding of the stencils
+    /// applied to them, for 1 and 4 columns (a partial chunk of three),
+    /// open and creased, Catmull-Clark and Doo-Sabin; data with a NaN take
+    /// the stencils (a level refuses non-finite positions).
+    #[test]
+    fn data_on_large_faces_go_through_the_positions() {
+        let cup = cup(300);
+        let creased = crate::schemes::conway::seeds::prism(300).unwrap();
+        let mut edge = vec![0.0; creased.n_edges()];
+        edge[0] = 2.0;
+        let cr = crate::schemes::creases::Creases { edge, vertex: Vec::new() };
+        type With = fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)>;
+        let schemes: [(&str, With, fn(&Mesh, &Request) -> Result<Level>); 2] = [
+            ("catmull_clark", catmull_clark_level_with, catmull_clark_level),
+            ("doo_sabin", crate::schemes::doo_sabin::doo_sabin_level_with, crate::schemes::doo_sabin::doo_sabin_level),
+        ];
+        for (name, m, creases) in [("cup", &cup, None), ("creased prism", &creased, Some(&cr))] {
+            let nv = m.n_vertices();
+            let one: Vec<f64> = (0..nv).map(|v| (v as f64 * 0.37).sin()).collect();
+            let four: Vec<f64> = (0..4 * nv).map(|i| (i as f64 * 0.11).cos()).collect();
+            let mut nan = four.clone();
+            nan[4 * 7 + 3] = f64::NAN;
+            let data = vec![(one, 1), (four, 4), (nan, 4)];
+            let req = Request { creases, ..Request::plain() };
+            for (s, with, level) in schemes {
+                if creases.is_some() && s == "doo_sabin" {
+                    continue; // Doo-Sabin has no crease rules
+                }
+                let (lv, got) = with(m, &req, &data).unwrap();
+                let st = level(m, &Request { stencils: true, ..req }).unwrap().stencils.unwrap();
+                assert_eq!(lv.stencils.is_none(), true);
+                for ((a, k), g) in data.iter().zip(&got) {
+                    let want = st.apply(a, *k).unwrap();
+                    assert_eq!(g.len(), want.len());
+                    for (i, (x, y)) in g.iter().zip(&want).enumerate() {
+                        assert!(x.is_nan() == y.is_nan() && (x.is_nan() || (x - y).abs() <= 1e-12 * (1.0 + y.abs())), "{s} on {name}, {k} columns, entry {i}: {x} vs {y}");
+                    }
+                }
+            }
         }
     }
 

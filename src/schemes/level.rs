@@ -295,6 +295,73 @@ pub(crate) fn once<T>(cell: &std::cell::OnceCell<T>, make: impl FnOnce() -> Resu
     Ok(cell.get().expect("just set"))
 }
 
+/// Faces above this many corners make [`level_with_data_linear`] carry
+/// the data as positions.
+const LARGE_FACE: usize = 64;
+
+/// [`level_with_data`] for a scheme whose connectivity does not depend on
+/// the positions and whose positions are the stencils applied to them
+/// (Catmull-Clark, Doo-Sabin): on a mesh with a real face above
+/// `LARGE_FACE` corners that would interpolate through the stencils
+/// (holes or creases, no stencils asked for), the data go through the
+/// positions-only level instead, three columns at a time as the positions
+/// of a copy of the mesh. The stencils hold all n² terms of an n-gon's
+/// rows (an open P8000 with one attribute took 1.9 s); the positions-only
+/// rows take a large face's mean or sums once. Data with a non-finite
+/// value, or that a level refuses as positions, take the stencils.
+pub fn level_with_data_linear(
+    m: &Mesh,
+    req: &Request,
+    data: &[(Vec<f64>, usize)],
+    level: impl Fn(&Mesh, &Request) -> Result<Level>,
+    direct: impl Fn(&[f64], usize) -> Result<Vec<f64>>,
+) -> Result<(Level, Vec<Vec<f64>>)> {
+    let smooth = req.smooth_on(m) && !m.v_out.iter().any(|&o| o & POINT != 0);
+    let large = || (0..m.n_faces()).any(|f| !m.f_hole[f] && m.f_start[f] & POINT == 0 && m.face_degree(crate::mesh::FaceId(f as u32)) > LARGE_FACE);
+    if data.is_empty() || smooth || req.stencils || !large() {
+        return level_with_data(m, req, data, level, direct);
+    }
+    let lv = level(m, req)?;
+    let plain = Request { origins: false, ..*req };
+    let nv = m.n_vertices();
+    let rows = lv.mesh.n_vertices();
+    // three columns at a time as a copy's positions; None where a level
+    // refuses them (positions must be finite: NaN or huge data)
+    let through_positions = |a: &[f64], k: usize| -> Option<Vec<f64>> {
+        let mut o = vec![0.0; rows * k];
+        let mut copy = m.clone();
+        for c in (0..k).step_by(3) {
+            for v in 0..nv {
+                let x = |j: usize| if c + j < k { a[v * k + c + j] } else { 0.0 };
+                copy.pos[v] = glam::DVec3::new(x(0), x(1), x(2));
+            }
+            let p = level(&copy, &plain).ok()?.mesh.pos;
+            for (r, q) in p.iter().enumerate() {
+                for j in 0..(k - c).min(3) {
+                    o[r * k + c + j] = q[j];
+                }
+            }
+        }
+        Some(o)
+    };
+    let mut stencils = None;
+    let mut out = Vec::with_capacity(data.len());
+    for (a, k) in data {
+        let o = match a.iter().all(|x| x.is_finite()).then(|| through_positions(a, *k)).flatten() {
+            Some(o) => o,
+            None => {
+                crate::cancel::check()?;
+                if stencils.is_none() {
+                    stencils = level(m, &Request { stencils: true, ..*req })?.stencils;
+                }
+                stencils.as_ref().expect("requested").apply(a, *k)?
+            }
+        };
+        out.push(o);
+    }
+    Ok((lv, out))
+}
+
 /// A level that also interpolates vertex data (row-major `(rows, k)`
 /// arrays): through `direct` (the scheme's masks applied to the data, no
 /// stencils built) on a smooth closed mesh without point-spheres and when

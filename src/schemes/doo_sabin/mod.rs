@@ -236,7 +236,7 @@ fn step(m: &Mesh) -> Result<Mesh> {
 /// stencils.
 pub fn doo_sabin_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
     let fl = std::cell::OnceCell::new();
-    super::level::level_with_data(m, req, data, doo_sabin_level, |a, k| {
+    super::level::level_with_data_linear(m, req, data, doo_sabin_level, |a, k| {
         let fl = super::level::once(&fl, || FaceLayout::new(m))?;
         direct_data(m, fl, a, k)
     })
