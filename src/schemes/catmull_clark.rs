@@ -394,7 +394,8 @@ mod tests {
     /// Data on a mesh with a large real face go through the positions-only
     /// level (`level_with_data_linear`): within rounding of the stencils
     /// applied to them, for 1 and 4 columns (a partial chunk of three),
-    /// open and creased, Catmull-Clark and Doo-Sabin; data with a NaN take
+    /// open and creased, Catmull-Clark, Doo-Sabin and Loop (its centroid fan
+    /// first); data with a NaN take
     /// the stencils (a level refuses non-finite positions).
     #[test]
     fn data_on_large_faces_go_through_the_positions() {
@@ -404,9 +405,10 @@ mod tests {
         edge[0] = 2.0;
         let cr = crate::schemes::creases::Creases { edge, vertex: Vec::new() };
         type With = fn(&Mesh, &Request, &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)>;
-        let schemes: [(&str, With, fn(&Mesh, &Request) -> Result<Level>); 2] = [
+        let schemes: [(&str, With, fn(&Mesh, &Request) -> Result<Level>); 3] = [
             ("catmull_clark", catmull_clark_level_with, catmull_clark_level),
             ("doo_sabin", crate::schemes::doo_sabin::doo_sabin_level_with, crate::schemes::doo_sabin::doo_sabin_level),
+            ("loop", crate::schemes::loop_subdivision::loop_level_with, crate::schemes::loop_subdivision::loop_level),
         ];
         for (name, m, creases) in [("cup", &cup, None), ("creased prism", &creased, Some(&cr))] {
             let nv = m.n_vertices();

@@ -301,7 +301,7 @@ const LARGE_FACE: usize = 64;
 
 /// [`level_with_data`] for a scheme whose connectivity does not depend on
 /// the positions and whose positions are the stencils applied to them
-/// (Catmull-Clark, Doo-Sabin): on a mesh with a real face above
+/// (Catmull-Clark, Doo-Sabin, Loop after its centroid fan): on a mesh with a real face above
 /// `LARGE_FACE` corners that would interpolate through the stencils
 /// (holes or creases, no stencils asked for), the data go through the
 /// positions-only level instead, three columns at a time as the positions

@@ -138,7 +138,7 @@ pub fn loop_level(m: &Mesh, req: &Request) -> Result<Level> {
 /// fan's centroids), else through the stencils.
 pub fn loop_level_with(m: &Mesh, req: &Request, data: &[(Vec<f64>, usize)]) -> Result<(Level, Vec<Vec<f64>>)> {
     let fan = std::cell::OnceCell::new();
-    super::level::level_with_data(m, req, data, loop_level, |a, k| {
+    super::level::level_with_data_linear(m, req, data, loop_level, |a, k| {
         let fan = super::level::once(&fan, || fan_triangulate(m))?;
         let Some(t) = fan else { return smooth_apply(m, a, k) };
         // the fan's centroids follow the input vertices, in face order
