@@ -295,15 +295,12 @@ pub(crate) fn once<T>(cell: &std::cell::OnceCell<T>, make: impl FnOnce() -> Resu
     Ok(cell.get().expect("just set"))
 }
 
-/// Faces above this many corners make [`level_with_data_linear`] carry
-/// the data as positions.
-const LARGE_FACE: usize = 64;
-
 /// [`level_with_data`] for a scheme whose connectivity does not depend on
 /// the positions and whose positions are the stencils applied to them
-/// (Catmull-Clark, Doo-Sabin, Loop after its centroid fan): on a mesh with a real face above
-/// `LARGE_FACE` corners that would interpolate through the stencils
-/// (holes or creases, no stencils asked for), the data go through the
+/// (Catmull-Clark, Doo-Sabin, Loop after its centroid fan): where the
+/// stencils would hold over 16 terms per corner (Σ n² over the real faces,
+/// large faces) and the data would go through them (holes or creases, no
+/// stencils asked for), the data go through the
 /// positions-only level instead, three columns at a time as the positions
 /// of a copy of the mesh. The stencils hold all n² terms of an n-gon's
 /// rows (an open P8000 with one attribute took 1.9 s); the positions-only
@@ -317,7 +314,17 @@ pub fn level_with_data_linear(
     direct: impl Fn(&[f64], usize) -> Result<Vec<f64>>,
 ) -> Result<(Level, Vec<Vec<f64>>)> {
     let smooth = req.smooth_on(m) && !m.v_out.iter().any(|&o| o & POINT != 0);
-    let large = || (0..m.n_faces()).any(|f| !m.f_hole[f] && m.f_start[f] & POINT == 0 && m.face_degree(crate::mesh::FaceId(f as u32)) > LARGE_FACE);
+    // the stencils' terms grow as Σ n² over the real faces; past 16 terms
+    // per corner a level per three columns costs less
+    let large = || {
+        let (mut sq, mut corners) = (0u64, 0u64);
+        for f in (0..m.n_faces()).filter(|&f| !m.f_hole[f] && m.f_start[f] & POINT == 0) {
+            let n = m.face_degree(crate::mesh::FaceId(f as u32)) as u64;
+            sq += n * n;
+            corners += n;
+        }
+        sq > 16 * corners
+    };
     if data.is_empty() || smooth || req.stencils || !large() {
         return level_with_data(m, req, data, level, direct);
     }
