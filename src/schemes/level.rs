@@ -313,7 +313,7 @@ pub fn level_with_data_linear(
     level: impl Fn(&Mesh, &Request) -> Result<Level>,
     direct: impl Fn(&[f64], usize) -> Result<Vec<f64>>,
 ) -> Result<(Level, Vec<Vec<f64>>)> {
-    let smooth = req.smooth_on(m) && !m.v_out.iter().any(|&o| o & POINT != 0);
+    let smooth = masks_apply(m, req);
     // the stencils' terms grow as Σ n² over the real faces; past 16 terms
     // per corner a level per three columns costs less
     let large = || {
@@ -369,6 +369,12 @@ pub fn level_with_data_linear(
     Ok((lv, out))
 }
 
+/// Whether the scheme's direct masks interpolate data on `m`: a smooth
+/// closed mesh without point-spheres ([`level_with_data`]).
+fn masks_apply(m: &Mesh, req: &Request) -> bool {
+    req.smooth_on(m) && !m.v_out.iter().any(|&o| o & POINT != 0)
+}
+
 /// A level that also interpolates vertex data (row-major `(rows, k)`
 /// arrays): through `direct` (the scheme's masks applied to the data, no
 /// stencils built) on a smooth closed mesh without point-spheres and when
@@ -380,7 +386,7 @@ pub fn level_with_data(
     level: impl Fn(&Mesh, &Request) -> Result<Level>,
     direct: impl Fn(&[f64], usize) -> Result<Vec<f64>>,
 ) -> Result<(Level, Vec<Vec<f64>>)> {
-    let smooth = req.smooth_on(m) && !m.v_out.iter().any(|&o| o & POINT != 0);
+    let smooth = masks_apply(m, req);
     if data.is_empty() || (smooth && !req.stencils) {
         let lv = level(m, req)?;
         let out = data.iter().map(|(a, k)| direct(a, *k)).collect::<Result<_>>()?;
