@@ -447,7 +447,8 @@ impl PyMesh {
     /// face of each triangle (triangles are grouped by face, in face order).
     ///
     /// Each face is triangulated in the plane of its Newell normal (fanned
-    /// if convex, ear-clipped otherwise) so that no diagonal is an edge of
+    /// if convex, strictly convex faces of more than 32 corners by ears of
+    /// every other corner, repeatedly; ear-clipped otherwise) so that no diagonal is an edge of
     /// the mesh or another face's diagonal: on a mesh without self-loops,
     /// one- or two-gons or vertices repeated in a face, every triangle edge
     /// has exactly two triangles. Points are added where that needs them:

@@ -16,7 +16,9 @@
 //! point): diagonals of their projection can fold the surface through itself
 //! (one Doo-Sabin step of a Sierpinski tetrahedron: manifold3d then sees genus
 //! 0 instead of 3). Convex faces are fanned
-//! from their first corner; faces star-shaped from their corners' mean are
+//! from their first corner, strictly convex ones of more than
+//! [`HALVING_MIN`] corners cut by [`halving`] (ears of every other corner,
+//! repeatedly: a fan's boxes all overlap at its first corner); faces star-shaped from their corners' mean are
 //! ear-clipped in linear time ([`star_clip`]); other non-convex faces go to
 //! `earcut` (z-order hashed; near-linear on most polygons, quadratic on
 //! stars, noisy outlines and spirals), or past [`MONOTONE_MIN`] corners
@@ -188,6 +190,48 @@ fn fan(n: usize, from: usize, out: &mut Vec<[u32; 3]>) {
     out.extend((1..n - 1).map(|i| [from, from + i, from + i + 1].map(|k| (k % n) as u32)));
 }
 
+/// Strictly convex faces of more corners than this are triangulated by
+/// [`halving`], not fanned: every triangle of a fan holds its first corner,
+/// so their bounding boxes all overlap, and the crossing scan's broad phase
+/// (`geometry::crossing`) tested every pair of a large fan and every pair of
+/// it with the faces along the rim (`self_intersections` of
+/// `conway("P8000")`'s two 8,000-gons took 3.9 s).
+pub const HALVING_MIN: usize = 32;
+
+/// Ears of every other corner, then of every other remaining corner, until
+/// a triangle is left: triangles of ⌈log₂ n⌉ sizes, each spanning a run of
+/// the boundary about as long as its size, so a triangle's box overlaps
+/// O(log n) others of the face and O(1) of each level along the rim instead
+/// of the whole fan (O(n log n) box pairs for the face, not n²/2).
+/// Counter-clockwise like the cycle; on a strictly convex polygon every
+/// triangle has positive area (corners of a strictly convex polygon are in
+/// strictly convex position).
+fn halving(n: usize, out: &mut Vec<[u32; 3]>) {
+    out.clear();
+    let mut ring: Vec<u32> = (0..n as u32).collect();
+    let mut next = Vec::with_capacity(n / 2 + 2);
+    while ring.len() > 3 {
+        let m = ring.len();
+        next.clear();
+        let mut k = 0;
+        while k + 2 < m {
+            out.push([ring[k], ring[k + 1], ring[k + 2]]);
+            next.push(ring[k]);
+            k += 2;
+        }
+        // k is m − 2 (m even: the last corner stays) or m − 1 (m odd)
+        next.extend_from_slice(&ring[k..]);
+        std::mem::swap(&mut ring, &mut next);
+    }
+    out.push([ring[0], ring[1], ring[2]]);
+}
+
+/// Whether every corner of the projected polygon turns strictly left.
+fn strictly_convex(p: &[DVec2]) -> bool {
+    let n = p.len();
+    (0..n).all(|i| cross2(p[i], p[(i + 1) % n], p[(i + 2) % n]) > 0.0)
+}
+
 /// Whether `t` (local indices) is a triangulation of the n-gon as a disk:
 /// n − 2 triangles, every boundary edge once in its own direction, every
 /// other edge once each way.
@@ -320,6 +364,10 @@ fn star_from_mean(p: &[DVec2]) -> bool {
 /// The first choice for one face (local indices into its cycle, n ≥ 3).
 fn first_choice(s: &mut Scratch, shape: Shape) {
     let n = s.cyc.len();
+    if shape == Shape::Convex && n > HALVING_MIN && strictly_convex(&s.p) {
+        halving(n, &mut s.local);
+        return;
+    }
     if n == 3 || shape != Shape::NonConvex || n > EARCUT_LIMIT {
         fan(n, 0, &mut s.local);
         return;

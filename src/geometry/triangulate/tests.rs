@@ -466,3 +466,49 @@ fn write_if_plain_agrees_with_check_then_write() {
     }
     assert!(yes >= 2);
 }
+
+/// Large strictly convex faces are halved, not fanned: a disk
+/// triangulation at every size, positive triangles tiling the cap, a closed
+/// triangle mesh, and boxes that overlap in O(n log n) pairs (a fan's boxes
+/// all hold its first corner: n²/2 pairs).
+#[test]
+fn large_convex_faces_are_halved() {
+    let mut out = Vec::new();
+    for n in 3..300 {
+        halving(n, &mut out);
+        assert!(is_disk_triangulation(n, &out), "{n}");
+    }
+    for n in [HALVING_MIN + 1, 100, 1000, 4096] {
+        let m = crate::schemes::conway::seeds::prism(n).unwrap();
+        let t = m.triangulate();
+        assert_closed(&m, &t);
+        assert!(t.points.is_empty());
+        let cap = m.faces().find(|&f| m.face_degree(f) == n).unwrap();
+        // face 0 of the tiling check is the cap, seen from +z
+        let pos = m.positions();
+        let tris: Vec<[u32; 3]> = t.tris.iter().zip(&t.tri_face).filter(|(_, &f)| f == cap.0).map(|(t, _)| *t).collect();
+        assert_eq!(tris.len(), n - 2);
+        let normal = pos[tris[0][0] as usize].z.signum();
+        let mut area = 0.0;
+        for tri in &tris {
+            let z = (pos[tri[1] as usize] - pos[tri[0] as usize]).cross(pos[tri[2] as usize] - pos[tri[0] as usize]).z * normal;
+            assert!(z > 0.0, "{n}: inverted or flat triangle {tri:?}");
+            area += z / 2.0;
+        }
+        let cyc: Vec<DVec3> = m.face_vertices(cap).map(|v| pos[v.idx()]).collect();
+        let exact: f64 = (0..n).map(|k| cyc[k].truncate().perp_dot(cyc[(k + 1) % n].truncate()) / 2.0).sum::<f64>().abs();
+        assert!((area - exact).abs() < 1e-9 * exact, "{n}: {area} vs {exact}");
+        let boxes: Vec<(DVec3, DVec3)> = tris.iter().map(|t| {
+            let q = t.map(|v| pos[v as usize]);
+            (q[0].min(q[1]).min(q[2]), q[0].max(q[1]).max(q[2]))
+        }).collect();
+        let mut pairs = 0usize;
+        for (i, a) in boxes.iter().enumerate() {
+            for b in &boxes[i + 1..] {
+                pairs += !(a.0.cmpgt(b.1).any() || b.0.cmpgt(a.1).any()) as usize;
+            }
+        }
+        let bound = 4 * n * (usize::BITS - n.leading_zeros()) as usize;
+        assert!(pairs <= bound, "{n}: {pairs} overlapping boxes, bound {bound}");
+    }
+}
