@@ -252,12 +252,13 @@ impl PyMesh {
     /// sharing an edge never count; sharing a vertex, only when they meet
     /// away from it. The exact check ``menger``, ``add_handle`` and
     /// ``create_pipe`` use (``src/geometry/crossing/``): near-linear in the
-    /// triangles, except where thousands of triangles share a vertex (an
-    /// apex of high valence), whose boxes all overlap, so every pair there
-    /// is tested: the 8,000-valent apex of ``conway("Y8000")`` takes about
-    /// 0.9 s (benches/CATALOG.md, large faces). Large convex faces are not
-    /// fanned (see :meth:`triangulate`): the two 8,000-gons of
-    /// ``conway("P8000")`` take 0.06 s.
+    /// triangles. Triangles around a vertex of high valence are paired by
+    /// their directions there (``conway("Y8000")``'s 8,000-valent apex:
+    /// 0.02 s), and large convex faces are not fanned (see
+    /// :meth:`triangulate`; the two 8,000-gons of ``conway("P8000")``: 0.05
+    /// s). What stays quadratic is thousands of long triangles converging
+    /// on one spot without a common vertex, or two such fans facing each
+    /// other: their boxes all overlap there (benches/CATALOG.md, large faces).
     fn self_intersections<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, numpy::PyArray2<i64>>> {
         let pairs = super::run_interruptible(py, || {
             let (tris, p) = crate::geometry::triangles_with_points(&self.inner);

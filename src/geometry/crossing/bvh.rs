@@ -48,10 +48,36 @@ struct Node {
 pub(super) struct Bvh {
     items: Vec<Item>,
     nodes: Vec<Node>,
-    /// Pairs found so far and the count at which the traversal stops
-    /// (`pairs_upto`).
+}
+
+/// Pairs found so far, by every traversal sharing it, and the count at
+/// which they stop (`pairs_upto`).
+pub(super) struct Budget {
     found: AtomicUsize,
     limit: usize,
+}
+
+impl Budget {
+    pub fn new(limit: usize) -> Budget {
+        Budget { found: AtomicUsize::new(0), limit }
+    }
+
+    /// `test`, counting its hits, and false once `limit` pairs are found.
+    pub fn counted(&self, test: &(impl Fn(u32, u32) -> bool + Sync), i: u32, j: u32) -> bool {
+        if self.found.load(Relaxed) >= self.limit {
+            return false;
+        }
+        let hit = test(i, j);
+        if hit {
+            self.found.fetch_add(1, Relaxed);
+        }
+        hit
+    }
+
+    /// Whether `limit` pairs were found.
+    pub fn spent(&self) -> bool {
+        self.found.load(Relaxed) >= self.limit
+    }
 }
 
 #[inline]
@@ -64,58 +90,75 @@ impl Bvh {
     /// The hierarchy over `items` (reordered into leaf order).
     pub fn new(mut items: Vec<Item>) -> Bvh {
         if items.is_empty() {
-            return Bvh { items, nodes: Vec::new(), found: AtomicUsize::new(0), limit: usize::MAX };
+            return Bvh { items, nodes: Vec::new() };
         }
         let empty = Node { lo: DVec3::ZERO, hi: DVec3::ZERO, a: 0, b: 0, leaf: true, focus: false };
         let mut nodes = vec![empty; node_counts(items.len()).0];
         build(&mut nodes, 0, &mut items, 0);
-        Bvh { items, nodes, found: AtomicUsize::new(0), limit: usize::MAX }
+        Bvh { items, nodes }
+    }
+
+    /// The box of every triangle, or None for an empty tree.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        self.nodes.first().map(|n| (n.lo, n.hi))
     }
 
     /// Every pair `(i, j)`, `i < j`, of triangles with overlapping boxes
     /// and at least one focused, for which `test` holds; unsorted.
+    #[cfg(test)]
     pub fn pairs(&self, test: &(impl Fn(u32, u32) -> bool + Sync)) -> Vec<(u32, u32)> {
-        if self.nodes.is_empty() {
-            return Vec::new();
-        }
-        self.within(0, test, 0)
+        self.pairs_upto(test, &Budget::new(usize::MAX))
     }
 
-    /// [`Bvh::pairs`] until `limit` pairs are found (a few more where
-    /// threads find them at once), and whether it stopped there: a surface
+    /// [`Bvh::pairs`] until `budget`'s limit of pairs is found (a few more
+    /// where threads find them at once; `budget.spent()` tells): a surface
     /// folded through itself everywhere has quadratically many crossing
     /// pairs (88 M for a wireframe of a prism's two 8,000-gons, 28 s), and a
     /// report needs only to say that there are that many.
-    pub fn pairs_upto(mut self, test: &(impl Fn(u32, u32) -> bool + Sync), limit: usize) -> (Vec<(u32, u32)>, bool) {
-        self.limit = limit;
-        let counted = |i: u32, j: u32| {
-            if self.found.load(Relaxed) >= limit {
-                return false;
-            }
-            let hit = test(i, j);
-            if hit {
-                self.found.fetch_add(1, Relaxed);
-            }
-            hit
-        };
-        let out = self.pairs(&counted);
-        (out, self.found.load(Relaxed) >= limit)
+    pub fn pairs_upto(&self, test: &(impl Fn(u32, u32) -> bool + Sync), budget: &Budget) -> Vec<(u32, u32)> {
+        if self.nodes.is_empty() {
+            return Vec::new();
+        }
+        let counted = |i: u32, j: u32| budget.counted(test, i, j);
+        Walk { a: self, b: self, budget }.within(0, &counted, 0)
     }
 
+    /// The pairs with one triangle in this tree and one in `other`, as
+    /// [`Bvh::pairs_upto`] finds them within one tree.
+    pub fn pairs_between_upto(&self, other: &Bvh, test: &(impl Fn(u32, u32) -> bool + Sync), budget: &Budget) -> Vec<(u32, u32)> {
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return Vec::new();
+        }
+        let counted = |i: u32, j: u32| budget.counted(test, i, j);
+        let mut out = Vec::new();
+        Walk { a: self, b: other, budget }.between_into(0, 0, &counted, 0, &mut out);
+        out
+    }
+}
+
+/// A traversal of the pairs of one tree (`a` and `b` the same) or of two
+/// (node ids of `between_into` index `a`'s nodes first, `b`'s second).
+struct Walk<'a> {
+    a: &'a Bvh,
+    b: &'a Bvh,
+    budget: &'a Budget,
+}
+
+impl Walk<'_> {
     /// Cancelled, or `limit` pairs found: the traversal returns.
     fn halted(&self) -> bool {
-        crate::cancel::requested() || self.found.load(Relaxed) >= self.limit
+        crate::cancel::requested() || self.budget.spent()
     }
 
-    /// Pairs inside node `a`.
+    /// Pairs inside node `a` (of tree `a`, which is `b`).
     fn within(&self, a: u32, test: &(impl Fn(u32, u32) -> bool + Sync), depth: u32) -> Vec<(u32, u32)> {
-        let n = self.nodes[a as usize];
+        let n = self.a.nodes[a as usize];
         if !n.focus || self.halted() {
             return Vec::new(); // cancelled: incomplete, the caller checks
         }
         if n.leaf {
             let mut out = Vec::new();
-            let items = &self.items[n.a as usize..n.b as usize];
+            let items = &self.a.items[n.a as usize..n.b as usize];
             for (k, x) in items.iter().enumerate() {
                 for y in &items[k + 1..] {
                     leaf_pair(x, y, test, &mut out);
@@ -142,26 +185,28 @@ impl Bvh {
         out
     }
 
+    /// Pairs with one triangle in node `a` of tree `a` and one in node `b`
+    /// of tree `b`.
     fn between_into(&self, a: u32, b: u32, test: &(impl Fn(u32, u32) -> bool + Sync), depth: u32, out: &mut Vec<(u32, u32)>) {
-        let (na, nb) = (self.nodes[a as usize], self.nodes[b as usize]);
+        let (na, nb) = (self.a.nodes[a as usize], self.b.nodes[b as usize]);
         if !(na.focus || nb.focus) || !overlap((na.lo, na.hi), (nb.lo, nb.hi)) {
             return;
         }
         if na.leaf && nb.leaf {
             // only the boxes that reach into the other leaf's box can
             // overlap one of its boxes: most of a leaf's 8 × 8 pairs end here
-            let near = |n: &Node, o: &Node| {
+            let near = |items: &[Item], n: &Node, o: &Node| {
                 let (mut k, mut at) = (0, [0usize; LEAF]);
                 for x in n.a as usize..n.b as usize {
                     at[k] = x;
-                    k += overlap((self.items[x].lo, self.items[x].hi), (o.lo, o.hi)) as usize;
+                    k += overlap((items[x].lo, items[x].hi), (o.lo, o.hi)) as usize;
                 }
                 (k, at)
             };
-            let ((ka, xa), (kb, yb)) = (near(&na, &nb), near(&nb, &na));
+            let ((ka, xa), (kb, yb)) = (near(&self.a.items, &na, &nb), near(&self.b.items, &nb, &na));
             for &x in &xa[..ka] {
                 for &y in &yb[..kb] {
-                    leaf_pair(&self.items[x], &self.items[y], test, out);
+                    leaf_pair(&self.a.items[x], &self.b.items[y], test, out);
                 }
             }
             return;
@@ -171,14 +216,14 @@ impl Bvh {
         }
         // descend the larger node (a leaf never)
         let split_a = !na.leaf && (nb.leaf || (na.hi - na.lo).max_element() >= (nb.hi - nb.lo).max_element());
-        let (x, y, other) = if split_a { (na.a, na.b, b) } else { (nb.a, nb.b, a) };
+        let ((x, xb), (y, yb)) = if split_a { ((na.a, b), (na.b, b)) } else { ((a, nb.a), (a, nb.b)) };
         if depth < PAR_DEPTH {
-            let (mut l, r) = rayon::join(|| self.between(x, other, test, depth + 1), || self.between(y, other, test, depth + 1));
+            let (mut l, r) = rayon::join(|| self.between(x, xb, test, depth + 1), || self.between(y, yb, test, depth + 1));
             l.extend(r);
             out.extend(l);
         } else {
-            self.between_into(x, other, test, depth + 1, out);
-            self.between_into(y, other, test, depth + 1, out);
+            self.between_into(x, xb, test, depth + 1, out);
+            self.between_into(y, yb, test, depth + 1, out);
         }
     }
 }

@@ -12,6 +12,7 @@
 use glam::DVec3;
 
 mod bvh;
+mod hub;
 mod local;
 mod predicate;
 
@@ -165,7 +166,6 @@ pub fn crossing_pairs_upto(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]
         return (Vec::new(), false);
     }
     items.retain(|b| !(b.lo.cmpgt(hi).any() || b.hi.cmplt(lo).any()));
-    let tree = bvh::Bvh::new(items);
     let test = |i: u32, j: u32| {
         if !piece.is_empty() && piece[i as usize] != u32::MAX && piece[i as usize] == piece[j as usize] {
             return false;
@@ -178,10 +178,11 @@ pub fn crossing_pairs_upto(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]
         }
         triangles_meet(ti, ti.map(|v| p[v as usize]), tj, tj.map(|v| p[v as usize]), coplanar)
     };
-    let (mut found, stopped) = tree.pairs_upto(&test, limit);
+    let budget = bvh::Budget::new(limit);
+    let mut found = hub::pairs_upto(p, tris, items, &test, &budget);
     found.par_sort_unstable();
     found.dedup();
-    (found, stopped)
+    (found, budget.spent())
 }
 
 /// The uniform-grid scan [`crossing_pairs`] used before its hierarchy: the

@@ -296,10 +296,17 @@ fn planarity(poly: &[u32], pos: &[DVec3]) -> f64 {
 /// saddle's vertex face, a bent pipe wall) are of the order of the depth.
 const PLANAR_REL: f64 = 1e-8;
 
+/// Largest polygon [`split_planar`] searches for a planar split: the search
+/// tries every diagonal and measures both parts, O(n³) (the 2,000-gon vertex
+/// face of the apex of `conway("Y2000")` in the merged construction took 3 s
+/// of its 10); a larger one is fanned (or coned, as a vertex face).
+const SPLIT_SEARCH_MAX: usize = 64;
+
 /// Splits a non-planar polygon along a diagonal into planar parts when one
-/// exists (a saddle vertex face folds into squares), else fans it into
-/// triangles from its first corner. `mesh_tol`: an absolute tolerance (the
-/// merged construction's), else [`PLANAR_REL`] of the polygon's size.
+/// exists (a saddle vertex face folds into squares; searched up to
+/// [`SPLIT_SEARCH_MAX`] corners), else fans it into triangles from its first
+/// corner. `mesh_tol`: an absolute tolerance (the merged construction's),
+/// else [`PLANAR_REL`] of the polygon's size.
 fn split_planar(poly: &[u32], pos: &[DVec3], mesh_tol: Option<f64>, out: &mut Vec<Vec<u32>>) {
     let n = poly.len();
     let p0 = pos[poly[0] as usize];
@@ -308,7 +315,7 @@ fn split_planar(poly: &[u32], pos: &[DVec3], mesh_tol: Option<f64>, out: &mut Ve
         out.push(poly.to_vec());
         return;
     }
-    for i in 0..n {
+    for i in 0..if n <= SPLIT_SEARCH_MAX { n } else { 0 } {
         for j in i + 2..n {
             if i == 0 && j == n - 1 {
                 continue;
