@@ -115,7 +115,9 @@ pub(crate) fn local_crossings(p: &[DVec3], tris: &[[u32; 3]], owner: &[u32], fir
 
 /// Crossing triangle pairs `(i, j)`, `i < j`, of a triangulation
 /// ([`triangles_meet`] with `coplanar`), among the pairs whose bounding
-/// boxes overlap, found by a bounding volume hierarchy ([`bvh`]). With
+/// boxes overlap, found by a bounding volume hierarchy ([`bvh`]); pairs
+/// sharing a vertex of many triangles, among those whose arcs of
+/// directions there overlap ([`hub`]). With
 /// `focus`, only pairs with at least one focused triangle are tested, and
 /// only triangles overlapping the focused triangles' bounding box enter the
 /// hierarchy (a local check after a local change costs what the change
