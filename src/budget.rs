@@ -138,6 +138,65 @@ pub fn check(call: &str, what: &str, bytes: u64) -> Result<()> {
 /// Levels below this are checked only against a budget the user set.
 const SMALL: u64 = 16 << 20;
 
+/// Faces of more corners than this count in [`check_stencils`].
+const DENSE_FACE: usize = 64;
+
+/// Bytes per stencil term, with the rows' construction: an open
+/// `conway("P8000")` with one corner attribute (the transfer reads the
+/// stencils) peaked at 1.2 GB through Doo-Sabin and 1.9 GB through
+/// honeycomb, for 64 M terms over its 8,000-gon.
+const STENCIL_TERM_BYTES: u64 = 32;
+
+/// Stencil terms per (row, column) pair of an n-gon for the schemes whose
+/// rows over a face are dense (each output point born in or beside the
+/// face weighs all its corners), counted on `conway("P1000")` with and
+/// without one cap: Catmull-Clark 2 (edge and vertex points hold the face
+/// point), Loop 3 (through its centroid fan), Doo-Sabin and honeycomb 1;
+/// the others' rows over a face are linear in its size.
+pub fn dense_terms(scheme: &str) -> u64 {
+    match scheme {
+        "catmull_clark" => 2,
+        "loop" => 3,
+        "doo_sabin" | "honeycomb" => 1,
+        _ => 0,
+    }
+}
+
+/// Refuses a level's stencils (the subdivision matrix, and what vertex and
+/// corner data read through it) when the dense rows over the input's
+/// large faces would not fit: [`dense_terms`] × Σ n² over the real faces of
+/// more than [`DENSE_FACE`] corners, at [`STENCIL_TERM_BYTES`] (a
+/// 32,000-gon's Doo-Sabin rows alone are about 33 GB). Ordinary faces are
+/// not counted: their rows are within the level's own prediction.
+pub fn check_stencils(call: &str, m: &Mesh) -> Result<()> {
+    let per = dense_terms(call);
+    if per == 0 {
+        return Ok(());
+    }
+    let (mut pairs, mut largest) = (0u64, (0usize, 0usize));
+    for f in m.faces() {
+        if m.is_hole(f) || m.f_start[f.idx()] & POINT != 0 {
+            continue;
+        }
+        let n = m.face_degree(f);
+        if n > DENSE_FACE {
+            pairs = pairs.saturating_add((n as u64).saturating_mul(n as u64));
+            if n > largest.1 {
+                largest = (f.idx(), n);
+            }
+        }
+    }
+    if pairs == 0 {
+        return Ok(());
+    }
+    let terms = pairs.saturating_mul(per);
+    let what = format!(
+        "its stencils (the subdivision matrix, which vertex and corner data on open or creased meshes go through), about {terms} terms over face {} of {} corners and the other faces of more than {DENSE_FACE}",
+        largest.0, largest.1
+    );
+    check(call, &what, terms.saturating_mul(STENCIL_TERM_BYTES))
+}
+
 /// Below this a probe is not worth a system call.
 const PROBE_MIN: u64 = 64 << 20;
 

@@ -756,3 +756,33 @@ def test_points_of_the_wrong_length_name_the_parameter(bad):
         topomesh.cube().create_vertex(bad)
     with pytest.raises(MeshError, match="spherize: center must be three real numbers"):
         topomesh.cube().spherize(center=bad)
+
+
+def test_budget_refuses_the_dense_stencils_of_a_large_face():
+    """Stencils over an n-gon hold about n² terms for Catmull-Clark, Loop,
+    Doo-Sabin and honeycomb: a level that needs them (corner data through
+    the generic transfer on an open mesh, a subdivision matrix) is refused
+    before it is built when they would not fit (an open mesh's 32,000-gon
+    would take about 33 GB), while the same level without them runs."""
+    p = topomesh.conway("P2000")
+    sizes, idx = p.face_sizes, p.face_indices
+    starts = np.concatenate([[0], np.cumsum(sizes)])
+    cap = int(np.flatnonzero(sizes == 2000)[0])
+    m = topomesh.Mesh.from_polygons(p.vertices, [idx[starts[f]:starts[f + 1]] for f in range(p.n_faces) if f != cap])
+    assert m.n_holes == 1 and m.face_sizes.max() == 2000
+    c = int(m.face_sizes.sum())
+    uv = m.with_attributes(corner={"uv": np.arange(2 * c, dtype=float).reshape(c, 2)})
+    try:
+        topomesh.set_memory_budget(64 << 20)
+        assert m.doo_sabin().n_faces > 0  # positions only: no stencils
+        with pytest.raises(MeshError, match=r"doo_sabin: its stencils .* about 4000000 terms over face \d+ of 2000 corners .* memory budget"):
+            uv.doo_sabin()
+        with pytest.raises(MeshError, match=r"catmull_clark: its stencils .* about 8000000 terms"):
+            m.catmull_clark(correspondence=True)
+        # the dual's rows over a face are linear in its size: not refused
+        d = uv.dual()
+        assert d.corner_attributes["uv"].shape == (d.face_sizes.sum(), 2)
+    finally:
+        topomesh.set_memory_budget(None)
+    out = uv.doo_sabin()
+    assert out.corner_attributes["uv"].shape == (out.face_sizes.sum(), 2)

@@ -232,6 +232,9 @@ pub(crate) fn run<'py>(
             level: st.level,
         };
         st.level += 1;
+        if req.stencils {
+            crate::budget::check_stencils(spec.name, m)?;
+        }
         let lv = match direct {
             Some(f) => {
                 let (lv, data) = f(m, &req, &st.attrs)?;
@@ -305,6 +308,7 @@ pub(crate) fn run<'py>(
             let lvt = if lv.stencils.is_some() && lv.origins.is_some() {
                 &lv
             } else {
+                crate::budget::check_stencils(spec.name, m)?;
                 full = level(m, &Request { stencils: true, origins: true, ..req })?;
                 &full
             };
