@@ -47,6 +47,19 @@ pub(crate) struct Spec {
     /// multi-level call), where the scheme frees part of it early (issue
     /// 19); plain calls only, the output equal to `level`'s.
     pub owned: Option<OwnedLevel>,
+    /// Corner data at points born in large faces written by the scheme
+    /// after the generic transfer, whose level then skips their dense rows.
+    pub large_corners: Option<LargeCorners>,
+}
+
+/// A scheme's corner data at points born in large faces (open Doo-Sabin's
+/// `open_large_corners`): where `applies` holds for the level's input, the
+/// level is asked for `Request::skip_large_face_rows` and `fill` (input,
+/// output, input rows, output rows, k) writes those corners after the
+/// generic transfer.
+pub(crate) struct LargeCorners {
+    pub applies: fn(&Mesh) -> bool,
+    pub fill: fn(&Mesh, &Mesh, &[f64], &mut [f64], usize) -> crate::Result<()>,
 }
 
 /// A level that takes its input by value.
@@ -73,12 +86,13 @@ impl Spec {
             corner_direct: None,
             linear: true,
             owned: None,
+            large_corners: None,
         })
     }
 
     /// A scheme without crease, face-varying or direct-data rules.
     pub fn plain(name: &'static str, predict: crate::budget::Predictor) -> Spec {
-        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, corner_direct: None, linear: true, owned: None }
+        Spec { name, predict, options: SubdivOptions::default(), uses_creases: false, face_varying: None, with_data: None, corner_direct: None, linear: true, owned: None, large_corners: None }
     }
 
     /// The scheme's own masks interpolate vertex data (no stencils built
@@ -91,6 +105,12 @@ impl Spec {
     /// applies (it returns `None` where not, and the generic transfer runs).
     pub fn with_corners(self, corners: impl Fn(&Mesh, &Mesh, &[f64], usize) -> crate::Result<Option<Vec<f64>>> + Send + Sync + 'static) -> Spec {
         Spec { corner_direct: Some(Box::new(corners)), ..self }
+    }
+
+    /// Corner data at points born in large faces come from `fill` after
+    /// the generic transfer (`LargeCorners`).
+    pub fn with_large_corners(self, applies: fn(&Mesh) -> bool, fill: fn(&Mesh, &Mesh, &[f64], &mut [f64], usize) -> crate::Result<()>) -> Spec {
+        Spec { large_corners: Some(LargeCorners { applies, fill }), ..self }
     }
 
     /// Levels after the first take their input by value (`owned`).
@@ -224,15 +244,19 @@ pub(crate) fn run<'py>(
         // origins needed), else the generic transfer
         let corners_direct = spec.corner_direct.as_ref().filter(|_| !st.corner_direct_declined && crate::schemes::corner_direct::applies(m));
         let transfer = !st.corner_rows.is_empty() && corners_direct.is_none();
+        // the stencils only carry corner data: the scheme writes the corners
+        // of large faces itself, and the level skips their dense rows
+        let large = spec.large_corners.as_ref().filter(|l| transfer && !st.want_matrix && (st.attrs.is_empty() || direct.is_some()) && (l.applies)(m));
         let req = Request {
             stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()) || transfer,
             origins: st.want_origins || transfer,
             creases: st.creases.as_ref(),
             options: st.options,
             level: st.level,
+            skip_large_face_rows: large.is_some(),
         };
         st.level += 1;
-        if req.stencils {
+        if req.stencils && large.is_none() {
             crate::budget::check_stencils(spec.name, m)?;
         }
         let lv = match direct {
@@ -308,7 +332,9 @@ pub(crate) fn run<'py>(
             let lvt = if lv.stencils.is_some() && lv.origins.is_some() {
                 &lv
             } else {
-                crate::budget::check_stencils(spec.name, m)?;
+                if large.is_none() {
+                    crate::budget::check_stencils(spec.name, m)?;
+                }
                 full = level(m, &Request { stencils: true, origins: true, ..req })?;
                 &full
             };
@@ -316,7 +342,13 @@ pub(crate) fn run<'py>(
                 return Err(crate::MeshError::Precondition(format!("{}: its level has no stencils or origins, so it cannot carry corner attributes", st.name)));
             };
             let mut arrays: Vec<(Vec<f64>, usize)> = rest.iter().map(|&i| std::mem::take(&mut st.corner_rows[i])).collect();
+            let inputs: Vec<Vec<f64>> = if large.is_some() { arrays.iter().map(|(a, _)| a.clone()).collect() } else { Vec::new() };
             crate::schemes::corner_transfer::transfer(m, &lvt.mesh, s, o, &mut arrays)?;
+            if let Some(l) = large {
+                for ((a, k), input) in arrays.iter_mut().zip(&inputs) {
+                    (l.fill)(m, &lvt.mesh, input, a, *k)?;
+                }
+            }
             for (&i, a) in rest.iter().zip(arrays) {
                 st.corner_rows[i] = a;
             }

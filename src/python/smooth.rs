@@ -77,7 +77,7 @@ impl PyMesh {
     /// open into tubes. Parameters, return and errors as :meth:`catmull_clark`.
     #[pyo3(signature = (iterations = 1, progress = false, *, correspondence = false))]
     fn doo_sabin<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = big_int)] iterations: i128, progress: bool, correspondence: bool) -> PyResult<Bound<'py, PyAny>> {
-        levels::run(py, self, iterations, progress, levels::Spec::plain("doo_sabin", predict::doo_sabin).with_direct(schemes::doo_sabin::doo_sabin_level_with).with_corners(schemes::corner_direct::doo_sabin), correspondence, schemes::doo_sabin::doo_sabin_level)
+        levels::run(py, self, iterations, progress, levels::Spec::plain("doo_sabin", predict::doo_sabin).with_direct(schemes::doo_sabin::doo_sabin_level_with).with_corners(schemes::corner_direct::doo_sabin).with_large_corners(schemes::doo_sabin::open_large_corners_apply, schemes::doo_sabin::open_large_corners), correspondence, schemes::doo_sabin::doo_sabin_level)
     }
 
     /// Loop subdivision (Loop 1987) with Loop's original

@@ -188,7 +188,7 @@ impl FaceVarying {
             Interpolation::Smooth | Interpolation::CornersOnly | Interpolation::CornersPlus1 | Interpolation::CornersPlus2 => {}
         }
         let boundary = if interp == Interpolation::Smooth { Boundary::EdgeOnly } else { Boundary::EdgeAndCorner };
-        let req = Request { stencils: true, origins: false, creases: Some(&c), options: SubdivOptions { boundary, ..geometry }, level: 0 };
+        let req = Request { stencils: true, origins: false, creases: Some(&c), options: SubdivOptions { boundary, ..geometry }, level: 0, skip_large_face_rows: false };
         let lv = scheme(m, &req)?;
         let s = lv.stencils.as_ref().expect("requested");
         let values = s.apply(&self.values, self.k)?;

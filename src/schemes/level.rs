@@ -99,6 +99,12 @@ pub struct Request<'a> {
     /// Index of this level within one call (0 for the first): √3's
     /// boundary rule refines the boundary on odd indices only.
     pub level: usize,
+    /// The stencils are read only by the corner transfer, whose caller
+    /// writes the corners at points born in large faces itself: a scheme
+    /// may give those points a placeholder row (open Doo-Sabin's corner
+    /// points in real faces of more than 64 corners, whose dense rows cost
+    /// n² per n-gon). Positions are unaffected.
+    pub skip_large_face_rows: bool,
 }
 
 impl Request<'_> {

@@ -70,6 +70,7 @@ mod open;
 mod tests;
 
 use open::open_step;
+pub use open::{open_large_corners, open_large_corners_apply};
 
 /// One level of Doo-Sabin subdivision. See the module docs.
 pub fn doo_sabin(m: &Mesh) -> Result<Mesh> {

@@ -3,6 +3,7 @@
 //! into the output's columns (issue 19: no corner lists at the peak).
 
 use super::*;
+use crate::mesh::POINT;
 
 /// The output corners of an open level, each with its tail vertex and twin
 /// corner in closed form. Corner blocks: `[F-faces and holes (2 per hole
@@ -223,6 +224,12 @@ pub(super) fn open_step(m: &Mesh, req: &Request) -> Result<Level> {
         if n > DENSE_MAX && !req.stencils {
             return; // written below in O(n)
         }
+        if n > DENSE_MAX && req.skip_large_face_rows {
+            // a placeholder the caller's corner data replaces
+            // (`open_large_corners`); the position is written below
+            row.add(vert[h], 1.0);
+            return;
+        }
         for (j, &g) in hs.iter().enumerate() {
             row.add(vert[g as usize], if n == 1 { 1.0 } else { doo_sabin_weight(n, (j + n - k) % n) });
         }
@@ -316,4 +323,75 @@ pub(super) fn corner_lists(m: &Mesh) -> (Vec<u32>, Vec<u32>, Vec<u32>, Vec<bool>
     let mut holes = vec![false; sizes.len()];
     holes[..m.n_faces()].copy_from_slice(&m.f_hole);
     (sizes, cv, tw, holes)
+}
+
+/// Corner data at the corner points of an open level's real faces of more
+/// than [`DENSE_MAX`] corners, written over `out_rows` (the transfer's
+/// rows, exported output corners by `k`) from the input's (`rows`,
+/// exported input corners): Doo & Sabin's mask of the face's corner values,
+/// the value the generic transfer gives them (its rule 1, the corner point
+/// read in its own face), in O(n) per face ([`super::face_masks`]) where
+/// the transfer would read a dense row of n per corner point. With
+/// `Request::skip_large_face_rows` those rows are placeholders and this is
+/// what gives those corners their values. A closed input is left alone (its
+/// corner data take `corner_direct`).
+pub fn open_large_corners(m: &Mesh, out: &Mesh, rows: &[f64], out_rows: &mut [f64], k: usize) -> Result<()> {
+    if k == 0 || !open_large_corners_apply(m) {
+        return Ok(());
+    }
+    let fl = FaceLayout::new(m)?;
+    let nf = m.n_faces();
+    let big: Vec<bool> = (0..nf).map(|f| !m.f_hole[f] && fl.degree(f) > DENSE_MAX).collect();
+    // exported corner offset of each input face (holes own none)
+    let mut ioff = Vec::with_capacity(nf);
+    let mut at = 0usize;
+    for f in 0..nf {
+        ioff.push(at);
+        if !m.f_hole[f] && m.f_start[f] & POINT == 0 {
+            at += fl.degree(f);
+        }
+    }
+    if rows.len() != at * k || at == 0 {
+        return Err(crate::error::MeshError::InvalidArgument(format!("doo_sabin: corner data of {} numbers for {at} corners of {k}", rows.len())));
+    }
+    let face = &m.he_face;
+    let pv = super::face_masks(m, &fl, rows, k, |c, h| {
+        let f = face[h as usize] as usize;
+        // holes' masks are computed and never read
+        if m.f_hole[f] { 0 } else { ioff[f] + c - fl.off[f] as usize }
+    })?;
+    // output vertex i < nh is the corner point of layout corner i
+    let nh = fl.fh.len();
+    let from_big = |v: usize| v < nh && big[face[fl.fh[v] as usize] as usize];
+    let mut c = 0usize;
+    for g in 0..out.n_faces() {
+        let s = out.f_start[g];
+        if out.f_hole[g] || s & POINT != 0 {
+            continue;
+        }
+        let mut h = s;
+        loop {
+            let v = out.he_vert[h as usize] as usize;
+            if from_big(v) {
+                out_rows[c * k..(c + 1) * k].copy_from_slice(&pv[v * k..(v + 1) * k]);
+            }
+            c += 1;
+            h = out.he_next[h as usize];
+            if h == s {
+                break;
+            }
+        }
+    }
+    debug_assert_eq!(c * k, out_rows.len());
+    Ok(())
+}
+
+/// Whether [`open_large_corners`] writes anything for this input (and a
+/// level may take `Request::skip_large_face_rows`): open, no point-spheres
+/// (their level runs without them, renumbered), a real face of more than
+/// [`DENSE_MAX`] corners.
+pub fn open_large_corners_apply(m: &Mesh) -> bool {
+    m.f_hole.iter().any(|&h| h)
+        && !m.v_out.iter().any(|&o| o & POINT != 0)
+        && m.faces().any(|f| !m.is_hole(f) && m.face_degree(f) > DENSE_MAX)
 }
