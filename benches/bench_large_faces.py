@@ -5,7 +5,10 @@ at two sizes n. A row whose time grows by more than 8x for 4x the size
 (and takes over 50 ms) is flagged ``<<<``: its cost is quadratic in a face's
 size somewhere (issue 16's sweep of 2026-12-06 found the closest-edge
 handle, its cleanup, the local crossing check, crossing reports without a
-limit, and the open Doo-Sabin and Catmull-Clark rows this way).
+limit, and the open Doo-Sabin and Catmull-Clark rows this way; its second
+pass the fans of large convex faces and of high-valence vertices in the
+crossing scan, the tools' Builder at such vertices, Menger's planar split,
+and corner attributes through open Doo-Sabin and honeycomb).
 
     python benches/bench_large_faces.py [--sizes 2000 8000] [--seeds P A Y] [--only NAME]
 
@@ -68,7 +71,14 @@ def rows():
     ]
     for s in ["catmull_clark", "doo_sabin", "loop", "sqrt3", "dual", "honeycomb"]:
         out.append((f"open {s}", lambda m, n, s=s: getattr(open_of(m, n), s)()))
+        out.append((f"open {s} + corner attribute", lambda m, n, s=s: getattr(with_corners(open_of(m, n)), s)()))
     return out
+
+
+def with_corners(m: topomesh.Mesh) -> topomesh.Mesh:
+    """``m`` with one corner attribute of two columns (a value per corner: seams everywhere)."""
+    c = int(m.face_sizes.sum())
+    return m.with_attributes(corner={"uv": np.arange(2 * c, dtype=float).reshape(c, 2)})
 
 
 def _round_trip(m):

@@ -764,8 +764,8 @@ def test_budget_refuses_the_dense_stencils_of_a_large_face():
     the generic transfer on an open mesh, a subdivision matrix) is refused
     before it is built when they would not fit (an open mesh's 32,000-gon
     would take about 33 GB), while the same level without them runs, and
-    Doo-Sabin, which writes a large face's corners without its rows, runs
-    with corner data too."""
+    so do Doo-Sabin and honeycomb with corner data: they write a large
+    face's corners without its rows."""
     p = topomesh.conway("P2000")
     sizes, idx = p.face_sizes, p.face_indices
     starts = np.concatenate([[0], np.cumsum(sizes)])
@@ -778,10 +778,16 @@ def test_budget_refuses_the_dense_stencils_of_a_large_face():
         topomesh.set_memory_budget(64 << 20)
         assert m.honeycomb().n_faces > 0  # positions only: no stencils
         with pytest.raises(MeshError, match=r"honeycomb: its stencils .* about 4000000 terms over face \d+ of 2000 corners .* memory budget"):
-            uv.honeycomb()
-        # Doo-Sabin writes the large face's corners itself, without its rows
-        ds = uv.doo_sabin()
-        assert ds.corner_attributes["uv"].shape == (ds.face_sizes.sum(), 2)
+            m.honeycomb(correspondence=True)
+        # corner data: Doo-Sabin and honeycomb write the large face's
+        # corners themselves, without its rows
+        for s in ("doo_sabin", "honeycomb"):
+            out = getattr(uv, s)()
+            assert out.corner_attributes["uv"].shape == (out.face_sizes.sum(), 2)
+        # Loop's corner data go through its face-varying mesh, whose level
+        # needs no stencils; its matrix does (3 terms per pair)
+        with pytest.raises(MeshError, match=r"loop: its stencils .* about 12000000 terms"):
+            m.loop(correspondence=True)
         with pytest.raises(MeshError, match=r"catmull_clark: its stencils .* about 8000000 terms"):
             m.catmull_clark(correspondence=True)
         # the dual's rows over a face are linear in its size: not refused
@@ -789,5 +795,5 @@ def test_budget_refuses_the_dense_stencils_of_a_large_face():
         assert d.corner_attributes["uv"].shape == (d.face_sizes.sum(), 2)
     finally:
         topomesh.set_memory_budget(None)
-    out = uv.honeycomb()
-    assert out.corner_attributes["uv"].shape == (out.face_sizes.sum(), 2)
+    r = m.honeycomb(correspondence=True)
+    assert r[1].matrix.nnz > 2000**2

@@ -59,7 +59,7 @@ pub(crate) struct Spec {
 /// generic transfer.
 pub(crate) struct LargeCorners {
     pub applies: fn(&Mesh) -> bool,
-    pub fill: fn(&Mesh, &Mesh, &[f64], &mut [f64], usize) -> crate::Result<()>,
+    pub fill: Box<dyn Fn(&Mesh, &Mesh, &[f64], &mut [f64], usize) -> crate::Result<()> + Send + Sync>,
 }
 
 /// A level that takes its input by value.
@@ -109,8 +109,12 @@ impl Spec {
 
     /// Corner data at points born in large faces come from `fill` after
     /// the generic transfer (`LargeCorners`).
-    pub fn with_large_corners(self, applies: fn(&Mesh) -> bool, fill: fn(&Mesh, &Mesh, &[f64], &mut [f64], usize) -> crate::Result<()>) -> Spec {
-        Spec { large_corners: Some(LargeCorners { applies, fill }), ..self }
+    pub fn with_large_corners(
+        self,
+        applies: fn(&Mesh) -> bool,
+        fill: impl Fn(&Mesh, &Mesh, &[f64], &mut [f64], usize) -> crate::Result<()> + Send + Sync + 'static,
+    ) -> Spec {
+        Spec { large_corners: Some(LargeCorners { applies, fill: Box::new(fill) }), ..self }
     }
 
     /// Levels after the first take their input by value (`owned`).
@@ -244,9 +248,11 @@ pub(crate) fn run<'py>(
         // origins needed), else the generic transfer
         let corners_direct = spec.corner_direct.as_ref().filter(|_| !st.corner_direct_declined && crate::schemes::corner_direct::applies(m));
         let transfer = !st.corner_rows.is_empty() && corners_direct.is_none();
-        // the stencils only carry corner data: the scheme writes the corners
-        // of large faces itself, and the level skips their dense rows
-        let large = spec.large_corners.as_ref().filter(|l| transfer && !st.want_matrix && (st.attrs.is_empty() || direct.is_some()) && (l.applies)(m));
+        // the stencils only carry corner data (no matrix, no vertex data,
+        // which may read the stencils even through a direct path): the
+        // scheme writes the corners of large faces itself, and the level
+        // skips their dense rows
+        let large = spec.large_corners.as_ref().filter(|l| transfer && !st.want_matrix && st.attrs.is_empty() && (l.applies)(m));
         let req = Request {
             stencils: st.want_matrix || (!st.attrs.is_empty() && direct.is_none()) || transfer,
             origins: st.want_origins || transfer,

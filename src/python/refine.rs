@@ -58,6 +58,7 @@ impl PyMesh {
         let spec = super::levels::Spec::plain("honeycomb", predict::truncation)
             .with_direct(move |m, r, data| honeycomb::honeycomb_level_with(m, t, tension, r, data))
             .with_corners(move |i, o, rows, k| crate::schemes::corner_direct::honeycomb(i, o, t, tension, rows, k))
+            .with_large_corners(honeycomb::large_corners_apply, move |i, o, rows, out, k| honeycomb::large_corners(i, o, t, tension, rows, out, k))
             .with_owned(move |m, r| honeycomb::honeycomb_level_owned(m, t, tension, r));
         super::levels::run(py, self, iterations, progress, spec, correspondence, |m, r| honeycomb::honeycomb_level(m, t, tension, r))
     }

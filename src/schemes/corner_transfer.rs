@@ -72,7 +72,7 @@ const NO_HOME: &str = "corner attributes: an output corner has no input face to 
 
 /// Exported corner offset of every face (holes and point-sphere faces own
 /// none) and the number of exported corners, in parallel.
-fn export_offsets(m: &Mesh) -> Result<(Vec<u32>, usize)> {
+pub(crate) fn export_offsets(m: &Mesh) -> Result<(Vec<u32>, usize)> {
     let deg: Vec<u32> = (0..m.n_faces())
         .into_par_iter()
         .with_min_len(super::hosts::MIN_LEN)
@@ -504,6 +504,34 @@ pub fn corner_stencils(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins) -> R
         return Err(MeshError::Precondition(NO_HOME.into()));
     }
     Ok(t)
+}
+
+/// Writes `pv` (a row of `k` per output vertex) over the exported output
+/// corners (`out_rows`, faces in order, holes and point-spheres skipped) at
+/// the vertices `take` accepts: a scheme's own values for the corners at
+/// points its masks give directly (`doo_sabin::open_large_corners`,
+/// `honeycomb::large_corners`).
+pub(crate) fn write_vertex_rows(out: &Mesh, pv: &[f64], k: usize, take: impl Fn(usize) -> bool, out_rows: &mut [f64]) {
+    let mut c = 0usize;
+    for g in 0..out.n_faces() {
+        let s = out.f_start[g];
+        if out.f_hole[g] || s & POINT != 0 {
+            continue;
+        }
+        let mut h = s;
+        loop {
+            let v = out.he_vert[h as usize] as usize;
+            if take(v) {
+                out_rows[c * k..(c + 1) * k].copy_from_slice(&pv[v * k..(v + 1) * k]);
+            }
+            c += 1;
+            h = out.he_next[h as usize];
+            if h == s {
+                break;
+            }
+        }
+    }
+    debug_assert_eq!(c * k, out_rows.len());
 }
 
 #[cfg(test)]

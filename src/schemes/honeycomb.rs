@@ -202,9 +202,22 @@ fn level_on(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>, req: &Reque
             let f = face[i] as usize;
             let hs = fl.corners(f);
             let nn = hs.len();
+            if req.skip_large_face_rows && nn > LARGE_FACE && !m.f_hole[f] {
+                // a placeholder the caller's corner data replace (`large_corners`)
+                row.add(vert[i], 1.0);
+                return;
+            }
             // as in `honeycomb`: one-gons and holes keep p (module docs)
             let a = if nn == 1 || m.f_hole[f] { 1.0 } else { tension.unwrap_or_else(|| default_tension(nn)) };
             let n = fl.local(i as u32, f as u32);
+            if a == 1.0 {
+                // the edge point alone: the other weights are 0, and their
+                // cosines cost n² over an n-sided hole (8,000 sides: 7 s)
+                let g = hs[n];
+                row.add(vert[g as usize], 1.0 - t);
+                row.add(vert[(g ^ 1) as usize], t);
+                return;
+            }
             for (mm, &g) in hs.iter().enumerate() {
                 let w = if mm == n {
                     a
@@ -256,6 +269,49 @@ fn level_on(m: &Mesh, fl: &FaceLayout, t: f64, tension: Option<f64>, req: &Reque
         None
     };
     Ok(Level { mesh, stencils, origins, creases: None })
+}
+
+/// Real faces of more corners than this: their points' stencil rows (n
+/// each, n² per face) may be left to [`large_corners`].
+const LARGE_FACE: usize = 64;
+
+/// Whether [`large_corners`] writes anything for this input (and a level
+/// may take `Request::skip_large_face_rows`): open (a closed mesh's corner
+/// data take `corner_direct`), no point-spheres, a real face of more than
+/// [`LARGE_FACE`] corners.
+pub fn large_corners_apply(m: &Mesh) -> bool {
+    m.f_hole.iter().any(|&h| h)
+        && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0)
+        && m.faces().any(|f| !m.is_hole(f) && m.face_degree(f) > LARGE_FACE)
+}
+
+/// Corner data at the points of real faces of more than [`LARGE_FACE`]
+/// corners (output vertex `h` for half-edge `h`), written over `out_rows`
+/// (exported output corners by `k`) from the input's `rows` (exported input
+/// corners): eq. 2 over the face's corner values, the value the generic
+/// transfer gives them (its rule 1), in O(n) per face ([`face_masks`]) where
+/// the transfer reads a dense row of n per point. With
+/// `Request::skip_large_face_rows` those rows are placeholders and this is
+/// what gives those corners their values.
+pub fn large_corners(m: &Mesh, out: &Mesh, t: f64, tension: Option<f64>, rows: &[f64], out_rows: &mut [f64], k: usize) -> Result<()> {
+    if k == 0 || !large_corners_apply(m) {
+        return Ok(());
+    }
+    let fl = FaceLayout::new(m)?;
+    let (ioff, at) = super::corner_transfer::export_offsets(m)?;
+    if rows.len() != at * k || at == 0 {
+        return Err(crate::error::MeshError::InvalidArgument(format!("honeycomb: corner data of {} numbers for {at} corners of {k}", rows.len())));
+    }
+    let face = &m.he_face;
+    let pv = face_masks(m, &fl, t, tension, rows, k, |c, h| {
+        let f = face[h as usize] as usize;
+        // holes' rows are computed and never read
+        if m.f_hole[f] { 0 } else { ioff[f] as usize + c - fl.off[f] as usize }
+    })?;
+    let nh = m.n_halfedges();
+    let big = |v: usize| v < nh && !m.f_hole[face[v] as usize] && fl.degree(face[v] as usize) > LARGE_FACE;
+    super::corner_transfer::write_vertex_rows(out, &pv, k, big, out_rows);
+    Ok(())
 }
 
 /// [`honeycomb_level`] that also interpolates vertex data (`(rows, k)`
@@ -633,6 +689,40 @@ mod tests {
         for v in &lp[0] {
             let p = h.position(*v);
             assert!(mids.iter().any(|q| (*q - p).length() < 1e-12), "{p} is not an edge point of the old boundary");
+        }
+    }
+
+    /// Corner data through an open level whose large faces' rows are
+    /// placeholders (`Request::skip_large_face_rows`) and then written by
+    /// `large_corners` equal the generic transfer over the full rows
+    /// within rounding (a cup with a 200-gon bottom, corner values with
+    /// seams, 1 and 3 columns, default and set tension); the placeholders
+    /// alone do not.
+    #[test]
+    fn large_face_corners_equal_the_full_transfer() {
+        use crate::schemes::corner_transfer::transfer;
+        use crate::schemes::hosts::test_meshes::{cup, full_request};
+        let cup = cup(200);
+        assert!(large_corners_apply(&cup));
+        let full = full_request();
+        let skip = Request { skip_large_face_rows: true, ..full };
+        let corners: usize = cup.faces().filter(|&f| !cup.is_hole(f)).map(|f| cup.face_degree(f)).sum();
+        for (t, a) in [(0.5, None), (0.3, Some(0.7))] {
+            let (x, y) = (honeycomb_level(&cup, t, a, &full).unwrap(), honeycomb_level(&cup, t, a, &skip).unwrap());
+            assert_eq!(x.mesh.positions(), y.mesh.positions());
+            for k in [1, 3] {
+                let rows: Vec<f64> = (0..corners * k).map(|i| ((i * 7919) % 1013) as f64 * 0.01 - 3.0).collect();
+                let mut want = vec![(rows.clone(), k)];
+                transfer(&cup, &x.mesh, x.stencils.as_ref().unwrap(), x.origins.as_ref().unwrap(), &mut want).unwrap();
+                let mut got = vec![(rows.clone(), k)];
+                transfer(&cup, &y.mesh, y.stencils.as_ref().unwrap(), y.origins.as_ref().unwrap(), &mut got).unwrap();
+                assert!(want[0].0.iter().zip(&got[0].0).any(|(p, q)| (p - q).abs() > 1e-3), "the placeholders alone differ");
+                large_corners(&cup, &y.mesh, t, a, &rows, &mut got[0].0, k).unwrap();
+                assert_eq!(want[0].0.len(), got[0].0.len());
+                for (i, (p, q)) in want[0].0.iter().zip(&got[0].0).enumerate() {
+                    assert!((p - q).abs() <= 1e-12 * (1.0 + p.abs()), "t {t}, row {}, column {}: {p} vs {q}", i / k, i % k);
+                }
+            }
         }
     }
 }

@@ -342,15 +342,7 @@ pub fn open_large_corners(m: &Mesh, out: &Mesh, rows: &[f64], out_rows: &mut [f6
     let fl = FaceLayout::new(m)?;
     let nf = m.n_faces();
     let big: Vec<bool> = (0..nf).map(|f| !m.f_hole[f] && fl.degree(f) > DENSE_MAX).collect();
-    // exported corner offset of each input face (holes own none)
-    let mut ioff = Vec::with_capacity(nf);
-    let mut at = 0usize;
-    for f in 0..nf {
-        ioff.push(at);
-        if !m.f_hole[f] && m.f_start[f] & POINT == 0 {
-            at += fl.degree(f);
-        }
-    }
+    let (ioff, at) = crate::schemes::corner_transfer::export_offsets(m)?;
     if rows.len() != at * k || at == 0 {
         return Err(crate::error::MeshError::InvalidArgument(format!("doo_sabin: corner data of {} numbers for {at} corners of {k}", rows.len())));
     }
@@ -358,31 +350,12 @@ pub fn open_large_corners(m: &Mesh, out: &Mesh, rows: &[f64], out_rows: &mut [f6
     let pv = super::face_masks(m, &fl, rows, k, |c, h| {
         let f = face[h as usize] as usize;
         // holes' masks are computed and never read
-        if m.f_hole[f] { 0 } else { ioff[f] + c - fl.off[f] as usize }
+        if m.f_hole[f] { 0 } else { ioff[f] as usize + c - fl.off[f] as usize }
     })?;
     // output vertex i < nh is the corner point of layout corner i
     let nh = fl.fh.len();
     let from_big = |v: usize| v < nh && big[face[fl.fh[v] as usize] as usize];
-    let mut c = 0usize;
-    for g in 0..out.n_faces() {
-        let s = out.f_start[g];
-        if out.f_hole[g] || s & POINT != 0 {
-            continue;
-        }
-        let mut h = s;
-        loop {
-            let v = out.he_vert[h as usize] as usize;
-            if from_big(v) {
-                out_rows[c * k..(c + 1) * k].copy_from_slice(&pv[v * k..(v + 1) * k]);
-            }
-            c += 1;
-            h = out.he_next[h as usize];
-            if h == s {
-                break;
-            }
-        }
-    }
-    debug_assert_eq!(c * k, out_rows.len());
+    crate::schemes::corner_transfer::write_vertex_rows(out, &pv, k, from_big, out_rows);
     Ok(())
 }
 
