@@ -119,14 +119,46 @@ struct Ctx<'a> {
     /// `NONE` for the others.
     big: Vec<u32>,
     sorted: Vec<(u32, u32)>,
+    /// Per output vertex: its row holds more distinct vertices than any
+    /// input face, so no face takes it whole.
+    unfit: Vec<bool>,
 }
 
 /// Scratch space of one worker, reused from corner to corner.
 #[derive(Default)]
 struct Scratch {
     cands: Vec<u32>,
+    /// `cands` as a set once it is long (the faces around a vertex of high
+    /// valence: a linear search per face was quadratic in the valence).
+    seen: rustc_hash::FxHashSet<u32>,
     pairs: Vec<(u32, u32)>,
     lin: Vec<u32>,
+}
+
+/// Candidates searched linearly for a repeat up to this many.
+const CANDS_LINEAR: usize = 16;
+
+impl Scratch {
+    /// Appends `f` to the candidates unless it is there (order kept).
+    fn push(&mut self, f: u32) {
+        if self.cands.len() < CANDS_LINEAR {
+            if !self.cands.contains(&f) {
+                self.cands.push(f);
+            }
+            return;
+        }
+        if self.seen.is_empty() {
+            self.seen.extend(self.cands.iter().copied());
+        }
+        if self.seen.insert(f) {
+            self.cands.push(f);
+        }
+    }
+
+    fn clear(&mut self) {
+        self.cands.clear();
+        self.seen.clear();
+    }
 }
 
 impl<'a> Ctx<'a> {
@@ -152,7 +184,22 @@ impl<'a> Ctx<'a> {
                 sorted[start..].sort_unstable();
             }
         }
-        Ok(Ctx { input, out, s, o, ioff, ivert, big, sorted })
+        // rows over more distinct vertices than any face has (their columns
+        // may repeat: honeycomb's name each vertex twice)
+        let max_degree = (0..input.n_faces()).map(|f| (ioff[f + 1] - ioff[f]) as usize).max().unwrap_or(0);
+        let mut buf = Vec::new();
+        let mut unfit = vec![false; s.n_rows()];
+        for (p, u) in unfit.iter_mut().enumerate() {
+            let (cols, _) = s.row(p);
+            if cols.len() > max_degree {
+                buf.clear();
+                buf.extend_from_slice(cols);
+                buf.sort_unstable();
+                buf.dedup();
+                *u = buf.len() > max_degree;
+            }
+        }
+        Ok(Ctx { input, out, s, o, ioff, ivert, big, sorted, unfit })
     }
 
     fn real(&self, f: u32) -> bool {
@@ -266,28 +313,41 @@ impl<'a> Ctx<'a> {
         true
     }
 
-    fn around(&self, kind: u8, i: u32, cands: &mut Vec<u32>) {
+    /// Appends the real faces around origin `(kind, i)` to the candidates;
+    /// with `one`, stops once there is a candidate.
+    fn around(&self, kind: u8, i: u32, sc: &mut Scratch, one: bool) {
         let input = self.input;
-        let mut push = |f: u32| {
-            if self.real(f) && !cands.contains(&f) {
-                cands.push(f);
-            }
-        };
+        if one && !sc.cands.is_empty() {
+            return;
+        }
         match kind {
             EDGE => {
                 for h in [2 * i, 2 * i + 1] {
-                    push(input.he_face[h as usize]);
+                    let f = input.he_face[h as usize];
+                    if self.real(f) {
+                        sc.push(f);
+                    }
                 }
             }
             VERTEX => {
                 let vo = input.v_out[i as usize];
                 if vo & POINT == 0 {
                     for h in super::creases::ring(input, vo) {
-                        push(input.he_face[h as usize]);
+                        let f = input.he_face[h as usize];
+                        if self.real(f) {
+                            sc.push(f);
+                            if one {
+                                break;
+                            }
+                        }
                     }
                 }
             }
-            _ => push(i),
+            _ => {
+                if self.real(i) {
+                    sc.push(i);
+                }
+            }
         }
     }
 
@@ -298,27 +358,33 @@ impl<'a> Ctx<'a> {
         let p = out.he_vert[hc as usize] as usize;
         let g = out.he_face[hc as usize] as usize;
         let first = self.direct(hc);
-        if first != NONE && self.eval(first, p, terms) {
+        // a row over more vertices than any face has fits no face (√3's
+        // smoothing of a vertex of high valence): only the first candidate,
+        // the linear reading's home, is needed (the search was quadratic in
+        // the valence)
+        let fits = !self.unfit[p];
+        if first != NONE && fits && self.eval(first, p, terms) {
             return;
         }
         terms.clear();
-        let cands = &mut sc.cands;
-        cands.clear();
+        sc.clear();
         for f in [first, self.direct(out.he_prev[hc as usize]), self.direct(out.he_next[hc as usize])] {
-            if self.real(f) && !cands.contains(&f) {
-                cands.push(f);
+            if self.real(f) {
+                sc.push(f);
             }
         }
-        self.around(o.vertex_kind[p], o.vertex[p], cands);
-        self.around(o.face_kind[g], o.face[g], cands);
+        self.around(o.vertex_kind[p], o.vertex[p], sc, !fits);
+        self.around(o.face_kind[g], o.face[g], sc, !fits);
         // `first` was tried above
-        for &f in cands.iter() {
-            if f != first && self.eval(f, p, terms) {
-                return;
+        if fits {
+            for &f in sc.cands.iter() {
+                if f != first && self.eval(f, p, terms) {
+                    return;
+                }
             }
         }
         terms.clear();
-        let Some(&f) = cands.first() else {
+        let Some(&f) = sc.cands.first() else {
             return;
         };
         // read linearly in the first candidate (see the module docs)
