@@ -485,36 +485,24 @@ pub fn transfer(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins, arrays: &mu
                 return Ok(()); // the check below reports it
             }
             let (gs, ge) = (b * FACES_PER_BLOCK, ((b + 1) * FACES_PER_BLOCK).min(nfo));
-            let mut c = 0usize; // corner within the block
-            for g in gs..ge {
-                let st = out.f_start[g];
-                if out.f_hole[g] || st & POINT != 0 {
-                    continue;
-                }
-                let mut hc = st;
-                loop {
-                    let p = out.he_vert[hc as usize] as usize;
-                    if held[p] {
-                        for (d, (m, &(_, k))) in dst.iter_mut().zip(memo.iter().zip(&ins)) {
-                            d[c * k..(c + 1) * k].copy_from_slice(&m[p * k..(p + 1) * k]);
-                        }
-                    } else {
-                        ctx.terms(hc, terms, sc);
-                        if terms.is_empty() {
-                            return Err(MeshError::Precondition(NO_HOME.into()));
-                        }
-                        for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
-                            accumulate(&mut d[c * k..(c + 1) * k], terms, a, k);
-                        }
+            // c: the corner within the block
+            each_exported_corner(out, gs..ge, |c, hc| {
+                let p = out.he_vert[hc as usize] as usize;
+                if held[p] {
+                    for (d, (m, &(_, k))) in dst.iter_mut().zip(memo.iter().zip(&ins)) {
+                        d[c * k..(c + 1) * k].copy_from_slice(&m[p * k..(p + 1) * k]);
                     }
-                    c += 1;
-                    hc = out.he_next[hc as usize];
-                    if hc == st {
-                        break;
+                } else {
+                    ctx.terms(hc, terms, sc);
+                    if terms.is_empty() {
+                        return Err(MeshError::Precondition(NO_HOME.into()));
+                    }
+                    for (d, &(a, k)) in dst.iter_mut().zip(&ins) {
+                        accumulate(&mut d[c * k..(c + 1) * k], terms, a, k);
                     }
                 }
-            }
-            Ok(())
+                Ok(())
+            })
         },
     )?;
     crate::cancel::check()?;
@@ -577,27 +565,36 @@ pub fn corner_stencils(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins) -> R
 /// the vertices `take` accepts: a scheme's own values for the corners at
 /// points its masks give directly (`doo_sabin::open_large_corners`,
 /// `honeycomb::large_corners`).
-pub(crate) fn write_vertex_rows(out: &Mesh, pv: &[f64], k: usize, take: impl Fn(usize) -> bool, out_rows: &mut [f64]) {
+pub(crate) fn write_vertex_rows(out: &Mesh, pv: &[f64], k: usize, take: impl Fn(usize) -> bool, out_rows: &mut [f64]) -> Result<()> {
+    each_exported_corner(out, 0..out.n_faces(), |c, h| {
+        let v = out.he_vert[h as usize] as usize;
+        if take(v) {
+            out_rows[c * k..(c + 1) * k].copy_from_slice(&pv[v * k..(v + 1) * k]);
+        }
+        Ok(())
+    })
+}
+
+/// Calls `each(c, h)` for the exported corners `h` of output faces `faces`
+/// (holes and point-spheres own none), `c` counting them from 0.
+fn each_exported_corner(out: &Mesh, faces: std::ops::Range<usize>, mut each: impl FnMut(usize, u32) -> Result<()>) -> Result<()> {
     let mut c = 0usize;
-    for g in 0..out.n_faces() {
-        let s = out.f_start[g];
-        if out.f_hole[g] || s & POINT != 0 {
+    for g in faces {
+        let st = out.f_start[g];
+        if out.f_hole[g] || st & POINT != 0 {
             continue;
         }
-        let mut h = s;
+        let mut h = st;
         loop {
-            let v = out.he_vert[h as usize] as usize;
-            if take(v) {
-                out_rows[c * k..(c + 1) * k].copy_from_slice(&pv[v * k..(v + 1) * k]);
-            }
+            each(c, h)?;
             c += 1;
             h = out.he_next[h as usize];
-            if h == s {
+            if h == st {
                 break;
             }
         }
     }
-    debug_assert_eq!(c * k, out_rows.len());
+    Ok(())
 }
 
 #[cfg(test)]

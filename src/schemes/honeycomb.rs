@@ -310,8 +310,7 @@ pub fn large_corners(m: &Mesh, out: &Mesh, t: f64, tension: Option<f64>, rows: &
     })?;
     let nh = m.n_halfedges();
     let big = |v: usize| v < nh && !m.f_hole[face[v] as usize] && fl.degree(face[v] as usize) > LARGE_FACE;
-    super::corner_transfer::write_vertex_rows(out, &pv, k, big, out_rows);
-    Ok(())
+    super::corner_transfer::write_vertex_rows(out, &pv, k, big, out_rows)
 }
 
 /// [`honeycomb_level`] that also interpolates vertex data (`(rows, k)`
@@ -700,29 +699,11 @@ mod tests {
     /// alone do not.
     #[test]
     fn large_face_corners_equal_the_full_transfer() {
-        use crate::schemes::corner_transfer::transfer;
-        use crate::schemes::hosts::test_meshes::{cup, full_request};
+        use crate::schemes::hosts::test_meshes::{assert_large_corners, cup};
         let cup = cup(200);
         assert!(large_corners_apply(&cup));
-        let full = full_request();
-        let skip = Request { skip_large_face_rows: true, ..full };
-        let corners: usize = cup.faces().filter(|&f| !cup.is_hole(f)).map(|f| cup.face_degree(f)).sum();
         for (t, a) in [(0.5, None), (0.3, Some(0.7))] {
-            let (x, y) = (honeycomb_level(&cup, t, a, &full).unwrap(), honeycomb_level(&cup, t, a, &skip).unwrap());
-            assert_eq!(x.mesh.positions(), y.mesh.positions());
-            for k in [1, 3] {
-                let rows: Vec<f64> = (0..corners * k).map(|i| ((i * 7919) % 1013) as f64 * 0.01 - 3.0).collect();
-                let mut want = vec![(rows.clone(), k)];
-                transfer(&cup, &x.mesh, x.stencils.as_ref().unwrap(), x.origins.as_ref().unwrap(), &mut want).unwrap();
-                let mut got = vec![(rows.clone(), k)];
-                transfer(&cup, &y.mesh, y.stencils.as_ref().unwrap(), y.origins.as_ref().unwrap(), &mut got).unwrap();
-                assert!(want[0].0.iter().zip(&got[0].0).any(|(p, q)| (p - q).abs() > 1e-3), "the placeholders alone differ");
-                large_corners(&cup, &y.mesh, t, a, &rows, &mut got[0].0, k).unwrap();
-                assert_eq!(want[0].0.len(), got[0].0.len());
-                for (i, (p, q)) in want[0].0.iter().zip(&got[0].0).enumerate() {
-                    assert!((p - q).abs() <= 1e-12 * (1.0 + p.abs()), "t {t}, row {}, column {}: {p} vs {q}", i / k, i % k);
-                }
-            }
+            assert_large_corners(&cup, |r| honeycomb_level(&cup, t, a, r).unwrap(), |out, rows, got, k| large_corners(&cup, out, t, a, rows, got, k).unwrap());
         }
     }
 }

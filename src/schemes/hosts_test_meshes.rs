@@ -540,3 +540,29 @@ pub fn owned_level_cases() -> Vec<(String, Mesh)> {
 pub fn position_bits(m: &Mesh) -> Vec<[u64; 3]> {
     m.positions().iter().map(|p| p.to_array().map(f64::to_bits)).collect()
 }
+
+/// Corner data through `m`'s level with placeholder rows for its large
+/// faces (`Request::skip_large_face_rows`) and then `fill` (output, input
+/// rows, output rows, k) equal the generic transfer over the full rows
+/// within 1e-12, and the placeholders alone do not: corner values with
+/// seams (each corner its own), 1 and 3 columns.
+pub fn assert_large_corners(m: &Mesh, level: impl Fn(&crate::schemes::level::Request) -> crate::schemes::level::Level, fill: impl Fn(&Mesh, &[f64], &mut [f64], usize)) {
+    use crate::schemes::corner_transfer::transfer;
+    let full = full_request();
+    let (a, b) = (level(&full), level(&crate::schemes::level::Request { skip_large_face_rows: true, ..full }));
+    assert!(same_bits(&a.mesh, &b.mesh), "the mesh is unaffected");
+    let corners: usize = m.faces().filter(|&f| !m.is_hole(f)).map(|f| m.face_degree(f)).sum();
+    for k in [1, 3] {
+        let rows: Vec<f64> = (0..corners * k).map(|i| ((i * 7919) % 1013) as f64 * 0.01 - 3.0).collect();
+        let mut want = vec![(rows.clone(), k)];
+        transfer(m, &a.mesh, a.stencils.as_ref().unwrap(), a.origins.as_ref().unwrap(), &mut want).unwrap();
+        let mut got = vec![(rows.clone(), k)];
+        transfer(m, &b.mesh, b.stencils.as_ref().unwrap(), b.origins.as_ref().unwrap(), &mut got).unwrap();
+        assert!(want[0].0.iter().zip(&got[0].0).any(|(x, y)| (x - y).abs() > 1e-3), "the placeholders alone differ");
+        fill(&b.mesh, &rows, &mut got[0].0, k);
+        assert_eq!(want[0].0.len(), got[0].0.len());
+        for (i, (x, y)) in want[0].0.iter().zip(&got[0].0).enumerate() {
+            assert!((x - y).abs() <= 1e-12 * (1.0 + x.abs()), "row {}, column {}: {x} vs {y}", i / k, i % k);
+        }
+    }
+}

@@ -33,6 +33,14 @@ pub(super) struct Item {
     pub focus: bool,
 }
 
+impl Item {
+    /// Triangle `id` (corners `t` of `p`) with its bounding box.
+    pub fn of(p: &[DVec3], t: [u32; 3], id: u32, focus: bool) -> Item {
+        let q = t.map(|v| p[v as usize]);
+        Item { lo: q[0].min(q[1]).min(q[2]), hi: q[0].max(q[1]).max(q[2]), id, focus }
+    }
+}
+
 #[derive(Clone, Copy)]
 struct Node {
     lo: DVec3,

@@ -177,16 +177,14 @@ fn arc_item(p: &[DVec3], t: [u32; 3], v: u32, r: f64, it: &Item) -> Item {
 mod tests {
     use super::*;
 
+    /// Every triangle, focused.
+    fn all_items(p: &[DVec3], tris: &[[u32; 3]]) -> Vec<Item> {
+        tris.iter().enumerate().map(|(i, &t)| Item::of(p, t, i as u32, true)).collect()
+    }
+
     /// The plain hierarchy's pairs (no hubs).
     fn plain(p: &[DVec3], tris: &[[u32; 3]], coplanar: bool) -> Vec<(u32, u32)> {
-        let items: Vec<Item> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let q = t.map(|v| p[v as usize]);
-                Item { lo: q[0].min(q[1]).min(q[2]), hi: q[0].max(q[1]).max(q[2]), id: i as u32, focus: true }
-            })
-            .collect();
+        let items = all_items(&p, &tris);
         let test = |i: u32, j: u32| {
             let (a, b) = (tris[i as usize], tris[j as usize]);
             a.iter().filter(|v| b.contains(v)).count() < 2 && super::super::triangles_meet(a, a.map(|v| p[v as usize]), b, b.map(|v| p[v as usize]), coplanar)
@@ -275,14 +273,7 @@ mod tests {
         cases.push((p, tris));
         let mut hubbed = 0;
         for (c, (p, tris)) in cases.iter().enumerate() {
-            let items: Vec<Item> = tris
-                .iter()
-                .enumerate()
-                .map(|(i, t)| {
-                    let q = t.map(|v| p[v as usize]);
-                    Item { lo: q[0].min(q[1]).min(q[2]), hi: q[0].max(q[1]).max(q[2]), id: i as u32, focus: true }
-                })
-                .collect();
+            let items = all_items(p, tris);
             hubbed += !hubs(p, tris, &items).1.is_empty() as usize;
             for coplanar in [false, true] {
                 let got = super::super::crossing_pairs(p, tris, None, coplanar);
@@ -305,14 +296,7 @@ mod tests {
             tested.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             false
         };
-        let items: Vec<Item> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let q = t.map(|v| p[v as usize]);
-                Item { lo: q[0].min(q[1]).min(q[2]), hi: q[0].max(q[1]).max(q[2]), id: i as u32, focus: true }
-            })
-            .collect();
+        let items = all_items(&p, &tris);
         pairs_upto(&p, &tris, items, &test, &Budget::new(usize::MAX));
         let n = tested.into_inner();
         assert!(n < 40 * tris.len(), "{n} pairs tested");

@@ -149,10 +149,7 @@ pub fn crossing_pairs_upto(p: &[DVec3], tris: &[[u32; 3]], focus: Option<&[bool]
     let mut items: Vec<bvh::Item> = tris
         .par_iter()
         .enumerate()
-        .map(|(i, t)| {
-            let q = t.map(|v| p[v as usize]);
-            bvh::Item { lo: q[0].min(q[1]).min(q[2]), hi: q[0].max(q[1]).max(q[2]), id: i as u32, focus: focus.map_or(true, |f| f[i]) }
-        })
+        .map(|(i, &t)| bvh::Item::of(p, t, i as u32, focus.map_or(true, |f| f[i])))
         .collect();
     if crate::cancel::requested() {
         return (Vec::new(), false);

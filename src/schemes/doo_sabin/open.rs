@@ -355,8 +355,7 @@ pub fn open_large_corners(m: &Mesh, out: &Mesh, rows: &[f64], out_rows: &mut [f6
     // output vertex i < nh is the corner point of layout corner i
     let nh = fl.fh.len();
     let from_big = |v: usize| v < nh && big[face[fl.fh[v] as usize] as usize];
-    crate::schemes::corner_transfer::write_vertex_rows(out, &pv, k, from_big, out_rows);
-    Ok(())
+    crate::schemes::corner_transfer::write_vertex_rows(out, &pv, k, from_big, out_rows)
 }
 
 /// Whether [`open_large_corners`] writes anything for this input (and a

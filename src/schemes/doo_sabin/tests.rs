@@ -201,25 +201,7 @@ fn large_faces_of_open_meshes_take_the_sums() {
 /// not (the test can fail).
 #[test]
 fn large_face_corners_equal_the_full_transfer() {
-    use crate::schemes::corner_transfer::transfer;
     let cup = cup(200);
     assert!(open_large_corners_apply(&cup));
-    let full = full_request();
-    let skip = Request { skip_large_face_rows: true, ..full };
-    let (a, b) = (doo_sabin_level(&cup, &full).unwrap(), doo_sabin_level(&cup, &skip).unwrap());
-    assert!(same_bits(&a.mesh, &b.mesh), "positions are unaffected");
-    let corners: usize = cup.faces().filter(|&f| !cup.is_hole(f)).map(|f| cup.face_degree(f)).sum();
-    for k in [1, 3] {
-        let rows: Vec<f64> = (0..corners * k).map(|i| ((i * 7919) % 1013) as f64 * 0.01 - 3.0).collect();
-        let mut want = vec![(rows.clone(), k)];
-        transfer(&cup, &a.mesh, a.stencils.as_ref().unwrap(), a.origins.as_ref().unwrap(), &mut want).unwrap();
-        let mut got = vec![(rows.clone(), k)];
-        transfer(&cup, &b.mesh, b.stencils.as_ref().unwrap(), b.origins.as_ref().unwrap(), &mut got).unwrap();
-        assert!(want[0].0.iter().zip(&got[0].0).any(|(x, y)| (x - y).abs() > 1e-3), "the placeholders alone differ");
-        open_large_corners(&cup, &b.mesh, &rows, &mut got[0].0, k).unwrap();
-        assert_eq!(want[0].0.len(), got[0].0.len());
-        for (i, (x, y)) in want[0].0.iter().zip(&got[0].0).enumerate() {
-            assert!((x - y).abs() <= 1e-12 * (1.0 + x.abs()), "row {}, column {}: {x} vs {y}", i / k, i % k);
-        }
-    }
+    assert_large_corners(&cup, |r| doo_sabin_level(&cup, r).unwrap(), |out, rows, got, k| open_large_corners(&cup, out, rows, got, k).unwrap());
 }
