@@ -560,6 +560,29 @@ pub fn corner_stencils(input: &Mesh, out: &Mesh, s: &Stencils, o: &Origins) -> R
     Ok(t)
 }
 
+/// Whether an open input without point-spheres (whose levels run without
+/// them, renumbered) has a real face of more than `above` corners: where a
+/// scheme writes a large face's corners itself after the transfer
+/// (`doo_sabin::open_large_corners`, `honeycomb::large_corners`).
+pub(crate) fn has_large_real_face(m: &Mesh, above: usize) -> bool {
+    m.f_hole.iter().any(|&h| h) && !m.v_out.iter().any(|&o| o & POINT != 0) && m.faces().any(|f| !m.is_hole(f) && m.face_degree(f) > above)
+}
+
+/// The row of `rows` (`k` per exported input corner, checked against the
+/// input; `call` names the scheme) that layout corner `c` (half-edge `h`)
+/// reads, for a scheme's face masks over corner data; a hole's corners read
+/// row 0 (their masks are computed and never read).
+pub(crate) fn layout_rows<'a>(m: &'a Mesh, fl: &'a super::hosts::FaceLayout, rows: &[f64], k: usize, call: &str) -> Result<impl Fn(usize, u32) -> usize + Sync + 'a> {
+    let (ioff, at) = export_offsets(m)?;
+    if rows.len() != at * k || at == 0 {
+        return Err(MeshError::InvalidArgument(format!("{call}: corner data of {} numbers for {at} corners of {k}", rows.len())));
+    }
+    Ok(move |c: usize, h: u32| {
+        let f = m.he_face[h as usize] as usize;
+        if m.f_hole[f] { 0 } else { ioff[f] as usize + c - fl.off[f] as usize }
+    })
+}
+
 /// Writes `pv` (a row of `k` per output vertex) over the exported output
 /// corners (`out_rows`, faces in order, holes and point-spheres skipped) at
 /// the vertices `take` accepts: a scheme's own values for the corners at

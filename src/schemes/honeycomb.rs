@@ -280,9 +280,7 @@ const LARGE_FACE: usize = 64;
 /// data take `corner_direct`), no point-spheres, a real face of more than
 /// [`LARGE_FACE`] corners.
 pub fn large_corners_apply(m: &Mesh) -> bool {
-    m.f_hole.iter().any(|&h| h)
-        && !m.v_out.iter().any(|&o| o & crate::mesh::POINT != 0)
-        && m.faces().any(|f| !m.is_hole(f) && m.face_degree(f) > LARGE_FACE)
+    super::corner_transfer::has_large_real_face(m, LARGE_FACE)
 }
 
 /// Corner data at the points of real faces of more than [`LARGE_FACE`]
@@ -298,16 +296,9 @@ pub fn large_corners(m: &Mesh, out: &Mesh, t: f64, tension: Option<f64>, rows: &
         return Ok(());
     }
     let fl = FaceLayout::new(m)?;
-    let (ioff, at) = super::corner_transfer::export_offsets(m)?;
-    if rows.len() != at * k || at == 0 {
-        return Err(crate::error::MeshError::InvalidArgument(format!("honeycomb: corner data of {} numbers for {at} corners of {k}", rows.len())));
-    }
+    let at = super::corner_transfer::layout_rows(m, &fl, rows, k, "honeycomb")?;
+    let pv = face_masks(m, &fl, t, tension, rows, k, at)?;
     let face = &m.he_face;
-    let pv = face_masks(m, &fl, t, tension, rows, k, |c, h| {
-        let f = face[h as usize] as usize;
-        // holes' rows are computed and never read
-        if m.f_hole[f] { 0 } else { ioff[f] as usize + c - fl.off[f] as usize }
-    })?;
     let nh = m.n_halfedges();
     let big = |v: usize| v < nh && !m.f_hole[face[v] as usize] && fl.degree(face[v] as usize) > LARGE_FACE;
     super::corner_transfer::write_vertex_rows(out, &pv, k, big, out_rows)

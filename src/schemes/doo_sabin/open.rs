@@ -3,7 +3,6 @@
 //! into the output's columns (issue 19: no corner lists at the peak).
 
 use super::*;
-use crate::mesh::POINT;
 
 /// The output corners of an open level, each with its tail vertex and twin
 /// corner in closed form. Corner blocks: `[F-faces and holes (2 per hole
@@ -342,16 +341,9 @@ pub fn open_large_corners(m: &Mesh, out: &Mesh, rows: &[f64], out_rows: &mut [f6
     let fl = FaceLayout::new(m)?;
     let nf = m.n_faces();
     let big: Vec<bool> = (0..nf).map(|f| !m.f_hole[f] && fl.degree(f) > DENSE_MAX).collect();
-    let (ioff, at) = crate::schemes::corner_transfer::export_offsets(m)?;
-    if rows.len() != at * k || at == 0 {
-        return Err(crate::error::MeshError::InvalidArgument(format!("doo_sabin: corner data of {} numbers for {at} corners of {k}", rows.len())));
-    }
+    let at = crate::schemes::corner_transfer::layout_rows(m, &fl, rows, k, "doo_sabin")?;
+    let pv = super::face_masks(m, &fl, rows, k, at)?;
     let face = &m.he_face;
-    let pv = super::face_masks(m, &fl, rows, k, |c, h| {
-        let f = face[h as usize] as usize;
-        // holes' masks are computed and never read
-        if m.f_hole[f] { 0 } else { ioff[f] as usize + c - fl.off[f] as usize }
-    })?;
     // output vertex i < nh is the corner point of layout corner i
     let nh = fl.fh.len();
     let from_big = |v: usize| v < nh && big[face[fl.fh[v] as usize] as usize];
@@ -363,7 +355,5 @@ pub fn open_large_corners(m: &Mesh, out: &Mesh, rows: &[f64], out_rows: &mut [f6
 /// (their level runs without them, renumbered), a real face of more than
 /// [`DENSE_MAX`] corners.
 pub fn open_large_corners_apply(m: &Mesh) -> bool {
-    m.f_hole.iter().any(|&h| h)
-        && !m.v_out.iter().any(|&o| o & POINT != 0)
-        && m.faces().any(|f| !m.is_hole(f) && m.face_degree(f) > DENSE_MAX)
+    crate::schemes::corner_transfer::has_large_real_face(m, DENSE_MAX)
 }
