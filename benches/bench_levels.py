@@ -274,7 +274,11 @@ def rows_of_section(text: str) -> list[dict]:
 
 
 def targets(rows: list, a) -> list[str]:
-    """The issue's targets, met or not, from the rows above (topomesh only)."""
+    """The issue's targets, met or not, from the rows above: topomesh's own
+    (throughput, level 4 against level 1, two threads, memory), then the
+    peer targets (midpoint ≥ 1.5× libigl, Loop ≥ 5× libigl and VTK,
+    Catmull-Clark ahead of OpenSubdiv's library), each per input, level and
+    thread count that both tools ran."""
     topo = [r for r in rows if r["tool"] == "topomesh" and "warm" in r]
     if not topo:
         return []
@@ -307,6 +311,23 @@ def targets(rows: list, a) -> list[str]:
         lines.append(f"* peak ≤ 2× the exported arrays (first call): {sum(m <= 2 for m in mem)} of {len(mem)} (highest {max(mem):.2f}×).")
         mall = [r["grow_all"] / r["export"] for r in topo if r["export"]]
         lines.append(f"* the same with the warm runs' peak: {sum(m <= 2 for m in mall)} of {len(mall)} (highest {max(mall):.2f}×).")
+    # the peer targets: topomesh's warm time against one peer's, same input, level and threads
+    def warm(scheme, inp, lv, th, tool):
+        r = next((x for x in rows if "warm" in x and (x["scheme"], x["input"], x["level"], x["threads"], x["tool"]) == (scheme, inp, lv, th, tool)), None)
+        return None if r is None else r["warm"]
+
+    for scheme, inputs, peer, label, goal, levels in (
+        ("midpoint", ["sphere"], "libigl", "libigl `upsample`", 1.5, (1, 3)),
+        ("loop", ["sphere"], "libigl", "libigl", 5.0, (1, 3)),
+        ("loop", ["sphere"], "pyvista", "VTK (pyvista)", 5.0, (1, 3)),
+        ("catmull_clark", ["sphere", "torus"], OSD, "OpenSubdiv's library (its one-thread time)", 1.0, (1, 2, 3)),
+    ):
+        rs = [(inp, th, lv, p / t) for inp in inputs for th in a.threads for lv in levels if lv in a.levels
+              for t, p in [(warm(scheme, inp, lv, th, "topomesh"), warm(scheme, inp, lv, th, peer))] if t and p]
+        if rs:
+            what = "ahead of" if goal == 1.0 else f"≥ {goal:g}×"
+            desc = ", ".join(f"{inp} L{lv} {th} thr. {x:.2f}×" for inp, th, lv, x in rs)
+            lines.append(f"* {scheme} {what} {label}: {sum(x > goal if goal == 1.0 else x >= goal for *_, x in rs)} of {len(rs)} ({desc}).")
     lines.append("")
     return lines
 
