@@ -180,10 +180,12 @@ def main() -> None:
         write_section(Path(a.readme), text)
 
 
-def table(rows: list, a, load0, load1) -> list[str]:
-    def find(**k):
-        return next((r for r in rows if all(r.get(x) == y for x, y in k.items()) and "warm" in r), None)
+def find(rows: list, **k):
+    """The first timed row with the fields `k`, or None."""
+    return next((r for r in rows if all(r.get(x) == y for x, y in k.items()) and "warm" in r), None)
 
+
+def table(rows: list, a, load0, load1) -> list[str]:
     out = [
         MARK[0],
         "## Issue 19: cost per face per level, warm and first call, memory, peers",
@@ -204,9 +206,9 @@ def table(rows: list, a, load0, load1) -> list[str]:
             continue
         nf = r["faces"]
         ns = r["warm"] / nf * 1e9
-        base = find(scheme=r["scheme"], input=r["input"], level=min(a.levels), threads=r["threads"], tool=r["tool"])
+        base = find(rows, scheme=r["scheme"], input=r["input"], level=min(a.levels), threads=r["threads"], tool=r["tool"])
         x1 = f"{ns / (base['warm'] / base['faces'] * 1e9):.2f}" if base else ""
-        one = find(scheme=r["scheme"], input=r["input"], level=r["level"], threads=1, tool=r["tool"])
+        one = find(rows, scheme=r["scheme"], input=r["input"], level=r["level"], threads=1, tool=r["tool"])
         sp = f"{one['warm'] / r['warm']:.2f}×" if one and r["threads"] != 1 and r["tool"] != OSD else ""
         xe = f"{r['grow'] / r['export']:.2f}" if r["export"] else "–"
         xa = f"{r['grow_all'] / r['export']:.2f}" if r["export"] else "–"
@@ -313,7 +315,7 @@ def targets(rows: list, a) -> list[str]:
         lines.append(f"* the same with the warm runs' peak: {sum(m <= 2 for m in mall)} of {len(mall)} (highest {max(mall):.2f}×).")
     # the peer targets: topomesh's warm time against one peer's, same input, level and threads
     def warm(scheme, inp, lv, th, tool):
-        r = next((x for x in rows if "warm" in x and (x["scheme"], x["input"], x["level"], x["threads"], x["tool"]) == (scheme, inp, lv, th, tool)), None)
+        r = find(rows, scheme=scheme, input=inp, level=lv, threads=th, tool=tool)
         return None if r is None else r["warm"]
 
     for scheme, inputs, peer, label, goal, levels in (
