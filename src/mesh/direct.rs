@@ -32,7 +32,7 @@ impl Columns {
     /// pages are first touched by the caller's parallel fill, not here).
     pub fn new(pos: Vec<DVec3>, n_halfedges: usize, n_faces: usize) -> Columns {
         let nv = pos.len();
-        Columns {
+        let mut c = Columns {
             pos,
             v_out: vec![0; nv],
             he_next: vec![0; n_halfedges],
@@ -41,7 +41,18 @@ impl Columns {
             he_face: vec![0; n_halfedges],
             f_start: vec![0; n_faces],
             f_hole: vec![false; n_faces],
+        };
+        c.populate();
+        c
+    }
+
+    /// [`super::populate`] on every column but the positions (the caller's).
+    fn populate(&mut self) {
+        // each column's whole allocation: exactly its size
+        for col in [&mut self.he_next, &mut self.he_prev, &mut self.he_vert, &mut self.he_face, &mut self.v_out, &mut self.f_start] {
+            super::populate(col, usize::MAX);
         }
+        super::populate(&mut self.f_hole, usize::MAX);
     }
 
     /// [`Columns::new`] for `n_points` vertices whose positions the caller
@@ -50,6 +61,7 @@ impl Columns {
     pub fn for_points(n_points: usize, n_halfedges: usize, n_faces: usize) -> Columns {
         let mut c = Columns::new(Vec::new(), n_halfedges, n_faces);
         c.v_out = vec![0; n_points];
+        super::populate(&mut c.v_out, n_points);
         c
     }
 
@@ -72,7 +84,9 @@ impl Columns {
             v
         };
         let nv = pos.len();
-        Columns { pos, v_out: vec![0; nv], he_next: room(), he_prev: room(), he_vert: room(), he_face: room(), f_start: vec![0; n_faces], f_hole: vec![false; n_faces] }
+        let mut c = Columns { pos, v_out: vec![0; nv], he_next: room(), he_prev: room(), he_vert: room(), he_face: room(), f_start: vec![0; n_faces], f_hole: vec![false; n_faces] };
+        c.populate();
+        c
     }
 
     /// [`Columns::unfilled`] for `n_points` vertices whose positions the
@@ -80,6 +94,7 @@ impl Columns {
     pub fn for_points_unfilled(n_points: usize, n_halfedges: usize, n_faces: usize) -> Columns {
         let mut c = Columns::unfilled(Vec::new(), n_halfedges, n_faces);
         c.v_out = vec![0; n_points];
+        super::populate(&mut c.v_out, n_points);
         c
     }
 
@@ -116,7 +131,9 @@ pub fn zeroed_points(n: usize) -> Vec<DVec3> {
     // zeroed f64 are n valid points with the same size and alignment, and
     // the allocation's layout (3n f64) equals that of n DVec3.
     const _: () = assert!(std::mem::size_of::<DVec3>() == 24 && std::mem::align_of::<DVec3>() == 8);
-    unsafe { Vec::from_raw_parts(ptr as *mut DVec3, len / 3, cap / 3) }
+    let mut v = unsafe { Vec::from_raw_parts(ptr as *mut DVec3, len / 3, cap / 3) };
+    super::populate(&mut v, n);
+    v
 }
 
 /// Room for `n` points that the caller writes in full (through
@@ -129,6 +146,7 @@ pub fn unfilled_points(n: usize) -> Vec<DVec3> {
     if cfg!(debug_assertions) {
         v.spare_capacity_mut()[..n].fill(std::mem::MaybeUninit::new(DVec3::NAN));
     }
+    super::populate(&mut v, n);
     v
 }
 

@@ -19,6 +19,7 @@
 pub mod build;
 mod boundary;
 mod direct;
+mod populate;
 mod euler;
 mod batch;
 mod export;
@@ -28,6 +29,7 @@ mod validate;
 
 pub use build::{BuildOptions, PolygonFaces};
 pub use direct::{unfilled_points, written, zeroed_points, Columns};
+pub use populate::populate;
 pub use euler::Corner;
 pub use query::Histogram;
 

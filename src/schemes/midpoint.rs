@@ -81,6 +81,7 @@ fn positions(m: &Mesh, k: u32) -> Result<Vec<DVec3>> {
     let (_, vert, _) = m.halfedge_columns();
     let p = &m.pos;
     let mut pos = Vec::with_capacity(nv + ne + k as usize);
+    crate::mesh::populate(&mut pos, nv + ne + k as usize);
     pos.extend_from_slice(p);
     pos.par_extend((0..ne).into_par_iter().with_min_len(MIN_LEN).map(|e| {
         // cancelled: zeros, the check below reports it
