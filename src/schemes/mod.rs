@@ -5,7 +5,7 @@ pub mod honeycomb;
 pub mod vertex_truncation;
 pub(crate) mod hosts;
 mod primal_columns;
-mod primal_triangles;
+mod primal_uniform;
 pub(crate) mod face_vertex_columns;
 mod fan_columns;
 #[cfg(test)]

@@ -230,8 +230,8 @@ pub(crate) fn primal_columns_then(
     want_sides: bool,
     pos: impl FnOnce() -> Result<Vec<DVec3>>,
 ) -> Result<(Mesh, Option<Vec<u32>>)> {
-    let (mut cols, sides) = if super::primal_triangles::applies(m, fl, face_point) {
-        super::primal_triangles::fill(m, &fl.cidx, n_points, want_sides)?
+    let (mut cols, sides) = if let Some(kind) = super::primal_uniform::applies(m, fl, face_point) {
+        super::primal_uniform::fill(m, &fl.cidx, kind, n_points, want_sides)?
     } else {
         let Some(fi) = layout(fl, face_point)? else {
             return super::hosts::primal_host_twins(m, fl, face_point, pos()?, want_sides);
@@ -270,10 +270,10 @@ pub(crate) fn primal_columns_late(
     want_sides: bool,
     pos: impl FnOnce() -> Result<Vec<DVec3>>,
 ) -> Result<(Mesh, Option<Vec<u32>>)> {
-    if super::primal_triangles::applies(m, &fl, &face_point) {
+    if let Some(kind) = super::primal_uniform::applies(m, &fl, &face_point) {
         let FaceLayout { fh, off, cidx } = fl;
         drop((fh, off, face_point));
-        let (mut cols, sides) = super::primal_triangles::fill(m, &cidx, n_points, want_sides)?;
+        let (mut cols, sides) = super::primal_uniform::fill(m, &cidx, kind, n_points, want_sides)?;
         drop(cidx);
         cols.pos = points(pos, n_points)?;
         return Ok((Mesh::from_columns(cols)?, want_sides.then_some(sides)));
