@@ -120,6 +120,33 @@ def test_huge_page_advice_is_opt_in():
         assert r.returncode != 0 and f'{var} = "{bad}"' in r.stderr, r.stderr
 
 
+def test_populate_is_on_by_default_and_changes_no_result():
+    # output pages mapped in one call before the fill (src/mesh/populate.rs, on
+    # Linux 5.14+); TOPOMESH_POPULATE=0 turns it off, a value it cannot read is an
+    # error naming it, and the meshes are the same either way
+    code = (
+        "import hashlib, topomesh\n"
+        "m = topomesh.icosahedron().loop(4)\n"
+        "outs = [m.loop(2), m.midpoint(2), topomesh.torus(60, 40).catmull_clark(2), m.doo_sabin(1), m.honeycomb(1)]\n"
+        "h = hashlib.sha256()\n"
+        "for o in outs:\n"
+        "    h.update(o.vertices.tobytes()); h.update(o.face_indices.tobytes()); h.update(o.face_sizes.tobytes())\n"
+        "print(topomesh._core._populate(), h.hexdigest())"
+    )
+    clean = {k: v for k, v in os.environ.items() if k != "TOPOMESH_POPULATE"}
+
+    def run(**env):
+        return subprocess.run([sys.executable, "-c", code], env={**clean, **env}, capture_output=True, text=True, timeout=300)
+
+    default, off = run(), run(TOPOMESH_POPULATE="0")
+    assert default.returncode == 0 and off.returncode == 0, default.stderr + off.stderr
+    assert default.stdout.split()[0] == ("True" if sys.platform == "linux" else "False"), default.stdout
+    assert off.stdout.split()[0] == "False", off.stdout
+    assert default.stdout.split()[1] == off.stdout.split()[1]
+    r = run(TOPOMESH_POPULATE="maybe")
+    assert r.returncode != 0 and 'TOPOMESH_POPULATE = "maybe"' in r.stderr, r.stderr
+
+
 def test_results_same_with_and_without_cache():
     old = topomesh.set_block_cache(256 << 20)
     try:

@@ -29,7 +29,7 @@ mod validate;
 
 pub use build::{BuildOptions, PolygonFaces};
 pub use direct::{unfilled_points, written, zeroed_points, Columns};
-pub use populate::populate;
+pub use populate::{populate, populate_on, set_populate};
 pub use euler::Corner;
 pub use query::Histogram;
 

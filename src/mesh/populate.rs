@@ -39,6 +39,18 @@ fn on() -> bool {
     }
 }
 
+/// Turns the population on or off for this process (the Python module
+/// sets it from `TOPOMESH_POPULATE` at import, refusing values it cannot
+/// read); off also where the kernel refused it.
+pub fn set_populate(on: bool) {
+    STATE.store(if on && cfg!(target_os = "linux") { 1 } else { 2 }, Ordering::Relaxed);
+}
+
+/// Whether buffers are populated (see [`set_populate`]).
+pub fn populate_on() -> bool {
+    on()
+}
+
 #[cfg(target_os = "linux")]
 extern "C" {
     fn madvise(addr: *mut u8, len: usize, advice: i32) -> i32;

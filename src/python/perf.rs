@@ -41,6 +41,13 @@ fn block_cache() -> (usize, usize) {
     super::alloc::block_cache()
 }
 
+/// Whether output buffers are populated before their fill
+/// (`TOPOMESH_POPULATE`, `src/mesh/populate.rs`; tests).
+#[pyfunction]
+fn _populate() -> bool {
+    crate::mesh::populate_on()
+}
+
 /// The allocator's huge-page advice as the environment set it at import:
 /// ``(on, largest advised block in bytes)`` (tests; `src/python/alloc.rs`).
 #[pyfunction]
@@ -59,6 +66,15 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
         };
         super::alloc::set_huge_pages(on);
     }
+    // on by default (src/mesh/populate.rs)
+    if let Ok(v) = std::env::var("TOPOMESH_POPULATE") {
+        let on = match v.trim().to_ascii_lowercase().as_str() {
+            "" | "1" | "true" | "yes" | "on" => true,
+            "0" | "false" | "no" | "off" => false,
+            _ => return Err(arg_err(format!("TOPOMESH_POPULATE = {v:?} must be 1 (map output pages in one call, the default) or 0"))),
+        };
+        crate::mesh::set_populate(on);
+    }
     if let Ok(s) = std::env::var("TOPOMESH_HUGE_PAGES_MAX") {
         let b = crate::budget::parse_size(&s).ok_or_else(|| {
             arg_err(format!("TOPOMESH_HUGE_PAGES_MAX = {s:?} must be a size in bytes, such as 67108864 or 64M"))
@@ -74,5 +90,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(set_block_cache, m)?)?;
     m.add_function(wrap_pyfunction!(block_cache, m)?)?;
     m.add_function(wrap_pyfunction!(_huge_page_advice, m)?)?;
+    m.add_function(wrap_pyfunction!(_populate, m)?)?;
     Ok(())
 }
