@@ -5,7 +5,7 @@
 //! page, 2–4 µs each on the VMs measured, about 40 % of a midpoint or Loop
 //! level on the 82k-triangle sphere. `madvise(MADV_POPULATE_WRITE)` (Linux
 //! 5.14) maps a whole range in one call, without the per-page exception
-//! entry, and is done here in parallel chunks. Pages already mapped (heap
+//! entry, and is done here in parallel chunks of 4 MiB. Pages already mapped (heap
 //! memory glibc reuses) are only walked. The contents are unchanged.
 //!
 //! Only for exactly-sized buffers the caller writes in full: populating
@@ -19,8 +19,11 @@ use std::sync::atomic::{AtomicU8, Ordering};
 /// Below this many bytes a buffer is left to the fill's faults (glibc
 /// serves it from the heap, whose pages warm calls reuse).
 const MIN_BYTES: usize = 1 << 20;
-/// Smallest chunk of one `madvise` call.
-const CHUNK: usize = 1 << 20;
+/// Bytes per `madvise` call: a few milliseconds of the kernel's work, so a
+/// Ctrl-C (which the calls cannot see) waits for at most one chunk per
+/// thread (`tests/test_safety.py`: a 16 M-quad level's 1.5 GB of columns
+/// in chunks of a quarter of each column held the interrupt 0.5–0.9 s).
+const CHUNK: usize = 4 << 20;
 const PAGE: usize = 4096;
 
 /// 0: not decided yet, 1: on, 2: off (environment or refused by the kernel).
@@ -73,10 +76,13 @@ pub fn populate<T>(v: &mut Vec<T>, n: usize) {
         return;
     }
     let len = end - start;
-    let chunk = (len / (2 * rayon::current_num_threads())).max(CHUNK).next_multiple_of(PAGE);
-    let refused = (0..len.div_ceil(chunk)).into_par_iter().any(|i| {
-        let a = start + i * chunk;
-        advise(a, chunk.min(end - a))
+    let refused = (0..len.div_ceil(CHUNK)).into_par_iter().any(|i| {
+        // cancelled: the rest is left to the fill, which stops too
+        if crate::cancel::requested() {
+            return false;
+        }
+        let a = start + i * CHUNK;
+        advise(a, CHUNK.min(end - a))
     });
     if refused {
         STATE.store(2, Ordering::Relaxed);
