@@ -290,6 +290,23 @@ pub(crate) fn primal_columns_late(
     Ok((Mesh::from_columns(cols)?, want_sides.then_some(sides)))
 }
 
+/// The outgoing half-edge of vertex `v` whose corner comes first in face
+/// order (lowest `cidx`): its `a` corner is the vertex point's first corner.
+#[inline]
+pub(super) fn first_outgoing(m: &Mesh, cidx: &[u32], v: usize) -> u32 {
+    let s = m.v_out[v];
+    let (mut h, mut best) = (s, s);
+    loop {
+        if cidx[h as usize] < cidx[best as usize] {
+            best = h;
+        }
+        h = m.he_prev[h as usize] ^ 1;
+        if h == s {
+            return best;
+        }
+    }
+}
+
 /// Pass 0: every input face's output corner and face bases (sequential);
 /// `None` when a face has 2²⁵ corners or more.
 fn layout(fl: &FaceLayout, face_point: &[u32]) -> Result<Option<Vec<FaceInfo>>> {
@@ -482,19 +499,7 @@ fn fill(m: &Mesh, cidx: &[u32], fi: Vec<FaceInfo>, n_points: usize, want_sides: 
         if crate::cancel::requested() {
             return;
         }
-        let s = m.v_out[v];
-        let mut h = s;
-        let mut best = s;
-        loop {
-            if cidx[h as usize] < cidx[best as usize] {
-                best = h;
-            }
-            h = prev[h as usize] ^ 1;
-            if h == s {
-                break;
-            }
-        }
-        *o = ctx.id_a(best);
+        *o = ctx.id_a(first_outgoing(m, cidx, v));
     });
     // edge points: the lowest of e(h)'s corners, h one of the edge's halves:
     // the inner corner after a(h) (not in a hole) and b(next h). Positions

@@ -120,7 +120,6 @@ impl<const N: u32> Ranks<'_, N> {
 
 fn fill_n<const N: u32>(m: &Mesh, cidx: &[u32], n_points: usize, want_sides: bool) -> Result<(Columns, Vec<u32>)> {
     let (next, vert, _) = m.halfedge_columns();
-    let prev = &m.he_prev;
     let (nv, ne, nf) = (m.n_vertices() as u32, m.n_edges() as u32, m.n_faces());
     let want_points = m.n_vertices() + m.n_edges() + if N == 4 { nf } else { 0 };
     if n_points != want_points {
@@ -259,17 +258,7 @@ fn fill_n<const N: u32>(m: &Mesh, cidx: &[u32], n_points: usize, want_sides: boo
         if crate::cancel::requested() {
             return;
         }
-        let s = m.v_out[v];
-        let (mut h, mut best) = (s, s);
-        loop {
-            if cidx[h as usize] < cidx[best as usize] {
-                best = h;
-            }
-            h = prev[h as usize] ^ 1;
-            if h == s {
-                break;
-            }
-        }
+        let best = super::primal_columns::first_outgoing(m, cidx, v);
         *o = rk.id_a(cidx[best as usize], best);
     });
     // edge points: the lowest of the two sides' candidates, slot 1 of a
