@@ -142,6 +142,8 @@ fn par_collect_flag<T: Copy + Send + Sync>(flag: &AtomicBool, n: usize, f: impl 
     use rayon::prelude::*;
     use std::sync::atomic::AtomicUsize;
     let mut v: Vec<T> = Vec::with_capacity(n);
+    // every element is written: the pages mapped in one call per chunk
+    crate::mesh::populate(&mut v, n);
     let done = AtomicUsize::new(0);
     v.spare_capacity_mut()[..n].par_chunks_mut(COLLECT_CHUNK).enumerate().for_each(|(k, ch)| {
         if flag.load(Ordering::Relaxed) {

@@ -305,7 +305,7 @@ impl Mesh {
     /// (vertices in range, symmetric twins running between the same vertices
     /// in opposite directions, twinless corners alone in their face); the
     /// unsafe fill relies on it.
-    fn build(positions: Vec<DVec3>, sizes: &[u32], verts: &[u32], twin: &[u32], f_hole: Vec<bool>, twins_valid: bool) -> Result<Mesh> {
+    pub(super) fn build(positions: Vec<DVec3>, sizes: &[u32], verts: &[u32], twin: &[u32], f_hole: Vec<bool>, twins_valid: bool) -> Result<Mesh> {
         let n = verts.len();
         let nv = positions.len();
         let nf = sizes.len();
@@ -333,27 +333,9 @@ impl Mesh {
             )));
         }
         crate::cancel::check()?;
-        // every corner: a vertex in range and a symmetric twin that starts
-        // where the corner's side ends (checked from both sides, this also
-        // makes the twin end where the corner starts)
-        // (debug builds check even when the caller vouches for the twins)
-        let bad_face = |f: usize| {
-            if crate::cancel::requested() {
-                return false; // the check after the search reports it
-            }
-            let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
-            (s..e).any(|c| {
-                let t = twin[c];
-                let cn = if c + 1 == e { s } else { c + 1 };
-                verts[c] as usize >= nv
-                    || if t == NONE {
-                        e - s != 1
-                    } else {
-                        t as usize >= n || t as usize == c || twin[t as usize] != c as u32 || verts[t as usize] != verts[cn]
-                    }
-            })
-        };
-        let bad = if twins_valid && !cfg!(debug_assertions) { None } else { first_in_range(nf, bad_face) };
+        // every corner: a vertex in range and a symmetric twin (debug builds
+        // check even when the caller vouches for the twins)
+        let bad = if twins_valid && !cfg!(debug_assertions) { None } else { first_bad_face(&offsets, verts, twin, nv) };
         crate::cancel::check()?;
         if let Some(f) = bad {
             let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
@@ -380,8 +362,8 @@ impl Mesh {
         let mut m = Mesh {
             pos: positions,
             v_out,
-            // every entry is written below; zeroed (calloc) memory is mapped
-            // lazily, so its page faults are taken by the parallel fill
+            // every entry is written below, onto pages mapped first in one
+            // call per chunk (crate::mesh::populate)
             he_next: vec![0; nh],
             he_prev: vec![0; nh],
             he_vert: vec![0; nh],
@@ -389,6 +371,9 @@ impl Mesh {
             f_start,
             f_hole,
         };
+        for col in [&mut m.he_next, &mut m.he_prev, &mut m.he_vert, &mut m.he_face] {
+            super::populate(col, nh);
+        }
         // the half-edge columns, face by face in parallel. Writes are disjoint:
         // `he_of` is a bijection from the corners with a twin onto 0..nh, and
         // every half-edge is the `next` of exactly one corner.
@@ -509,10 +494,10 @@ pub(crate) fn number_halfedges(twin: &[u32]) -> Result<(Vec<u32>, usize)> {
         base.push(acc);
         acc += c;
     }
-    // only the first corners' entries are read below: zeroed (calloc) memory
-    // is mapped lazily, so the parallel fill takes its page faults instead
-    // of a sequential memset
+    // only the first corners' entries are read below: zeroed (calloc)
+    // memory, no sequential memset, its pages mapped in one call per chunk
     let mut first_ids = vec![0u32; n];
+    super::populate(&mut first_ids, n);
     first_ids.par_chunks_mut(PAR_CHUNK).enumerate().for_each(|(k, chunk)| {
         if crate::cancel::requested() {
             return;
@@ -553,6 +538,32 @@ pub(crate) fn first_index<T: Sync>(s: &[T], pred: impl Fn(&T) -> bool + Sync) ->
     let k = s.par_chunks(PAR_CHUNK).position_first(|ch| ch.iter().any(&pred))?;
     let base = k * PAR_CHUNK;
     s[base..].iter().position(&pred).map(|i| base + i)
+}
+
+/// The first face (`offsets`: the prefix of its sizes) with a corner whose
+/// vertex is out of `0..nv`, or whose twin is not a symmetric partner that
+/// starts where the corner's side ends (checked from both sides, this also
+/// makes the twin end where the corner starts); a twinless corner (`NONE`)
+/// must be alone in its face. Searched in parallel; a cancelled search
+/// returns `None`, so callers check [`crate::cancel`] before trusting it.
+pub(super) fn first_bad_face(offsets: &[u32], verts: &[u32], twin: &[u32], nv: usize) -> Option<usize> {
+    let n = verts.len();
+    first_in_range(offsets.len() - 1, |f| {
+        if crate::cancel::requested() {
+            return false;
+        }
+        let (s, e) = (offsets[f] as usize, offsets[f + 1] as usize);
+        (s..e).any(|c| {
+            let t = twin[c];
+            let cn = if c + 1 == e { s } else { c + 1 };
+            verts[c] as usize >= nv
+                || if t == NONE {
+                    e - s != 1
+                } else {
+                    t as usize >= n || t as usize == c || twin[t as usize] != c as u32 || verts[t as usize] != verts[cn]
+                }
+        })
+    })
 }
 
 /// The first `i` in `0..n` satisfying `pred`, searched like [`first_index`].
