@@ -21,7 +21,12 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
+# before NumPy loads: OpenBLAS's threads spin for a while after any BLAS call
+# (trimesh's export makes some) and took a core from the next timed read, which
+# then ran 5-10x slower whichever library it was (perf: blas_thread_server)
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
 
 
 def median_time(fn, repeat: int) -> float:

@@ -106,6 +106,8 @@ def test_flat_arrays_with_twins_rebuild_the_same_mesh(name):
     t = m.corner_twins
     assert t.dtype == np.int64 and t.shape == m.face_indices.shape
     _same(m, Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices, twins=t))
+    # int32 columns (a PLY file's) are read without an int64 copy: the same mesh
+    _same(m, Mesh.from_flat(m.vertices, m.face_sizes, m.face_indices.astype(np.int32), twins=t.astype(np.int32)))
     # twins are symmetric and -1 exactly at boundary sides and point-spheres
     inner = t >= 0
     assert np.array_equal(t[t[inner]], np.flatnonzero(inner))
@@ -161,9 +163,10 @@ def test_two_two_gons_and_beach_balls():
     assert a != b and a == _beach_ball(1)
 
 
-def test_bad_twins_name_corner_and_face():
+@pytest.mark.parametrize("dtype", [np.int64, np.int32])
+def test_bad_twins_name_corner_and_face(dtype):
     m = T.tetrahedron()
-    v, s, i, t = m.vertices, m.face_sizes, m.face_indices, np.array(m.corner_twins)
+    v, s, i, t = m.vertices, m.face_sizes, m.face_indices.astype(dtype), np.array(m.corner_twins, dtype=dtype)
     bad = t.copy()
     bad[4] = 99
     with pytest.raises(MeshError, match=r"corner 4 of face 1 has twin 99, out of range"):

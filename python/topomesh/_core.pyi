@@ -623,7 +623,7 @@ def _ply_split_records(
     data: bytes, start: int, n: int, props: list[tuple[int, bool, int]], element: str
 ) -> tuple[list[npt.NDArray[np.uint8]], list[npt.NDArray[np.int64] | None], int]: ...
 def _ply_join_records(
-    sizes: npt.NDArray[np.int64], fields: list[tuple[int, int, int, npt.NDArray[np.uint8]]]
+    sizes: npt.NDArray[np.int64], fields: list[tuple[int, int, int, int, npt.NDArray[np.uint8]]]
 ) -> npt.NDArray[np.uint8]: ...
 
 # --- Conway operators (issue 16) ---

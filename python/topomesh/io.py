@@ -273,6 +273,7 @@ def load(
         if repair:
             from topomesh._repair import repair_flat
 
+            idx = np.asarray(idx, dtype=np.int64)  # a PLY file's int32 columns: repair's arithmetic wants int64
             mesh, _report = repair_flat(verts, sizes, idx, close_boundaries=close_boundaries, boundaries=boundaries)
             return mesh
         kw = dict(close_boundaries=close_boundaries, boundaries=boundaries)

@@ -113,22 +113,68 @@ pub fn split_records(data: &[u8], start: usize, n: usize, props: &[Property], el
 /// One column of records to write: a scalar of `value_size` bytes per
 /// record, or (`count` = 1 or 4, the bytes of its unsigned count) a list
 /// whose record `r` holds `per * sizes[r]` values of `value_size` bytes.
-/// `data` is the column's little-endian value bytes, records in order.
+/// `data` is the column's little-endian value bytes, records in order,
+/// `source_size` bytes per value: `value_size`, or 8 for 4-byte values
+/// narrowed from int64 (each must fit an int32; the writer then needs no
+/// converted copy of the mesh's index arrays).
 #[derive(Clone, Copy, Debug)]
 pub struct Field<'a> {
     pub count: u8,
     pub per: u32,
     pub value_size: u8,
+    pub source_size: u8,
     pub data: &'a [u8],
 }
 
 /// Records per parallel block of [`join_records`].
 const BLOCK: usize = 1 << 14;
 
+/// Copies `src` to the start of `dst`; the common small lengths (lists of
+/// 3 or 4 indices, scalars) with constant sizes, which compile to plain
+/// moves instead of a `memcpy` call per record.
+#[inline(always)]
+fn put(dst: &mut [u8], src: &[u8]) {
+    match src.len() {
+        4 => dst[..4].copy_from_slice(&src[..4]),
+        8 => dst[..8].copy_from_slice(&src[..8]),
+        12 => dst[..12].copy_from_slice(&src[..12]),
+        16 => dst[..16].copy_from_slice(&src[..16]),
+        24 => dst[..24].copy_from_slice(&src[..24]),
+        n => dst[..n].copy_from_slice(src),
+    }
+}
+
+/// Writes the `N` int64 values of `src` as int32 at the start of `dst`;
+/// whether one did not fit. `N` constant: the common triangles and quads
+/// unrolled.
+#[inline(always)]
+fn narrow<const N: usize>(dst: &mut [u8], src: &[u8]) -> bool {
+    let (dst, src) = (&mut dst[..4 * N], &src[..8 * N]);
+    let mut wide = false;
+    for i in 0..N {
+        let v = i64::from_le_bytes(src[8 * i..8 * i + 8].try_into().unwrap());
+        wide |= v as i32 as i64 != v;
+        dst[4 * i..4 * i + 4].copy_from_slice(&(v as i32).to_le_bytes());
+    }
+    wide
+}
+
+/// [`narrow`] for any count (`src.len() / 8` values).
+fn narrow_n(dst: &mut [u8], src: &[u8]) -> bool {
+    let mut wide = false;
+    for (d, v) in dst.chunks_exact_mut(4).zip(src.chunks_exact(8)) {
+        let v = i64::from_le_bytes(v.try_into().unwrap());
+        wide |= v as i32 as i64 != v;
+        d.copy_from_slice(&(v as i32).to_le_bytes());
+    }
+    wide
+}
+
 /// The records of `sizes.len()` faces (`sizes[r]` corners each) laid out
 /// property after property, as a PLY binary little-endian element body.
 pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
     use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     let bad = |msg: String| MeshError::InvalidArgument(format!("PLY record layout: {msg}"));
     if let Some(r) = sizes.iter().position(|&k| k < 0) {
         return Err(bad(format!("face {r} has a negative size ({})", sizes[r])));
@@ -136,9 +182,12 @@ pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
     let corners: usize = sizes.iter().map(|&k| k as usize).sum();
     let top = sizes.iter().copied().max().unwrap_or(0) as u64;
     for (j, f) in fields.iter().enumerate() {
+        if f.source_size != f.value_size && (f.source_size, f.value_size) != (8, 4) {
+            return Err(bad(format!("property {j}: {}-byte values from {}-byte sources", f.value_size, f.source_size)));
+        }
         let units = if f.count == 0 { sizes.len() } else { corners * f.per as usize };
-        if f.data.len() != units * f.value_size as usize {
-            return Err(bad(format!("property {j} has {} bytes, expected {}", f.data.len(), units * f.value_size as usize)));
+        if f.data.len() != units * f.source_size as usize {
+            return Err(bad(format!("property {j} has {} bytes, expected {}", f.data.len(), units * f.source_size as usize)));
         }
         let limit = match f.count { 0 => u64::MAX, 1 => 255, 4 => u32::MAX as u64, c => return Err(bad(format!("property {j}: count of {c} bytes"))) };
         if top * f.per as u64 > limit {
@@ -152,6 +201,7 @@ pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
     let blocks: Vec<(usize, usize)> = sizes.par_chunks(BLOCK).map(|b| (b.iter().map(|&k| k as usize).sum(), b.iter().map(|&k| len(k as usize)).sum())).collect();
     let total: usize = blocks.iter().map(|b| b.1).sum();
     let mut out = vec![0u8; total];
+    crate::mesh::populate(&mut out, total);
     let mut parts = Vec::with_capacity(blocks.len());
     let (mut rest, mut corner) = (&mut out[..], 0usize);
     for (i, &(nc, nb)) in blocks.iter().enumerate() {
@@ -160,27 +210,46 @@ pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
         rest = tail;
         corner += nc;
     }
+    let too_wide = AtomicBool::new(false);
     parts.into_par_iter().for_each(|(r0, mut c, buf)| {
-        let mut pos = 0;
+        let (mut pos, mut wide) = (0, false);
         for (r, &k) in sizes[r0..(r0 + BLOCK).min(sizes.len())].iter().enumerate() {
             let k = k as usize;
             for f in fields {
-                let vs = f.value_size as usize;
-                let src = if f.count == 0 {
-                    &f.data[(r0 + r) * vs..(r0 + r + 1) * vs]
+                let (vs, ss) = (f.value_size as usize, f.source_size as usize);
+                let (a, n) = if f.count == 0 {
+                    ((r0 + r) * ss, 1)
                 } else {
                     let n = k * f.per as usize;
-                    buf[pos..pos + f.count as usize].copy_from_slice(&(n as u32).to_le_bytes()[..f.count as usize]);
+                    if f.count == 1 {
+                        buf[pos] = n as u8;
+                    } else {
+                        buf[pos..pos + 4].copy_from_slice(&(n as u32).to_le_bytes());
+                    }
                     pos += f.count as usize;
-                    let a = c * f.per as usize * vs;
-                    &f.data[a..a + n * vs]
+                    (c * f.per as usize * ss, n)
                 };
-                buf[pos..pos + src.len()].copy_from_slice(src);
-                pos += src.len();
+                let src = &f.data[a..a + n * ss];
+                if ss == vs {
+                    put(&mut buf[pos..], src);
+                } else {
+                    wide |= match n {
+                        3 => narrow::<3>(&mut buf[pos..], src),
+                        4 => narrow::<4>(&mut buf[pos..], src),
+                        _ => narrow_n(&mut buf[pos..], src),
+                    };
+                }
+                pos += n * vs;
             }
             c += k;
         }
+        if wide {
+            too_wide.store(true, Relaxed);
+        }
     });
+    if too_wide.load(Relaxed) {
+        return Err(bad("a value narrowed from int64 does not fit int32".into()));
+    }
     Ok(out)
 }
 
@@ -240,9 +309,9 @@ mod tests {
         let tag: Vec<u8> = (0..sizes.len() as u16).flat_map(|i| i.wrapping_mul(7).to_le_bytes()).collect();
         let uv: Vec<u8> = (0..2 * nc as u64).flat_map(|i| (i as f64 * 0.5).to_le_bytes()).collect();
         let fields = [
-            Field { count: 1, per: 1, value_size: 4, data: &idx },
-            Field { count: 0, per: 1, value_size: 2, data: &tag },
-            Field { count: 4, per: 2, value_size: 8, data: &uv },
+            Field { count: 1, per: 1, value_size: 4, source_size: 4, data: &idx },
+            Field { count: 0, per: 1, value_size: 2, source_size: 2, data: &tag },
+            Field { count: 4, per: 2, value_size: 8, source_size: 8, data: &uv },
         ];
         let body = join_records(&sizes, &fields).unwrap();
         // the first record by hand: count 3, indices 0 1 2, tag 0, count 6, six doubles
@@ -259,11 +328,28 @@ mod tests {
     }
 
     #[test]
+    fn int64_sources_narrow_to_the_same_bytes() {
+        // mixed sizes, negative values (twins -1, -2) and both ends of int32
+        let sizes = [3i64, 1, 4, 2];
+        let vals: Vec<i64> = vec![0, 1, 2, -1, -2, 7, i32::MAX as i64, i32::MIN as i64, 5, 6];
+        let wide: Vec<u8> = vals.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let narrow: Vec<u8> = vals.iter().flat_map(|&v| (v as i32).to_le_bytes()).collect();
+        let f = |data, source_size| [Field { count: 1, per: 1, value_size: 4, source_size, data }];
+        assert_eq!(join_records(&sizes, &f(&wide, 8)).unwrap(), join_records(&sizes, &f(&narrow, 4)).unwrap());
+        let mut big = wide.clone();
+        big[8 * 9..8 * 10].copy_from_slice(&(1i64 << 31).to_le_bytes());
+        let e = join_records(&sizes, &f(&big, 8)).unwrap_err().to_string();
+        assert!(e.contains("does not fit int32"), "{e}");
+        let e = join_records(&sizes, &[Field { count: 1, per: 1, value_size: 2, source_size: 8, data: &wide }]).unwrap_err().to_string();
+        assert!(e.contains("2-byte values from 8-byte sources"), "{e}");
+    }
+
+    #[test]
     fn join_refuses_what_it_cannot_write() {
         let idx = vec![0u8; 4 * 300];
-        let e = join_records(&[300], &[Field { count: 1, per: 1, value_size: 4, data: &idx }]).unwrap_err().to_string();
+        let e = join_records(&[300], &[Field { count: 1, per: 1, value_size: 4, source_size: 4, data: &idx }]).unwrap_err().to_string();
         assert!(e.contains("does not fit its 1-byte count"), "{e}");
-        let e = join_records(&[3], &[Field { count: 1, per: 1, value_size: 4, data: &idx[..8] }]).unwrap_err().to_string();
+        let e = join_records(&[3], &[Field { count: 1, per: 1, value_size: 4, source_size: 4, data: &idx[..8] }]).unwrap_err().to_string();
         assert!(e.contains("property 0 has 8 bytes, expected 12"), "{e}");
         let e = join_records(&[-1], &[]).unwrap_err().to_string();
         assert!(e.contains("face 0 has a negative size"), "{e}");

@@ -167,19 +167,25 @@ impl Mesh {
     /// ambiguous; and every input error of [`Mesh::from_polygons`] about
     /// positions, sizes and indices.
     pub fn from_corner_twins_i64(positions: Vec<DVec3>, sizes: &[i64], indices: &[i64], twins: &[i64]) -> Result<Mesh> {
-        let nv = positions.len();
-        let n = indices.len();
-        if nv > MAX_ELEMENTS || n > MAX_ELEMENTS / 2 || sizes.len() > MAX_ELEMENTS / 2 {
-            return Err(MeshError::InvalidArgument(format!(
-                "mesh too large: at most {MAX_ELEMENTS} vertices and {} corners",
-                MAX_ELEMENTS / 2
-            )));
-        }
+        check_twins_size(positions.len(), indices.len(), sizes.len())?;
         if let Some((sizes_u, verts, twin)) = closed_fast(&positions, sizes, indices, twins)? {
             let holes = vec![false; sizes_u.len()];
             return Mesh::build(positions, &sizes_u, &verts, &twin, holes, true);
         }
         Self::from_corner_twins_i64_general(positions, sizes, indices, twins)
+    }
+
+    /// [`Mesh::from_corner_twins_i64`] with int32 indices and twins (as a
+    /// PLY file stores them), without an int64 copy of either unless the
+    /// mesh has holes or point-spheres or the input is refused.
+    pub fn from_corner_twins_i32(positions: Vec<DVec3>, sizes: &[i64], indices: &[i32], twins: &[i32]) -> Result<Mesh> {
+        check_twins_size(positions.len(), indices.len(), sizes.len())?;
+        if let Some((sizes_u, verts, twin)) = closed_fast(&positions, sizes, indices, twins)? {
+            let holes = vec![false; sizes_u.len()];
+            return Mesh::build(positions, &sizes_u, &verts, &twin, holes, true);
+        }
+        let wide = |a: &[i32]| a.iter().map(|&x| x as i64).collect::<Vec<i64>>();
+        Self::from_corner_twins_i64_general(positions, sizes, &wide(indices), &wide(twins))
     }
 
     /// [`Mesh::from_corner_twins_i64`] for every input (holes, point-spheres,
@@ -368,6 +374,17 @@ impl Mesh {
     }
 }
 
+/// The size limits of [`Mesh::from_corner_twins_i64`].
+fn check_twins_size(nv: usize, n: usize, nf: usize) -> Result<()> {
+    if nv > MAX_ELEMENTS || n > MAX_ELEMENTS / 2 || nf > MAX_ELEMENTS / 2 {
+        return Err(MeshError::InvalidArgument(format!(
+            "mesh too large: at most {MAX_ELEMENTS} vertices and {} corners",
+            MAX_ELEMENTS / 2
+        )));
+    }
+    Ok(())
+}
+
 /// The common case of [`Mesh::from_corner_twins_i64`], a closed mesh (every
 /// twin a corner): checked and converted to the builder's columns in
 /// parallel, `(sizes, vertices, twins)` ready for [`Mesh::build`] with the
@@ -375,7 +392,7 @@ impl Mesh {
 /// the sequential path then handles holes and point-spheres and names the
 /// problem. (That path alone took 154 ms of a 1M-quad torus's 160 ms
 /// rebuild on one thread; the builder needs 63 ms.)
-fn closed_fast(positions: &[DVec3], sizes: &[i64], indices: &[i64], twins: &[i64]) -> Result<Option<(Vec<u32>, Vec<u32>, Vec<u32>)>> {
+fn closed_fast<T: Copy + Into<i64> + Sync>(positions: &[DVec3], sizes: &[i64], indices: &[T], twins: &[T]) -> Result<Option<(Vec<u32>, Vec<u32>, Vec<u32>)>> {
     use super::build::{first_bad_face, first_index};
     use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     let (nv, n) = (positions.len(), indices.len());
@@ -405,8 +422,8 @@ fn closed_fast(positions: &[DVec3], sizes: &[i64], indices: &[i64], twins: &[i64
         }
         x as u32
     };
-    let verts = crate::cancel::par_collect(n, |c| narrow(indices[c], nv))?;
-    let twin = crate::cancel::par_collect(n, |c| narrow(twins[c], n))?;
+    let verts = crate::cancel::par_collect(n, |c| narrow(indices[c].into(), nv))?;
+    let twin = crate::cancel::par_collect(n, |c| narrow(twins[c].into(), n))?;
     if out.load(Relaxed) {
         return Ok(None);
     }
@@ -470,8 +487,11 @@ mod tests {
             let pos = m.positions().to_vec();
             assert!(closed_fast(&pos, &sizes, &idx, &tw).unwrap().is_some(), "{name}");
             let fast = Mesh::from_corner_twins_i64(pos.clone(), &sizes, &idx, &tw).unwrap();
+            let (idx32, tw32): (Vec<i32>, Vec<i32>) = (idx.iter().map(|&i| i as i32).collect(), tw.iter().map(|&t| t as i32).collect());
+            let narrow = Mesh::from_corner_twins_i32(pos.clone(), &sizes, &idx32, &tw32).unwrap();
             let general = Mesh::from_corner_twins_i64_general(pos, &sizes, &idx, &tw).unwrap();
             assert_eq!(fast, general, "{name}");
+            assert_eq!(narrow, general, "{name}");
             checked += 1;
         }
         assert!(checked >= 5, "only {checked} closed meshes in the corpus");
@@ -489,6 +509,20 @@ mod tests {
         bad[5] = 8;
         let e = Mesh::from_corner_twins_i64(cube.positions().to_vec(), &sizes, &bad, &cube.corner_twins()).unwrap_err().to_string();
         assert!(e.contains("vertex index 8 at position"), "{e}");
+        // int32 input: the same messages, and holes rebuilt as from int64
+        let bad32: Vec<i32> = bad.iter().map(|&i| i as i32).collect();
+        let tw32: Vec<i32> = cube.corner_twins().iter().map(|&t| t as i32).collect();
+        let e32 = Mesh::from_corner_twins_i32(cube.positions().to_vec(), &sizes, &bad32, &tw32).unwrap_err().to_string();
+        assert_eq!(e32, e);
+        let open = ("open", crate::schemes::hosts::test_meshes::cube_with_hole());
+        for (name, m) in crate::schemes::hosts::test_meshes::corpus().into_iter().chain([open]) {
+            let (p, tw) = (m.to_polygons(), m.corner_twins());
+            let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
+            let (i64s, i32s): (Vec<i64>, Vec<i32>) = (p.indices.iter().map(|&s| s as i64).collect(), p.indices.iter().map(|&s| s as i32).collect());
+            let tw32: Vec<i32> = tw.iter().map(|&t| t as i32).collect();
+            let a = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &i64s, &tw).unwrap();
+            assert_eq!(Mesh::from_corner_twins_i32(m.positions().to_vec(), &sizes, &i32s, &tw32).unwrap(), a, "{name}");
+        }
     }
 
     #[test]

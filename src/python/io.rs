@@ -112,19 +112,20 @@ fn _ply_split_records<'py>(
 /// The binary little-endian PLY face records of faces with ``sizes``
 /// corners (GIL released), the inverse of :func:`_ply_split_records`.
 /// ``fields`` gives, per property in record order, ``(count bytes (1 or 4)
-/// or 0 for a scalar, values per corner, value bytes, the column's raw
-/// little-endian bytes (uint8))``. Returns the element body as uint8.
+/// or 0 for a scalar, values per corner, value bytes, source bytes per
+/// value (the value bytes, or 8 for int64 narrowed to int32), the column's
+/// raw little-endian bytes (uint8))``. Returns the element body as uint8.
 #[pyfunction]
 fn _ply_join_records<'py>(
     py: Python<'py>,
     sizes: PyReadonlyArray1<'py, i64>,
-    fields: Vec<(u8, u32, u8, PyReadonlyArray1<'py, u8>)>,
+    fields: Vec<(u8, u32, u8, u8, PyReadonlyArray1<'py, u8>)>,
 ) -> PyResult<Bound<'py, numpy::PyArray1<u8>>> {
     use numpy::IntoPyArray;
     let sizes = sizes.as_slice()?;
     let cols = fields
         .iter()
-        .map(|(c, per, vs, d)| Ok(crate::io::ply::Field { count: *c, per: *per, value_size: *vs, data: d.as_slice()? }))
+        .map(|(c, per, vs, ss, d)| Ok(crate::io::ply::Field { count: *c, per: *per, value_size: *vs, source_size: *ss, data: d.as_slice()? }))
         .collect::<PyResult<Vec<_>>>()?;
     let body = super::detach(py, || crate::io::ply::join_records(sizes, &cols)).map_err(super::err)?;
     Ok(body.into_pyarray(py))

@@ -223,9 +223,21 @@ impl PyMesh {
         let keep = super::boundary::keep_boundaries("from_flat", close_boundaries, boundaries)?;
         let pos = positions(py, vertices)?;
         let sizes = indices_1d(py, face_sizes, "face_sizes")?;
-        let idx = indices_1d(py, face_indices, "face_indices")?;
         match twins {
             Some(t) if !t.is_none() => {
+                // int32 indices and twins (a PLY file's) are read as they are
+                if let (Ok(i), Ok(w)) = (face_indices.cast::<PyArray1<i32>>(), t.cast::<PyArray1<i32>>()) {
+                    let (i, w) = (numpy::PyArrayMethods::readonly(i), numpy::PyArrayMethods::readonly(w));
+                    if let (Ok(i), Ok(w)) = (i.as_slice(), w.as_slice()) {
+                        let s = sizes.as_slice();
+                        let m = super::run_interruptible(py, || Mesh::from_corner_twins_i32(pos, s, i, w))?;
+                        if !keep {
+                            super::boundary::refuse_open("from_flat", &m)?;
+                        }
+                        return Ok(PyMesh::wrap(m));
+                    }
+                }
+                let idx = indices_1d(py, face_indices, "face_indices")?;
                 let t = indices_1d(py, t, "twins")?;
                 let m = build_twins(py, pos, sizes.as_slice(), idx.as_slice(), t.as_slice())?;
                 if !keep {
@@ -233,7 +245,7 @@ impl PyMesh {
                 }
                 Ok(m)
             }
-            _ => build(py, pos, sizes.as_slice(), idx.as_slice(), keep, allow_multi_edges),
+            _ => build(py, pos, sizes.as_slice(), indices_1d(py, face_indices, "face_indices")?.as_slice(), keep, allow_multi_edges),
         }
     }
 
