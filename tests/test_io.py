@@ -296,6 +296,31 @@ def test_truncated_or_padded_mixed_ply_is_an_error(tmp_path):
         T.load(tmp_path / "pad.ply")
 
 
+def test_ply_reads_long_headers_and_names_unreadable_files(tmp_path):
+    from topomesh._core import _read_bytes
+
+    t = T.torus(12, 8)
+    m = Mesh.from_polygons(t.vertices, t.triangles())
+    p = tmp_path / "m.ply"
+    m.save(p)
+    data = p.read_bytes()
+    # a header longer than the 64 KiB the reader probes first (many comments)
+    head, body = data.split(b"end_header\n", 1)
+    lines = head.split(b"\n")
+    long = b"\n".join(lines[:2] + [b"comment " + b"x" * 100] * 1000 + lines[2:]) + b"end_header\n" + body
+    assert len(long) - len(body) > 1 << 16
+    (tmp_path / "long.ply").write_bytes(long)
+    _same(m, T.load(tmp_path / "long.ply"))
+    # a uniform file whose records run past its end is not read as uniform
+    (tmp_path / "cut.ply").write_bytes(data[:-1])
+    with pytest.raises(MeshError, match=r"cut\.ply"):
+        T.load(tmp_path / "cut.ply")
+    with pytest.raises(MeshError, match=r"nothing\.ply: cannot read"):
+        _read_bytes(str(tmp_path / "nothing.ply"))
+    with pytest.raises(MeshError, match=r"cannot read"):
+        _read_bytes(str(tmp_path))  # a directory
+
+
 @pytest.mark.parametrize("name", NAMES)
 def test_pickle_and_copy_round_trip(name):
     m = CORPUS[name]

@@ -15,8 +15,10 @@ from topomesh.correspondence import Correspondence
 __all__ = [
     "_huge_page_advice",
     "_populate",
+    "_ply_gather",
     "_ply_join_records",
     "_ply_split_records",
+    "_read_bytes",
     "_read_obj",
     "_write_obj",
     "IFS",
@@ -619,8 +621,12 @@ def _write_obj(
 def _read_obj(
     path: str | PathLike[str],
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64], int, int, dict[str, Any]]: ...
+def _read_bytes(path: str) -> npt.NDArray[np.uint8]: ...
+def _ply_gather(
+    data: npt.NDArray[np.uint8], start: int, n: int, record: int, fields: list[tuple[int, int]]
+) -> list[npt.NDArray[np.uint8]]: ...
 def _ply_split_records(
-    data: bytes, start: int, n: int, props: list[tuple[int, bool, int]], element: str
+    data: npt.NDArray[np.uint8], start: int, n: int, props: list[tuple[int, bool, int]], element: str
 ) -> tuple[list[npt.NDArray[np.uint8]], list[npt.NDArray[np.int64] | None], int]: ...
 def _ply_join_records(
     sizes: npt.NDArray[np.int64], fields: list[tuple[int, int, int, int, npt.NDArray[np.uint8]]]

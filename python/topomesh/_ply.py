@@ -1,8 +1,9 @@
 """PLY for :mod:`topomesh.io`: binary little-endian face records laid out
-by the core (``_ply_join_records``) and read with NumPy (one ``frombuffer``
-per element when every face has one size, else after the core's walk of
-the records, ``_ply_split_records``), plyfile for ASCII and big-endian PLY. The layout is described in the formats section of
-:mod:`topomesh.io`."""
+by the core (``_ply_join_records``) and read by the core (the file in one
+read, ``_read_bytes``; then one column per property, ``_ply_gather``, when
+every face has one size, else the walk of the records,
+``_ply_split_records``), plyfile for ASCII and big-endian PLY. The layout
+is described in the formats section of :mod:`topomesh.io`."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-from topomesh._core import Mesh, MeshError, _ply_join_records, _ply_split_records
+from topomesh._core import Mesh, MeshError, _ply_gather, _ply_join_records, _ply_split_records, _read_bytes
 from topomesh._fileattrs import _ply_fields
 
 if TYPE_CHECKING:
@@ -78,19 +79,21 @@ def _raw(a):
     return np.ascontiguousarray(a).view(np.uint8).reshape(-1)
 
 
-def _bytes_of(path: PathLike) -> bytes:
-    """The file's contents. (A read-only memory map was tried for issue 19:
-    fast on a file read twice, but 5-10x slower than this copy when the file
-    had just been written, the usual save-then-load case: every page faulted
-    in while the kernel was writing the file back.)"""
-    with open(path, "rb") as f:
-        return f.read()
+def _bytes_of(path: PathLike) -> np.ndarray:
+    """The file's contents as uint8, read by the core into a buffer whose
+    pages are mapped before the read (``_read_bytes``: 36 MiB in 20-28 ms
+    by ``f.read()``, most of it page faults of the fresh bytes object). A
+    read-only memory map was tried for issue 19: fast on a file read twice,
+    but 5-10x slower than a copy when the file had just been written, the
+    usual save-then-load case: every page faulted in while the kernel was
+    writing the file back."""
+    return _read_bytes(os.fspath(path))
 
 
 def _read_ply(path: PathLike):
     """``(vertices, sizes, indices, twins or None, (vertex properties, face
     properties, list property names, comments))``: binary little-endian files
-    with NumPy (one ``frombuffer`` per element when every face has one size,
+    with the core (one column per property when every face has one size,
     else the core's record walk), ASCII and big-endian ones with plyfile."""
     data = _bytes_of(path)
     head = _binary_header(data)
@@ -123,25 +126,33 @@ def _read_ply(path: PathLike):
 
 
 def _read_ply_uniform(path: PathLike):
-    """The one-``frombuffer`` read of a binary little-endian PLY whose faces
+    """The one-gather read of a binary little-endian PLY whose faces
     all have one size, ``None`` for any other file (see :func:`_read_uniform`)."""
     data = _bytes_of(path)
     head = _binary_header(data)
     return None if head is None else _read_uniform(data, *head)
 
 
-def _binary_header(data: bytes):
+#: Bytes searched for the end of a PLY header before the whole file is.
+_HEADER_PROBE = 1 << 16
+
+
+def _binary_header(data: np.ndarray):
     """``(body offset, vertex count, vertex properties, face count, face
     properties, comments)`` of a binary little-endian PLY with a vertex
     element of scalar properties (``x y z`` among them) followed by a face
     element with ``vertex_indices``; properties as ``(name, count dtype or
     None, value dtype)``. ``None`` for anything else (plyfile reads it)."""
-    if data[:4] != b"ply\n":
+    head = bytes(data[:_HEADER_PROBE])
+    if head[:4] != b"ply\n":
         return None
-    end = data.find(b"end_header\n")
+    end = head.find(b"end_header\n")
+    if end < 0 and len(data) > len(head):
+        head = bytes(data)  # a header longer than the probe (many comments): rare
+        end = head.find(b"end_header\n")
     if end < 0:
         return None
-    lines = data[:end].decode("ascii", "replace").splitlines()[1:]
+    lines = head[:end].decode("ascii", "replace").splitlines()[1:]
     comments = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else "" for ln in lines if ln.split()[:1] == ["comment"]]
     rows = [r for r in (ln.split() for ln in lines) if r and r[0] not in ("comment", "obj_info")]
     try:
@@ -171,10 +182,19 @@ def _vertex_dtype(vprops: list) -> np.dtype:
     return np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
 
 
-def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
+def _vertex_columns(data: np.ndarray, body: int, nv: int, vprops: list):
     vdt = _vertex_dtype(vprops)
     if len(data) < body + nv * vdt.itemsize:
         return None, None, vdt
+    if vdt.names[:3] == ("x", "y", "z") and all(vdt[c] == np.dtype("<f8") for c in "xyz"):
+        # x y z as float64 first (every file topomesh writes): one column of the core's
+        # gather, the other properties beside it
+        rest = vdt.names[3:]
+        cols = _ply_gather(data, body, nv, vdt.itemsize, [(0, 24)] + [(vdt.fields[p][1], vdt[p].itemsize) for p in rest])
+        verts = cols[0].view("<f8").reshape(nv, 3)
+        props = {c: verts[:, j] for j, c in enumerate("xyz")}
+        props.update({p: a.view(vdt[p]) for p, a in zip(rest, cols[1:])})
+        return verts, props, vdt
     vrec = np.frombuffer(data, vdt, nv, body)
     verts = np.empty((nv, 3), np.float64)  # one strided copy per column
     for j, c in enumerate("xyz"):
@@ -184,8 +204,8 @@ def _vertex_columns(data: bytes, body: int, nv: int, vprops: list):
     return verts, props, vdt
 
 
-def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
-    """Faces that all have one size: one ``np.frombuffer`` per element; ``None``
+def _read_uniform(data: np.ndarray, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
+    """Faces that all have one size: one gathered column per property; ``None``
     when the face records differ in length."""
     fstart = body + nv * _vertex_dtype(vprops).itemsize
     # the list lengths of the first face fix the record layout
@@ -207,7 +227,10 @@ def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops
     fdt = np.dtype(fields)
     if len(data) != fstart + nf * fdt.itemsize:
         return None
-    faces = np.frombuffer(data, fdt, nf, fstart)
+    # every field's column in one parallel pass each (the core's gather), as flat arrays
+    names = fdt.names
+    cols = _ply_gather(data, fstart, nf, fdt.itemsize, [(fdt.fields[q][1], fdt[q].itemsize) for q in names])
+    faces = {q: a.view(fdt[q].base) for q, a in zip(names, cols)}
     for p, c, _ in fprops:
         if c is not None and not (faces["\0n" + p] == fdt[p].shape[0]).all():
             return None
@@ -215,13 +238,12 @@ def _read_uniform(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops
     if k == 0:
         return None
     verts, vp, _ = _vertex_columns(data, body, nv, vprops)
-    # the index columns are copied once, straight from the strided records; int32
-    # (as topomesh writes them) stays int32, which Mesh.from_flat reads without an
-    # int64 copy (48 MB fewer fresh pages for 1M triangles), other types become int64
+    # int32 index columns (as topomesh writes them) stay int32, which Mesh.from_flat
+    # reads without an int64 copy (48 MB fewer fresh pages for 1M triangles); other
+    # types become int64
     idx = _index_column(faces["vertex_indices"])
-    twins = _index_column(faces["corner_twins"]) if "corner_twins" in faces.dtype.names else None
-    fp = {p: idx if p == "vertex_indices" else twins if p == "corner_twins" else np.array(faces[p].reshape(-1) if c is not None else faces[p])
-          for p, c, _ in fprops}
+    twins = _index_column(faces["corner_twins"]) if "corner_twins" in names else None
+    fp = {p: idx if p == "vertex_indices" else twins if p == "corner_twins" else faces[p] for p, c, _ in fprops}
     lists = {p for p, c, _ in fprops if c is not None}
     return verts, np.full(nf, k, np.int64), idx, twins, (vp, fp, lists, comments)
 
@@ -230,7 +252,7 @@ def _index_column(a: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.int32 if a.dtype == np.dtype("<i4") else np.int64).reshape(-1)
 
 
-def _read_split(data: bytes, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
+def _read_split(data: np.ndarray, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
     """Faces of several sizes: the core walks the records once and hands back
     one column per property (1M mixed faces in ~0.1 s, where plyfile's
     per-face decoding took ~20 s). ``None`` when the file is shorter than its

@@ -129,7 +129,7 @@ impl CornerRefs {
 
 /// Reads the OBJ file at `path` (see the module docs).
 pub fn read_obj(path: &Path) -> Result<ObjData> {
-    let bytes = std::fs::read(path).map_err(|e| MeshError::Io(format!("{}: cannot read ({e})", path.display())))?;
+    let bytes = super::read_file(path)?;
     parse_obj(&bytes, &path.display().to_string())
 }
 

@@ -253,6 +253,46 @@ pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
     Ok(out)
 }
 
+/// Records per parallel block of [`gather`].
+const GATHER_BLOCK: usize = 1 << 14;
+
+/// The columns of `n` fixed-length records of `record` bytes starting at
+/// byte `start` of `data`: per field `(offset in the record, width)`, the
+/// field's bytes of every record, contiguous, in record order. A uniform
+/// PLY element (every face of one size) is read this way: one parallel pass
+/// per column into pages mapped up front, where NumPy's strided copies of
+/// a structured view took 25 ms of a 1M-triangle file's 45 ms read.
+pub fn gather(data: &[u8], start: usize, n: usize, record: usize, fields: &[(usize, usize)]) -> Result<Vec<Vec<u8>>> {
+    use rayon::prelude::*;
+    let bad = |msg: String| MeshError::InvalidArgument(format!("PLY records: {msg}"));
+    let end = n.checked_mul(record).and_then(|b| b.checked_add(start));
+    if end.is_none_or(|e| e > data.len()) {
+        return Err(bad(format!("{n} records of {record} bytes from byte {start} run past the end of the {} bytes", data.len())));
+    }
+    if let Some(&(o, w)) = fields.iter().find(|&&(o, w)| o + w > record) {
+        return Err(bad(format!("a field of {w} bytes at offset {o} does not fit a record of {record}")));
+    }
+    let mut out = Vec::with_capacity(fields.len());
+    for &(off, w) in fields {
+        let mut col = vec![0u8; n * w];
+        crate::mesh::populate(&mut col, n * w);
+        if w > 0 {
+            col.par_chunks_mut(GATHER_BLOCK * w).enumerate().for_each(|(b, dst)| {
+                if crate::cancel::requested() {
+                    return; // the check after the loop reports it
+                }
+                let src = &data[start + b * GATHER_BLOCK * record + off..];
+                for (i, d) in dst.chunks_exact_mut(w).enumerate() {
+                    put(d, &src[i * record..i * record + w]);
+                }
+            });
+        }
+        crate::cancel::check()?;
+        out.push(col);
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -342,6 +382,26 @@ mod tests {
         assert!(e.contains("does not fit int32"), "{e}");
         let e = join_records(&sizes, &[Field { count: 1, per: 1, value_size: 2, source_size: 8, data: &wide }]).unwrap_err().to_string();
         assert!(e.contains("2-byte values from 8-byte sources"), "{e}");
+    }
+
+    #[test]
+    fn gather_reads_the_columns_of_fixed_records() {
+        // records [u8 count][3 x i32][u16 tag], 15 bytes, past a block boundary
+        let n = GATHER_BLOCK + 5;
+        let mut data = b"head".to_vec();
+        for r in 0..n {
+            record(&mut data, &[r as i32, -(r as i32), 7], r as u16);
+        }
+        let cols = gather(&data, 4, n, 15, &[(0, 1), (1, 12), (13, 2)]).unwrap();
+        assert!(cols[0].iter().all(|&c| c == 3));
+        let idx: Vec<i32> = cols[1].chunks(4).map(|b| i32::from_le_bytes(b.try_into().unwrap())).collect();
+        assert_eq!(&idx[3 * (n - 1)..], &[(n - 1) as i32, -((n - 1) as i32), 7]);
+        let tags: Vec<u16> = cols[2].chunks(2).map(|b| u16::from_le_bytes(b.try_into().unwrap())).collect();
+        assert_eq!(tags, (0..n).map(|r| r as u16).collect::<Vec<_>>());
+        let e = gather(&data, 5, n, 15, &[(0, 1)]).unwrap_err().to_string();
+        assert!(e.contains("run past the end"), "{e}");
+        let e = gather(&data, 4, n, 15, &[(14, 2)]).unwrap_err().to_string();
+        assert!(e.contains("does not fit a record of 15"), "{e}");
     }
 
     #[test]

@@ -79,8 +79,36 @@ fn _write_obj(
     .map_err(super::err)
 }
 
+/// The whole file at ``path`` as uint8 (GIL released): a buffer whose pages
+/// are mapped before the read (``crate::io::read_file``); a MeshError naming
+/// the path when it cannot be read or would exceed the memory budget.
+#[pyfunction]
+fn _read_bytes<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Bound<'py, numpy::PyArray1<u8>>> {
+    use numpy::IntoPyArray;
+    Ok(super::run_interruptible(py, || crate::io::read_file(&path))?.into_pyarray(py))
+}
+
+/// The columns of ``n`` records of ``record`` bytes from byte ``start`` of
+/// ``data`` (GIL released): per ``(offset, width)`` field, its bytes of every
+/// record, contiguous (uint8), for a uniform PLY element.
+#[pyfunction]
+fn _ply_gather<'py>(
+    py: Python<'py>,
+    data: numpy::PyReadonlyArray1<'py, u8>,
+    start: usize,
+    n: usize,
+    record: usize,
+    fields: Vec<(usize, usize)>,
+) -> PyResult<Vec<Bound<'py, numpy::PyArray1<u8>>>> {
+    use numpy::IntoPyArray;
+    let data = data.as_slice()?;
+    let cols = super::run_interruptible(py, || crate::io::ply::gather(data, start, n, record, &fields))?;
+    Ok(cols.into_iter().map(|c| c.into_pyarray(py)).collect())
+}
+
 /// Splits the ``n`` binary little-endian records of a PLY element starting at
-/// byte ``start`` of ``data`` (GIL released). ``props`` gives, per property,
+/// byte ``start`` of ``data`` (uint8, as :func:`_read_bytes` gives it; GIL
+/// released). ``props`` gives, per property,
 /// ``(count bytes or 0 for a scalar, count signed, value bytes)``. Returns
 /// ``(values, counts, end)``: per property its raw value bytes (uint8) and,
 /// for lists, each record's count (int64; ``None`` for scalars), and the
@@ -88,7 +116,7 @@ fn _write_obj(
 #[pyfunction]
 fn _ply_split_records<'py>(
     py: Python<'py>,
-    data: &[u8],
+    data: numpy::PyReadonlyArray1<'py, u8>,
     start: usize,
     n: usize,
     props: Vec<(u8, bool, u8)>,
@@ -99,6 +127,7 @@ fn _ply_split_records<'py>(
         .into_iter()
         .map(|(c, s, v)| crate::io::ply::Property { count: (c > 0).then_some((c, s)), value_size: v })
         .collect();
+    let data = data.as_slice()?;
     let cols = super::detach(py, || crate::io::ply::split_records(data, start, n, &props, element)).map_err(super::err)?;
     let values: Vec<Bound<'py, PyAny>> = cols.values.into_iter().map(|v| v.into_pyarray(py).into_any()).collect();
     let counts: Vec<Option<Bound<'py, PyAny>>> = props
@@ -132,6 +161,8 @@ fn _ply_join_records<'py>(
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(_read_bytes, m)?)?;
+    m.add_function(wrap_pyfunction!(_ply_gather, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_split_records, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_join_records, m)?)?;
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
