@@ -86,11 +86,12 @@ impl Mesh {
             let f = face_of(&offsets, c as u32);
             return Err(MeshError::IndexOutOfRange { face: f, position: c - offsets[f], index: indices[c], n_vertices: nv });
         }
-        let mut verts: Vec<u32> = indices.par_iter().with_min_len(PAR_CHUNK).map(|&i| i as u32).collect();
+        // par_collect: the columns' pages are mapped in one call per chunk before the fill
+        let mut verts: Vec<u32> = crate::cancel::par_collect(indices.len(), |c| indices[c] as u32)?;
         let n = verts.len();
         // head vertex of every corner's side: the next corner's vertex, except
         // at the end of a face, which wraps to its first corner
-        let mut head: Vec<u32> = (0..n).into_par_iter().with_min_len(PAR_CHUNK).map(|c| if c + 1 < n { verts[c + 1] } else { 0 }).collect();
+        let mut head: Vec<u32> = crate::cancel::par_collect(n, |c| if c + 1 < n { verts[c + 1] } else { 0 })?;
         for f in 0..sizes.len() {
             crate::cancel::poll(f)?;
             head[offsets[f + 1] - 1] = verts[offsets[f]];
@@ -113,11 +114,7 @@ impl Mesh {
         // --- pair corners into edges: bucket sides by their smaller vertex
         // (a counting sort, in parallel over corner chunks: chunk k fills its
         // own slots of every bucket, after those of chunks < k)
-        let lo_of: Vec<u32> = (0..n)
-            .into_par_iter()
-            .with_min_len(PAR_CHUNK)
-            .map(|c| if is_point(c) { NONE } else { verts[c].min(head[c]) })
-            .collect();
+        let lo_of: Vec<u32> = crate::cancel::par_collect(n, |c| if is_point(c) { NONE } else { verts[c].min(head[c]) })?;
         let n_chunks = rayon::current_num_threads().clamp(1, 8).min(n.div_ceil(PAR_CHUNK)).max(1);
         let chunk_len = n.div_ceil(n_chunks).max(1);
         let mut fill: Vec<Vec<u32>> = lo_of
@@ -150,6 +147,7 @@ impl Mesh {
         }
         bucket_start[nv] = acc;
         let mut bucket = vec![0u32; acc as usize];
+        super::populate(&mut bucket, acc as usize);
         {
             let out = SyncPtr(bucket.as_mut_ptr());
             lo_of.par_chunks(chunk_len).zip(fill.par_iter_mut()).enumerate().for_each(|(k, (ch, slot))| {
