@@ -272,24 +272,40 @@ pub fn gather(data: &[u8], start: usize, n: usize, record: usize, fields: &[(usi
     if let Some(&(o, w)) = fields.iter().find(|&&(o, w)| o + w > record) {
         return Err(bad(format!("a field of {w} bytes at offset {o} does not fit a record of {record}")));
     }
-    let mut out = Vec::with_capacity(fields.len());
-    for &(off, w) in fields {
-        let mut col = vec![0u8; n * w];
-        crate::mesh::populate(&mut col, n * w);
-        if w > 0 {
-            col.par_chunks_mut(GATHER_BLOCK * w).enumerate().for_each(|(b, dst)| {
-                if crate::cancel::requested() {
-                    return; // the check after the loop reports it
-                }
-                let src = &data[start + b * GATHER_BLOCK * record + off..];
-                for (i, d) in dst.chunks_exact_mut(w).enumerate() {
-                    put(d, &src[i * record..i * record + w]);
-                }
-            });
+    let mut out: Vec<Vec<u8>> = fields
+        .iter()
+        .map(|&(_, w)| {
+            let mut col = vec![0u8; n * w];
+            crate::mesh::populate(&mut col, n * w);
+            col
+        })
+        .collect();
+    // per block of records, its slice of every column: the records are read
+    // once, field after field, instead of once per column
+    let mut blocks: Vec<Vec<&mut [u8]>> = (0..n.div_ceil(GATHER_BLOCK)).map(|_| Vec::with_capacity(fields.len())).collect();
+    for (col, &(_, w)) in out.iter_mut().zip(fields) {
+        if w == 0 {
+            blocks.iter_mut().for_each(|b| b.push(&mut []));
+            continue;
         }
-        crate::cancel::check()?;
-        out.push(col);
+        for (b, dst) in blocks.iter_mut().zip(col.chunks_mut(GATHER_BLOCK * w)) {
+            b.push(dst);
+        }
     }
+    blocks.into_par_iter().enumerate().for_each(|(b, mut dsts)| {
+        if crate::cancel::requested() {
+            return; // the check after the loop reports it
+        }
+        let base = start + b * GATHER_BLOCK * record;
+        let nr = (n - b * GATHER_BLOCK).min(GATHER_BLOCK);
+        for i in 0..nr {
+            let rec = &data[base + i * record..base + (i + 1) * record];
+            for (dst, &(off, w)) in dsts.iter_mut().zip(fields) {
+                put(&mut dst[i * w..], &rec[off..off + w]);
+            }
+        }
+    });
+    crate::cancel::check()?;
     Ok(out)
 }
 
