@@ -35,8 +35,16 @@ pub(crate) fn positions(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Vec<
     let a = py.import("numpy")?.call_method1("ascontiguousarray", (a, "float64"))?;
     let arr = a.cast::<PyArray2<f64>>()?.readonly();
     let s = arr.as_slice()?;
-    Ok(s.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect())
+    let nv = s.len() / 3;
+    if nv < PAR_POSITIONS {
+        return Ok(s.chunks_exact(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect());
+    }
+    // large: copied on the pool without the GIL, into pages mapped first
+    super::detach(py, || crate::cancel::par_collect(nv, |v| DVec3::new(s[3 * v], s[3 * v + 1], s[3 * v + 2]))).map_err(super::err)
 }
+
+/// Vertices from which [`positions`] copies in parallel.
+const PAR_POSITIONS: usize = 1 << 16;
 
 /// Integers read from Python: borrowed from a contiguous `int64` NumPy
 /// array when the input is one (no copy), owned otherwise.
