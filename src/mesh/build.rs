@@ -14,6 +14,14 @@ pub struct PolygonFaces {
     pub indices: Vec<u32>,
 }
 
+impl PolygonFaces {
+    /// Sizes and indices as the int64 arrays [`Mesh::from_polygons`] and
+    /// [`Mesh::from_corner_twins_i64`] take (a round trip's input).
+    pub fn to_i64(&self) -> (Vec<i64>, Vec<i64>) {
+        (self.sizes.iter().map(|&s| s as i64).collect(), self.indices.iter().map(|&i| i as i64).collect())
+    }
+}
+
 /// Options of [`Mesh::from_polygons`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct BuildOptions {

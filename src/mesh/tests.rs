@@ -134,11 +134,11 @@ fn random_operator_sequences_keep_contracts() {
                     panic!("start {k} seed {seed} step {step}: {e}");
                 }
                 // rebuilding from the exported twins gives the same topology
-                let p = m.to_polygons();
+                let (sizes, idx) = m.to_polygons().to_i64();
                 let rebuilt = Mesh::from_polygons(
                     m.positions().to_vec(),
-                    &p.sizes.iter().map(|&s| s as i64).collect::<Vec<_>>(),
-                    &p.indices.iter().map(|&s| s as i64).collect::<Vec<_>>(),
+                    &sizes,
+                    &idx,
                     BuildOptions { allow_multi_edges: true, close_boundaries: false },
                 );
                 if let Ok(r) = rebuilt {
@@ -224,14 +224,8 @@ fn self_loop_round_trips_through_polygons() {
     let c = m.corner(FaceId(2), 1).unwrap();
     m.insert_edge(c, c).unwrap();
     m.validate().unwrap();
-    let p = m.to_polygons();
-    let r = Mesh::from_polygons(
-        m.positions().to_vec(),
-        &p.sizes.iter().map(|&s| s as i64).collect::<Vec<_>>(),
-        &p.indices.iter().map(|&s| s as i64).collect::<Vec<_>>(),
-        BuildOptions::default(),
-    )
-    .unwrap();
+    let (sizes, idx) = m.to_polygons().to_i64();
+    let r = Mesh::from_polygons(m.positions().to_vec(), &sizes, &idx, BuildOptions::default()).unwrap();
     assert_eq!(topo(&r), topo(&m));
     assert_eq!(r.n_self_loops(), 1);
     // triangulation drops the loop and its one-gon and stays closed

@@ -363,9 +363,7 @@ impl Mesh {
         if self.n_self_loops() == 0 && self.n_holes() == 0 && !self.has_multi_edges() {
             return true;
         }
-        let p = self.to_polygons();
-        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let (sizes, idx) = self.to_polygons().to_i64();
         let opts = BuildOptions { close_boundaries: self.n_holes() > 0, allow_multi_edges: true };
         match Mesh::from_polygons(self.pos.clone(), &sizes, &idx, opts) {
             Ok(m) => m.n_edges() == self.n_edges() && m.n_holes() == self.n_holes() && m.corner_twins() == self.corner_twins(),
@@ -441,8 +439,7 @@ mod tests {
 
     fn round_trip(m: &Mesh) -> Mesh {
         let p = m.to_polygons();
-        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let (sizes, idx) = p.to_i64();
         let back = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &idx, &m.corner_twins()).unwrap();
         back.validate().unwrap();
         assert_eq!(back.to_polygons(), p);
@@ -481,9 +478,7 @@ mod tests {
             if m.n_holes() > 0 || tw.iter().any(|&t| t < 0) {
                 continue;
             }
-            let p = m.to_polygons();
-            let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
-            let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+            let (sizes, idx) = m.to_polygons().to_i64();
             let pos = m.positions().to_vec();
             assert!(closed_fast(&pos, &sizes, &idx, &tw).unwrap().is_some(), "{name}");
             let fast = Mesh::from_corner_twins_i64(pos.clone(), &sizes, &idx, &tw).unwrap();
@@ -497,9 +492,7 @@ mod tests {
         assert!(checked >= 5, "only {checked} closed meshes in the corpus");
         // bad closed input falls back, so the general path names the problem
         let cube = primitives::cube();
-        let p = cube.to_polygons();
-        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let (sizes, idx) = cube.to_polygons().to_i64();
         let mut tw = cube.corner_twins();
         tw.swap(0, 1);
         assert!(closed_fast(cube.positions(), &sizes, &idx, &tw).unwrap().is_none());
@@ -516,9 +509,8 @@ mod tests {
         assert_eq!(e32, e);
         let open = ("open", crate::schemes::hosts::test_meshes::cube_with_hole());
         for (name, m) in crate::schemes::hosts::test_meshes::corpus().into_iter().chain([open]) {
-            let (p, tw) = (m.to_polygons(), m.corner_twins());
-            let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
-            let (i64s, i32s): (Vec<i64>, Vec<i32>) = (p.indices.iter().map(|&s| s as i64).collect(), p.indices.iter().map(|&s| s as i32).collect());
+            let ((sizes, i64s), tw) = (m.to_polygons().to_i64(), m.corner_twins());
+            let i32s: Vec<i32> = i64s.iter().map(|&i| i as i32).collect();
             let tw32: Vec<i32> = tw.iter().map(|&t| t as i32).collect();
             let a = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &i64s, &tw).unwrap();
             assert_eq!(Mesh::from_corner_twins_i32(m.positions().to_vec(), &sizes, &i32s, &tw32).unwrap(), a, "{name}");
@@ -540,9 +532,7 @@ mod tests {
     #[test]
     fn bad_twins_name_corner_and_face() {
         let m = primitives::tetrahedron();
-        let p = m.to_polygons();
-        let sizes: Vec<i64> = p.sizes.iter().map(|&s| s as i64).collect();
-        let idx: Vec<i64> = p.indices.iter().map(|&s| s as i64).collect();
+        let (sizes, idx) = m.to_polygons().to_i64();
         let mut t = m.corner_twins();
         t.swap(0, 1);
         let e = Mesh::from_corner_twins_i64(m.positions().to_vec(), &sizes, &idx, &t).unwrap_err().to_string();

@@ -3,8 +3,8 @@ use crate::primitives;
 
 /// Positions and flat faces of a mesh's export.
 fn polys(m: &Mesh) -> (Vec<DVec3>, Vec<i64>, Vec<i64>) {
-    let p = m.to_polygons();
-    (m.positions().to_vec(), p.sizes.iter().map(|&s| s as i64).collect(), p.indices.iter().map(|&i| i as i64).collect())
+    let (sizes, idx) = m.to_polygons().to_i64();
+    (m.positions().to_vec(), sizes, idx)
 }
 
 /// Every corner gets its own vertex (an STL-like soup).
