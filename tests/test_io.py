@@ -226,6 +226,29 @@ def test_ply_is_read_by_plyfile_and_trimesh(tmp_path):
     assert np.array_equal(tm.vertices, T.icosahedron().vertices) and tm.is_watertight
 
 
+def test_uniform_ply_is_gathered_from_the_file_as_from_its_bytes(tmp_path):
+    """The uniform reader gathers the columns straight from the file, chunk by
+    chunk (``_ply_gather_file``), never reading it whole: the same arrays as
+    the gather of the whole file's bytes, over several chunks of the core's
+    1 MiB buffers (a 3 MB face element)."""
+    from topomesh import _ply
+
+    t = T.torus(300, 200)
+    m = Mesh.from_polygons(t.vertices, t.triangles())
+    p = tmp_path / "m.ply"
+    m.save(p)
+    src = _ply._Source(p)
+    streamed = _ply._read_uniform(src, *_ply._binary_header(src))
+    assert src._data is None  # the file was not read whole
+    whole = _ply._Source(p)
+    whole.data()
+    buffered = _ply._read_uniform(whole, *_ply._binary_header(whole))
+    for a, b in zip(streamed[:4], buffered[:4]):
+        assert a.dtype == b.dtype and np.array_equal(a, b)
+    assert np.array_equal(streamed[0], m.vertices) and np.array_equal(streamed[2], m.face_indices)
+    assert np.array_equal(streamed[3], m.corner_twins)
+
+
 def _interleaved(data: bool):
     """A torus whose faces alternate between quads and pairs of triangles, so
     the PLY face records change length at almost every face (the byte-scatter

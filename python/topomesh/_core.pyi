@@ -16,6 +16,7 @@ __all__ = [
     "_huge_page_advice",
     "_populate",
     "_ply_gather",
+    "_ply_gather_file",
     "_ply_join_records",
     "_ply_split_records",
     "_read_bytes",
@@ -624,6 +625,9 @@ def _read_obj(
 def _read_bytes(path: str) -> npt.NDArray[np.uint8]: ...
 def _ply_gather(
     data: npt.NDArray[np.uint8], start: int, n: int, record: int, fields: list[tuple[int, int]]
+) -> list[npt.NDArray[np.uint8]]: ...
+def _ply_gather_file(
+    path: str, start: int, n: int, record: int, fields: list[tuple[int, int]]
 ) -> list[npt.NDArray[np.uint8]]: ...
 def _ply_split_records(
     data: npt.NDArray[np.uint8], start: int, n: int, props: list[tuple[int, bool, int]], element: str

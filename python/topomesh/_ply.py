@@ -1,8 +1,8 @@
 """PLY for :mod:`topomesh.io`: binary little-endian face records laid out
-by the core (``_ply_join_records``) and read by the core (the file in one
-read, ``_read_bytes``; then one column per property, ``_ply_gather``, when
-every face has one size, else the walk of the records,
-``_ply_split_records``), plyfile for ASCII and big-endian PLY. The layout
+by the core (``_ply_join_records``) and read by the core: one column per
+property gathered straight from the file (``_ply_gather_file``) when every
+face has one size, else the whole file read (``_read_bytes``) and its records
+walked (``_ply_split_records``); plyfile for ASCII and big-endian PLY. The layout
 is described in the formats section of :mod:`topomesh.io`."""
 
 from __future__ import annotations
@@ -12,7 +12,15 @@ from typing import TYPE_CHECKING, Union
 
 import numpy as np
 
-from topomesh._core import Mesh, MeshError, _ply_gather, _ply_join_records, _ply_split_records, _read_bytes
+from topomesh._core import (
+    Mesh,
+    MeshError,
+    _ply_gather,
+    _ply_gather_file,
+    _ply_join_records,
+    _ply_split_records,
+    _read_bytes,
+)
 from topomesh._fileattrs import _ply_fields
 
 if TYPE_CHECKING:
@@ -79,15 +87,52 @@ def _raw(a):
     return np.ascontiguousarray(a).view(np.uint8).reshape(-1)
 
 
-def _bytes_of(path: PathLike) -> np.ndarray:
-    """The file's contents as uint8, read by the core into a buffer whose
-    pages are mapped before the read (``_read_bytes``: 36 MiB in 20-28 ms
-    by ``f.read()``, most of it page faults of the fresh bytes object). A
-    read-only memory map was tried for issue 19: fast on a file read twice,
-    but 5-10x slower than a copy when the file had just been written, the
-    usual save-then-load case: every page faulted in while the kernel was
-    writing the file back."""
-    return _read_bytes(os.fspath(path))
+class _Source:
+    """A PLY file, read as little as its layout needs: the header and the
+    first face record by small reads; a uniform element's columns gathered
+    by the core straight from the file (``_ply_gather_file``: chunks through
+    two reused buffers, so the file's bytes take no fresh pages; reading a
+    36 MiB file whole took 18-20 ms before its gather could start); the whole
+    file (``_read_bytes``) only for what needs it: faces of several sizes, a
+    vertex layout other than x y z float64 first, a header past the probe.
+    A read-only memory map was tried for issue 19: fast on a file read
+    twice, but 5-10x slower than a copy when the file had just been written,
+    the usual save-then-load case: every page faulted in while the kernel
+    was writing the file back."""
+
+    def __init__(self, path: PathLike):
+        self.path = os.fspath(path)
+        self._data = None
+        try:
+            with open(self.path, "rb") as f:
+                self.size = os.fstat(f.fileno()).st_size
+                self.head = f.read(_HEADER_PROBE)
+        except OSError as e:
+            raise MeshError(f"{self.path}: cannot read ({e.strerror})") from None
+
+    def data(self) -> np.ndarray:
+        """The whole file as uint8, read once."""
+        if self._data is None:
+            self._data = _read_bytes(self.path)
+        return self._data
+
+    def at(self, pos: int, n: int) -> bytes:
+        """``n`` bytes from byte ``pos`` (fewer at the end of the file)."""
+        if self._data is not None:
+            return bytes(self._data[pos : pos + n])
+        if pos + n <= len(self.head):
+            return self.head[pos : pos + n]
+        try:
+            with open(self.path, "rb") as f:
+                f.seek(pos)
+                return f.read(n)
+        except OSError as e:
+            raise MeshError(f"{self.path}: cannot read ({e.strerror})") from None
+
+    def gather(self, start: int, n: int, record: int, fields: list) -> list:
+        if self._data is not None:
+            return _ply_gather(self._data, start, n, record, fields)
+        return _ply_gather_file(self.path, start, n, record, fields)
 
 
 def _read_ply(path: PathLike):
@@ -95,13 +140,13 @@ def _read_ply(path: PathLike):
     properties, list property names, comments))``: binary little-endian files
     with the core (one column per property when every face has one size,
     else the core's record walk), ASCII and big-endian ones with plyfile."""
-    data = _bytes_of(path)
-    head = _binary_header(data)
+    src = _Source(path)
+    head = _binary_header(src)
     if head is not None:
-        fast = _read_uniform(data, *head)
+        fast = _read_uniform(src, *head)
         if fast is None:
             try:
-                fast = _read_split(data, *head)
+                fast = _read_split(src, *head)
             except MeshError as e:
                 raise MeshError(f"{os.fspath(path)}: {e}") from None
         if fast is not None:
@@ -128,27 +173,27 @@ def _read_ply(path: PathLike):
 def _read_ply_uniform(path: PathLike):
     """The one-gather read of a binary little-endian PLY whose faces
     all have one size, ``None`` for any other file (see :func:`_read_uniform`)."""
-    data = _bytes_of(path)
-    head = _binary_header(data)
-    return None if head is None else _read_uniform(data, *head)
+    src = _Source(path)
+    head = _binary_header(src)
+    return None if head is None else _read_uniform(src, *head)
 
 
 #: Bytes searched for the end of a PLY header before the whole file is.
 _HEADER_PROBE = 1 << 16
 
 
-def _binary_header(data: np.ndarray):
+def _binary_header(src: _Source):
     """``(body offset, vertex count, vertex properties, face count, face
     properties, comments)`` of a binary little-endian PLY with a vertex
     element of scalar properties (``x y z`` among them) followed by a face
     element with ``vertex_indices``; properties as ``(name, count dtype or
     None, value dtype)``. ``None`` for anything else (plyfile reads it)."""
-    head = bytes(data[:_HEADER_PROBE])
+    head = src.head
     if head[:4] != b"ply\n":
         return None
     end = head.find(b"end_header\n")
-    if end < 0 and len(data) > len(head):
-        head = bytes(data)  # a header longer than the probe (many comments): rare
+    if end < 0 and src.size > len(head):
+        head = bytes(src.data())  # a header longer than the probe (many comments): rare
         end = head.find(b"end_header\n")
     if end < 0:
         return None
@@ -182,20 +227,20 @@ def _vertex_dtype(vprops: list) -> np.dtype:
     return np.dtype([(p, np.dtype(t).newbyteorder("<")) for p, _, t in vprops])
 
 
-def _vertex_columns(data: np.ndarray, body: int, nv: int, vprops: list):
+def _vertex_columns(src: _Source, body: int, nv: int, vprops: list):
     vdt = _vertex_dtype(vprops)
-    if len(data) < body + nv * vdt.itemsize:
+    if src.size < body + nv * vdt.itemsize:
         return None, None, vdt
     if vdt.names[:3] == ("x", "y", "z") and all(vdt[c] == np.dtype("<f8") for c in "xyz"):
         # x y z as float64 first (every file topomesh writes): one column of the core's
         # gather, the other properties beside it
         rest = vdt.names[3:]
-        cols = _ply_gather(data, body, nv, vdt.itemsize, [(0, 24)] + [(vdt.fields[p][1], vdt[p].itemsize) for p in rest])
+        cols = src.gather(body, nv, vdt.itemsize, [(0, 24)] + [(vdt.fields[p][1], vdt[p].itemsize) for p in rest])
         verts = cols[0].view("<f8").reshape(nv, 3)
         props = {c: verts[:, j] for j, c in enumerate("xyz")}
         props.update({p: a.view(vdt[p]) for p, a in zip(rest, cols[1:])})
         return verts, props, vdt
-    vrec = np.frombuffer(data, vdt, nv, body)
+    vrec = np.frombuffer(src.data(), vdt, nv, body)
     verts = np.empty((nv, 3), np.float64)  # one strided copy per column
     for j, c in enumerate("xyz"):
         verts[:, j] = vrec[c]
@@ -204,7 +249,7 @@ def _vertex_columns(data: np.ndarray, body: int, nv: int, vprops: list):
     return verts, props, vdt
 
 
-def _read_uniform(data: np.ndarray, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
+def _read_uniform(src: _Source, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
     """Faces that all have one size: one gathered column per property; ``None``
     when the face records differ in length."""
     fstart = body + nv * _vertex_dtype(vprops).itemsize
@@ -217,19 +262,19 @@ def _read_uniform(data: np.ndarray, body: int, nv: int, vprops: list, nf: int, f
             pos += t.itemsize
             continue
         c = np.dtype(c).newbyteorder("<")
-        if pos + c.itemsize > len(data):
+        if pos + c.itemsize > src.size:
             return None
-        k = int(np.frombuffer(data, c, 1, pos)[0])
+        k = int(np.frombuffer(src.at(pos, c.itemsize), c)[0])
         if k < 0:
             return None
         fields += [("\0n" + p, c), (p, t, (k,))]
         pos += c.itemsize + k * t.itemsize
     fdt = np.dtype(fields)
-    if len(data) != fstart + nf * fdt.itemsize:
+    if src.size != fstart + nf * fdt.itemsize:
         return None
     # every field's column in one parallel pass each (the core's gather), as flat arrays
     names = fdt.names
-    cols = _ply_gather(data, fstart, nf, fdt.itemsize, [(fdt.fields[q][1], fdt[q].itemsize) for q in names])
+    cols = src.gather(fstart, nf, fdt.itemsize, [(fdt.fields[q][1], fdt[q].itemsize) for q in names])
     faces = {q: a.view(fdt[q].base) for q, a in zip(names, cols)}
     for p, c, _ in fprops:
         if c is not None and not (faces["\0n" + p] == fdt[p].shape[0]).all():
@@ -237,7 +282,7 @@ def _read_uniform(data: np.ndarray, body: int, nv: int, vprops: list, nf: int, f
     k = fdt["vertex_indices"].shape[0]
     if k == 0:
         return None
-    verts, vp, _ = _vertex_columns(data, body, nv, vprops)
+    verts, vp, _ = _vertex_columns(src, body, nv, vprops)
     # int32 index columns (as topomesh writes them) stay int32, which Mesh.from_flat
     # reads without an int64 copy (48 MB fewer fresh pages for 1M triangles); other
     # types become int64
@@ -252,12 +297,13 @@ def _index_column(a: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.int32 if a.dtype == np.dtype("<i4") else np.int64).reshape(-1)
 
 
-def _read_split(data: np.ndarray, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
+def _read_split(src: _Source, body: int, nv: int, vprops: list, nf: int, fprops: list, comments: list):
     """Faces of several sizes: the core walks the records once and hands back
     one column per property (1M mixed faces in ~0.1 s, where plyfile's
     per-face decoding took ~20 s). ``None`` when the file is shorter than its
     vertex element."""
-    verts, vp, vdt = _vertex_columns(data, body, nv, vprops)
+    data = src.data()  # the record walk needs the whole file
+    verts, vp, vdt = _vertex_columns(src, body, nv, vprops)
     if verts is None:
         return None
     spec = [(0 if c is None else np.dtype(c).itemsize, c is not None and np.dtype(c).kind == "i", np.dtype(t).itemsize)

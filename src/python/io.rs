@@ -106,6 +106,24 @@ fn _ply_gather<'py>(
     Ok(cols.into_iter().map(|c| c.into_pyarray(py)).collect())
 }
 
+/// :func:`_ply_gather` of the records of the file at ``path`` (GIL
+/// released), read through two reused buffers instead of whole
+/// (``crate::io::ply::gather_file``); a MeshError naming the path when it
+/// cannot be read, or when the records run past its end.
+#[pyfunction]
+fn _ply_gather_file<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    start: u64,
+    n: usize,
+    record: usize,
+    fields: Vec<(usize, usize)>,
+) -> PyResult<Vec<Bound<'py, numpy::PyArray1<u8>>>> {
+    use numpy::IntoPyArray;
+    let cols = super::run_interruptible(py, || crate::io::ply::gather_file(&path, start, n, record, &fields))?;
+    Ok(cols.into_iter().map(|c| c.into_pyarray(py)).collect())
+}
+
 /// Splits the ``n`` binary little-endian records of a PLY element starting at
 /// byte ``start`` of ``data`` (uint8, as :func:`_read_bytes` gives it; GIL
 /// released). ``props`` gives, per property,
@@ -163,6 +181,7 @@ fn _ply_join_records<'py>(
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_read_bytes, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_gather, m)?)?;
+    m.add_function(wrap_pyfunction!(_ply_gather_file, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_split_records, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_join_records, m)?)?;
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
