@@ -443,6 +443,52 @@ def test_failed_save_leaves_old_file(tmp_path, monkeypatch, ext):
     assert sorted(os.listdir(tmp_path)) == [p.name]
 
 
+@pytest.mark.skipif(not os.path.isdir("/proc/self/fd"), reason="needs Linux's /proc/self/fd")
+def test_save_over_a_large_file_releases_it_in_the_background(tmp_path, monkeypatch):
+    """A save over a file of 4 MiB or more keeps the old file open through the
+    rename and closes it on a thread (the kernel frees it there): the new file
+    is in place, and once the thread is done no descriptor of the old file is
+    left, whether the rename succeeded or failed."""
+    import threading
+
+    def open_here():
+        links = []
+        for fd in os.listdir("/proc/self/fd"):
+            try:
+                links.append(os.readlink(f"/proc/self/fd/{fd}"))
+            except OSError:
+                pass
+        return [f for f in links if f.startswith(str(tmp_path))]
+
+    def settle():
+        for th in threading.enumerate():
+            if th.name == "topomesh-release":
+                th.join()
+
+    real, held = tio._release_in_background, []
+    monkeypatch.setattr(tio, "_release_in_background", lambda fd: (held.append(fd), real(fd))[1])
+    p = tmp_path / "big.ply"
+    p.write_bytes(b"\0" * (tio._RELEASE_FROM + 1))
+    m = T.torus(30, 20)
+    m.save(p)
+    settle()
+    assert held[-1] is not None and open_here() == []
+    assert T.load(p) == m
+    m.save(p)  # over a small file: nothing held
+    assert held[-1] is None
+    p.write_bytes(b"\0" * (tio._RELEASE_FROM + 1))
+
+    def refused(src, dst):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(tio.os, "replace", refused)
+    with pytest.raises(MeshError, match=r"big\.ply: cannot write \(Permission denied\)"):
+        m.save(p)
+    settle()
+    assert held[-1] is not None and open_here() == []
+    assert p.stat().st_size == tio._RELEASE_FROM + 1 and os.listdir(tmp_path) == ["big.ply"]
+
+
 def test_interrupted_save_leaves_no_temp_file(tmp_path, monkeypatch):
     p = tmp_path / "k.npz"
 

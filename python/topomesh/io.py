@@ -106,7 +106,9 @@ Every failure, reading or writing, is a :class:`MeshError` naming the path.
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
+import threading
 import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Union
@@ -295,7 +297,9 @@ def save(mesh: Mesh, path: PathLike) -> None:
     ``.stl`` (binary) and ``.3mf`` keep the triangles of
     :meth:`Mesh.triangulate` (see the module docs). The file is replaced
     atomically: on any failure the old file is untouched and no temporary
-    file is left.
+    file is left. On Linux and macOS an old file of 4 MiB or more is freed
+    by the kernel on a background thread after the save returns (it took
+    16-25 ms of a 36 MiB save).
 
     Raises
     ------
@@ -366,6 +370,39 @@ def _umask() -> int:
 _UMASK = _umask()
 
 
+#: Size from which the file a save replaces is released on a background thread.
+_RELEASE_FROM = 1 << 22
+
+
+def _hold_replaced(target: Path) -> int | None:
+    """A read-only descriptor of the regular file of 4 MiB or more that a save
+    is about to rename over (POSIX), or ``None``. While it is open the rename
+    does not free the old file; the last close does, and
+    :func:`_release_in_background` makes that close on another thread. Freeing
+    a 36 MiB file's pages and blocks took 16-25 ms of every PLY save over it
+    (ext4), against 1-2 ms for the rename with the file held."""
+    if os.name != "posix":
+        return None  # Windows cannot rename over an open file
+    try:
+        st = os.stat(target)
+        if not stat.S_ISREG(st.st_mode) or st.st_size < _RELEASE_FROM:
+            return None
+        # non-blocking: never wait on a FIFO put there since the stat
+        return os.open(target, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except OSError:
+        return None
+
+
+def _release_in_background(fd: int | None) -> None:
+    """Closes ``fd`` on a daemon thread (at once when no thread can start)."""
+    if fd is None:
+        return
+    try:
+        threading.Thread(target=os.close, args=(fd,), name="topomesh-release", daemon=True).start()
+    except RuntimeError:  # interpreter shutting down
+        os.close(fd)
+
+
 def _atomic_write(path: PathLike, write: Callable[[str], None]) -> None:
     """Run ``write(tmp)`` on a temporary file beside ``path``, then rename it
     over ``path``; on any failure remove the temporary file and leave ``path``
@@ -380,7 +417,11 @@ def _atomic_write(path: PathLike, write: Callable[[str], None]) -> None:
         except OSError:
             mode = 0o666 & ~_UMASK
         os.chmod(tmp, mode)
-        os.replace(tmp, target)
+        old = _hold_replaced(target)
+        try:
+            os.replace(tmp, target)
+        finally:
+            _release_in_background(old)
     except BaseException as e:
         try:
             os.unlink(tmp)
