@@ -249,6 +249,43 @@ def test_uniform_ply_is_gathered_from_the_file_as_from_its_bytes(tmp_path):
     assert np.array_equal(streamed[3], m.corner_twins)
 
 
+@pytest.mark.parametrize("layout", ["f4 xyz first", "f8 xyz first", "xyz last", "mixed types"])
+def test_binary_ply_vertex_layouts_are_gathered_as_plyfile_reads_them(tmp_path, layout):
+    """Every scalar vertex layout of a binary little-endian file (trimesh and
+    scanners write float32, others put normals or colours first or mix
+    types) is gathered column by column from the file, never read whole, and
+    gives plyfile's values."""
+    from plyfile import PlyData, PlyElement
+
+    from topomesh import _ply
+
+    t = T.torus(12, 8)
+    tris = t.triangles()
+    fields = {
+        "f4 xyz first": [("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("red", "u1"), ("quality", "<f4")],
+        "f8 xyz first": [("x", "<f8"), ("y", "<f8"), ("z", "<f8"), ("nx", "<f4")],
+        "xyz last": [("red", "u1"), ("nx", "<f4"), ("x", "<f8"), ("y", "<f8"), ("z", "<f8")],
+        "mixed types": [("x", "<f4"), ("y", "<f8"), ("z", "<f4"), ("s", "<i2")],
+    }[layout]
+    rng = np.random.default_rng(1)
+    vert = np.empty(len(t.vertices), dtype=fields)
+    for name, _ in fields:
+        vert[name] = t.vertices[:, "xyz".index(name)] if name in "xyz" else rng.integers(0, 200, len(vert))
+    face = np.empty(len(tris), dtype=[("vertex_indices", "<i4", (3,))])
+    face["vertex_indices"] = tris
+    p = tmp_path / "v.ply"
+    PlyData([PlyElement.describe(vert, "vertex"), PlyElement.describe(face, "face")], byte_order="<").write(str(p))
+    src = _ply._Source(p)
+    verts, sizes, idx, twins, (vp, fp, lists, comments) = _ply._read_uniform(src, *_ply._binary_header(src))
+    assert src._data is None  # gathered from the file
+    ref = PlyData.read(str(p))["vertex"]
+    assert verts.dtype == np.float64 and np.array_equal(verts, np.c_[ref["x"], ref["y"], ref["z"]].astype(np.float64))
+    for name, dt in fields:
+        assert np.array_equal(vp[name], ref[name]) and (name in "xyz" or vp[name].dtype == np.dtype(dt)), name
+    assert np.array_equal(idx, tris.reshape(-1)) and twins is None
+    assert T.load(p).n_faces == len(tris)
+
+
 def _interleaved(data: bool):
     """A torus whose faces alternate between quads and pairs of triangles, so
     the PLY face records change length at almost every face (the byte-scatter

@@ -231,21 +231,26 @@ def _vertex_columns(src: _Source, body: int, nv: int, vprops: list):
     vdt = _vertex_dtype(vprops)
     if src.size < body + nv * vdt.itemsize:
         return None, None, vdt
-    if vdt.names[:3] == ("x", "y", "z") and all(vdt[c] == np.dtype("<f8") for c in "xyz"):
-        # x y z as float64 first (every file topomesh writes): one column of the core's
-        # gather, the other properties beside it
-        rest = vdt.names[3:]
-        cols = src.gather(body, nv, vdt.itemsize, [(0, 24)] + [(vdt.fields[p][1], vdt[p].itemsize) for p in rest])
-        verts = cols[0].view("<f8").reshape(nv, 3)
-        props = {c: verts[:, j] for j, c in enumerate("xyz")}
-        props.update({p: a.view(vdt[p]) for p, a in zip(rest, cols[1:])})
-        return verts, props, vdt
-    vrec = np.frombuffer(src.data(), vdt, nv, body)
-    verts = np.empty((nv, 3), np.float64)  # one strided copy per column
-    for j, c in enumerate("xyz"):
-        verts[:, j] = vrec[c]
-    # x, y, z as views of the copy; the others copied out of the records
-    props = {p: verts[:, "xyz".index(p)] if p in ("x", "y", "z") else np.array(vrec[p]) for p in vdt.names}
+    names = vdt.names
+    t = vdt["x"]
+    if names[:3] == ("x", "y", "z") and vdt["y"] == t and vdt["z"] == t and t in (np.dtype("<f8"), np.dtype("<f4")):
+        # x y z as one column of the core's gather (float64: every file topomesh writes;
+        # float32: trimesh's, most scanners'), the other properties beside it
+        rest = names[3:]
+        cols = src.gather(body, nv, vdt.itemsize, [(0, 3 * t.itemsize)] + [(vdt.fields[p][1], vdt[p].itemsize) for p in rest])
+        verts = cols[0].view(t).reshape(nv, 3)
+        if t != np.dtype("<f8"):
+            verts = verts.astype(np.float64)
+        other = dict(zip(rest, cols[1:]))
+    else:
+        # any other layout: one gathered column per property, x y z converted to float64
+        cols = src.gather(body, nv, vdt.itemsize, [(vdt.fields[p][1], vdt[p].itemsize) for p in names])
+        other = dict(zip(names, cols))
+        verts = np.empty((nv, 3), np.float64)
+        for j, c in enumerate("xyz"):
+            verts[:, j] = other.pop(c).view(vdt[c])
+    # x, y, z as views of the float64 positions, the others in the file's types
+    props = {p: verts[:, "xyz".index(p)] if p in ("x", "y", "z") else other[p].view(vdt[p]) for p in names}
     return verts, props, vdt
 
 
