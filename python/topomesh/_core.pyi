@@ -17,8 +17,8 @@ __all__ = [
     "_populate",
     "_ply_gather",
     "_ply_gather_file",
-    "_ply_join_records",
     "_ply_split_records",
+    "_ply_write_records",
     "_read_bytes",
     "_read_obj",
     "_write_obj",
@@ -629,12 +629,12 @@ def _ply_gather(
 def _ply_gather_file(
     path: str, start: int, n: int, record: int, fields: list[tuple[int, int]]
 ) -> list[npt.NDArray[np.uint8]]: ...
+def _ply_write_records(
+    path: str, sizes: npt.NDArray[np.int64], fields: list[tuple[int, int, int, int, npt.NDArray[np.uint8]]]
+) -> None: ...
 def _ply_split_records(
     data: npt.NDArray[np.uint8], start: int, n: int, props: list[tuple[int, bool, int]], element: str
 ) -> tuple[list[npt.NDArray[np.uint8]], list[npt.NDArray[np.int64] | None], int]: ...
-def _ply_join_records(
-    sizes: npt.NDArray[np.int64], fields: list[tuple[int, int, int, int, npt.NDArray[np.uint8]]]
-) -> npt.NDArray[np.uint8]: ...
 
 # --- Conway operators (issue 16) ---
 def conway(notation: str, seed: Mesh | None = None) -> Mesh: ...

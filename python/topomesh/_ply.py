@@ -1,5 +1,5 @@
 """PLY for :mod:`topomesh.io`: binary little-endian face records laid out
-by the core (``_ply_join_records``) and read by the core: one column per
+by the core (``_ply_write_records``) and read by the core: one column per
 property gathered straight from the file (``_ply_gather_file``) when every
 face has one size, else the whole file read (``_read_bytes``) and its records
 walked (``_ply_split_records``); plyfile for ASCII and big-endian PLY. The layout
@@ -17,8 +17,8 @@ from topomesh._core import (
     MeshError,
     _ply_gather,
     _ply_gather_file,
-    _ply_join_records,
     _ply_split_records,
+    _ply_write_records,
     _read_bytes,
 )
 from topomesh._fileattrs import _ply_fields
@@ -34,8 +34,8 @@ _PLY_NUM = dict(_PLY_INT, float="f4", float32="f4", double="f8", float64="f8")
 
 def _write_ply(tmp: str, mesh: Mesh, fields: tuple | None = None) -> None:
     """Binary little-endian PLY: the header here, the face records laid out
-    by the core (``_ply_join_records``: plyfile writes list properties one
-    face at a time, 25 s for 1M faces). ``fields`` is ``_ply_fields(None,
+    by the core and appended to the file (``_ply_write_records``: plyfile
+    writes list properties one face at a time, 25 s for 1M faces). ``fields`` is ``_ply_fields(None,
     mesh)`` when the caller has it already."""
     verts, sizes = mesh.vertices, mesh.face_sizes
     idx, twins = mesh.face_indices, mesh.corner_twins
@@ -58,29 +58,19 @@ def _write_ply(tmp: str, mesh: Mesh, fields: tuple | None = None) -> None:
     header += [f"property list {ct} {vt} {p}" for p, ct, vt, _ in lists[2:]]
     header.append("end_header\n")
     sizes = np.ascontiguousarray(sizes, dtype=np.int64)
-    # corner offset of every chunk start (uniform faces: no prefix sum needed)
-    nf, step = len(sizes), _CHUNK_FACES
-    starts = np.arange(0, nf + step, step).clip(max=nf)
-    if len(sizes) and int(sizes.min()) == top:
-        coff = starts * top
-    else:
-        coff = np.concatenate([[0], np.cumsum(sizes)])[starts]
     vcols = [verts] + [np.asarray(c, dtype=np.float64)[:, None] for _, c in vextra]
     with open(tmp, "wb") as f:
         f.write("\n".join(header).encode("ascii"))
         # the vertex buffer as it is (a view of the mesh's float64 positions) when it has no extra columns
         f.write(verts if len(vcols) == 1 and verts.dtype == np.dtype("<f8") else np.ascontiguousarray(np.hstack(vcols), dtype="<f8"))
-        # the face records chunk by chunk: a fresh buffer of the whole body (26 MB for 1M triangles)
-        # cost more in page faults than laying the records out did
-        for a, b, ca, cb in zip(starts[:-1], starts[1:], coff[:-1], coff[1:]):
-            cols = [(4 if ct == "uint" else 1, a_.shape[1], 4, 8, _raw(a_[ca:cb])) for _, ct, _, a_ in lists[:2]]
-            cols += [(0, 1, np.asarray(x).dtype.itemsize, np.asarray(x).dtype.itemsize, _raw(np.asarray(x)[a:b])) for _, _, x in fextra]
-            cols += [(4 if ct == "uint" else 1, a_.shape[1], a_.dtype.itemsize, a_.dtype.itemsize, _raw(a_[ca:cb])) for _, ct, _, a_ in lists[2:]]
-            f.write(_ply_join_records(sizes[a:b], cols))
+    # the face records, appended by the core chunk by chunk through two reused buffers, the
+    # next chunk laid out while this one is written: a fresh buffer of the whole body (26 MB for
+    # 1M triangles) cost more in page faults than laying the records out did
+    cols = [(4 if ct == "uint" else 1, a_.shape[1], 4, 8, _raw(a_)) for _, ct, _, a_ in lists[:2]]
+    cols += [(0, 1, np.asarray(x).dtype.itemsize, np.asarray(x).dtype.itemsize, _raw(np.asarray(x))) for _, _, x in fextra]
+    cols += [(4 if ct == "uint" else 1, a_.shape[1], a_.dtype.itemsize, a_.dtype.itemsize, _raw(a_)) for _, ct, _, a_ in lists[2:]]
+    _ply_write_records(tmp, sizes, cols)
 
-
-#: Faces per call of ``_ply_join_records`` when writing.
-_CHUNK_FACES = 1 << 16
 
 
 def _raw(a):

@@ -175,8 +175,13 @@ fn narrow_n(dst: &mut [u8], src: &[u8]) -> bool {
 /// The records of `sizes.len()` faces (`sizes[r]` corners each) laid out
 /// property after property, as a PLY binary little-endian element body.
 pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
-    use rayon::prelude::*;
-    use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
+    let mut out = Vec::new();
+    join_into(sizes, fields, &mut out)?;
+    Ok(out)
+}
+
+/// Checks `fields` against `sizes` (see [`Field`]); the corner count.
+fn check_layout(sizes: &[i64], fields: &[Field]) -> Result<usize> {
     let bad = |msg: String| MeshError::InvalidArgument(format!("PLY record layout: {msg}"));
     if let Some(r) = sizes.iter().position(|&k| k < 0) {
         return Err(bad(format!("face {r} has a negative size ({})", sizes[r])));
@@ -196,14 +201,29 @@ pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
             return Err(bad(format!("property {j}: a list of {} values does not fit its {}-byte count", top * f.per as u64, f.count)));
         }
     }
+    Ok(corners)
+}
+
+/// [`join_records`] into `out`, whose allocation is reused when it is
+/// large enough.
+fn join_into(sizes: &[i64], fields: &[Field], out: &mut Vec<u8>) -> Result<()> {
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
+    let bad = |msg: String| MeshError::InvalidArgument(format!("PLY record layout: {msg}"));
+    check_layout(sizes, fields)?;
     let len = |k: usize| -> usize {
         fields.iter().map(|f| if f.count == 0 { f.value_size as usize } else { f.count as usize + k * f.per as usize * f.value_size as usize }).sum()
     };
     // per block: its first corner and its first byte
     let blocks: Vec<(usize, usize)> = sizes.par_chunks(BLOCK).map(|b| (b.iter().map(|&k| k as usize).sum(), b.iter().map(|&k| len(k as usize)).sum())).collect();
     let total: usize = blocks.iter().map(|b| b.1).sum();
-    let mut out = vec![0u8; total];
-    crate::mesh::populate(&mut out, total);
+    if out.capacity() < total {
+        *out = vec![0u8; total];
+        crate::mesh::populate(out, total);
+    } else {
+        out.clear();
+        out.resize(total, 0);
+    }
     let mut parts = Vec::with_capacity(blocks.len());
     let (mut rest, mut corner) = (&mut out[..], 0usize);
     for (i, &(nc, nb)) in blocks.iter().enumerate() {
@@ -252,7 +272,54 @@ pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
     if too_wide.load(Relaxed) {
         return Err(bad("a value narrowed from int64 does not fit int32".into()));
     }
-    Ok(out)
+    Ok(())
+}
+
+/// Faces per chunk of [`write_records`].
+const WRITE_CHUNK: usize = 1 << 16;
+
+/// The records of [`join_records`] written to `w`, chunk of faces by chunk
+/// through two reused buffers: the next chunk is laid out while this one is
+/// written, so the write and the layout overlap and the body never needs
+/// fresh pages of its whole size (1M triangles: 26 MB). `chunk` faces per
+/// chunk (0: the default).
+pub fn write_records<W: std::io::Write + Send>(w: &mut W, sizes: &[i64], fields: &[Field], chunk: usize) -> Result<()> {
+    let io = |e: std::io::Error| MeshError::Io(e.to_string());
+    check_layout(sizes, fields)?;
+    let chunk = if chunk == 0 { WRITE_CHUNK } else { chunk };
+    // per chunk: its first face and its first corner
+    let mut starts = Vec::with_capacity(sizes.len() / chunk + 2);
+    let mut corner = 0usize;
+    for (i, c) in sizes.chunks(chunk).enumerate() {
+        starts.push((i * chunk, corner));
+        corner += c.iter().map(|&k| k as usize).sum::<usize>();
+    }
+    starts.push((sizes.len(), corner));
+    let part = |i: usize, out: &mut Vec<u8>| -> Result<()> {
+        let ((r0, c0), (r1, c1)) = (starts[i], starts[i + 1]);
+        let sub: Vec<Field> = fields
+            .iter()
+            .map(|f| {
+                let (ss, per) = (f.source_size as usize, f.per as usize);
+                let (a, b) = if f.count == 0 { (r0 * ss, r1 * ss) } else { (c0 * per * ss, c1 * per * ss) };
+                Field { data: &f.data[a..b], ..*f }
+            })
+            .collect();
+        join_into(&sizes[r0..r1], &sub, out)
+    };
+    let parts = starts.len() - 1;
+    let (mut cur, mut next) = (Vec::new(), Vec::new());
+    if parts > 0 {
+        part(0, &mut cur)?;
+    }
+    for i in 0..parts {
+        crate::cancel::check()?;
+        let (written, laid) = rayon::join(|| w.write_all(&cur), || if i + 1 < parts { part(i + 1, &mut next) } else { Ok(()) });
+        written.map_err(io)?;
+        laid?;
+        std::mem::swap(&mut cur, &mut next);
+    }
+    w.flush().map_err(io)
 }
 
 /// Records per parallel block of [`gather`].
@@ -494,6 +561,56 @@ mod tests {
         assert_eq!(c.counts[0], sizes);
         assert_eq!(c.counts[2], sizes.iter().map(|k| 2 * k).collect::<Vec<_>>());
         assert_eq!((&c.values[0], &c.values[1], &c.values[2]), (&idx, &tag, &uv));
+    }
+
+    #[test]
+    fn written_records_are_the_joined_ones() {
+        // the sizes and fields of join_is_the_inverse_of_split, an int64 column narrowed,
+        // written in chunks of 1, 3 and 1000 faces and the default, and in one
+        let mut sizes = vec![3i64, 0, 5, 1];
+        sizes.extend(std::iter::repeat_n(4, 2 * BLOCK + 7));
+        let nc: usize = sizes.iter().map(|&k| k as usize).sum();
+        let idx: Vec<u8> = (0..nc as i64).flat_map(|i| (i - 2).to_le_bytes()).collect();
+        let tag: Vec<u8> = (0..sizes.len() as u16).flat_map(|i| i.wrapping_mul(7).to_le_bytes()).collect();
+        let uv: Vec<u8> = (0..2 * nc as u64).flat_map(|i| (i as f64 * 0.5).to_le_bytes()).collect();
+        let fields = [
+            Field { count: 1, per: 1, value_size: 4, source_size: 8, data: &idx },
+            Field { count: 0, per: 1, value_size: 2, source_size: 2, data: &tag },
+            Field { count: 4, per: 2, value_size: 8, source_size: 8, data: &uv },
+        ];
+        let whole = join_records(&sizes, &fields).unwrap();
+        for chunk in [1, 3, 1000, 0, sizes.len()] {
+            let mut out = Vec::new();
+            write_records(&mut out, &sizes, &fields, chunk).unwrap();
+            assert!(out == whole, "chunk {chunk}");
+        }
+        let mut out = Vec::new();
+        write_records(&mut out, &[], &[], 0).unwrap();
+        assert!(out.is_empty());
+        // layout errors before anything is written; a value that does not fit, in a later chunk
+        let e = write_records(&mut out, &sizes, &[Field { data: &idx[..8], ..fields[0] }], 0).unwrap_err().to_string();
+        assert!(e.contains("property 0 has 8 bytes, expected"), "{e}");
+        let e = write_records(&mut out, &[3, -1], &[], 0).unwrap_err().to_string();
+        assert!(e.contains("face 1 has a negative size"), "{e}");
+        assert!(out.is_empty());
+        let mut big = idx.clone();
+        let at = big.len() - 8;
+        big[at..].copy_from_slice(&(1i64 << 40).to_le_bytes());
+        let f = [Field { data: &big, ..fields[0] }, fields[1], fields[2]];
+        let e = write_records(&mut out, &sizes, &f, 3).unwrap_err().to_string();
+        assert!(e.contains("does not fit int32"), "{e}");
+        // an I/O error is a MeshError
+        struct Full;
+        impl std::io::Write for Full {
+            fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+                Err(std::io::Error::new(std::io::ErrorKind::StorageFull, "no space left on device"))
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        let e = write_records(&mut Full, &sizes, &fields, 0).unwrap_err().to_string();
+        assert!(e.contains("no space left on device"), "{e}");
     }
 
     #[test]

@@ -156,26 +156,34 @@ fn _ply_split_records<'py>(
     Ok((values, counts, cols.end).into_pyobject(py)?.into_any())
 }
 
-/// The binary little-endian PLY face records of faces with ``sizes``
-/// corners (GIL released), the inverse of :func:`_ply_split_records`.
+/// Appends to the file at ``path`` the binary little-endian PLY face
+/// records of faces with ``sizes`` corners, the inverse of
+/// :func:`_ply_split_records` (GIL released; ``crate::io::ply::write_records``:
+/// chunk by chunk, the next chunk laid out while this one is written).
 /// ``fields`` gives, per property in record order, ``(count bytes (1 or 4)
 /// or 0 for a scalar, values per corner, value bytes, source bytes per
 /// value (the value bytes, or 8 for int64 narrowed to int32), the column's
-/// raw little-endian bytes (uint8))``. Returns the element body as uint8.
+/// raw little-endian bytes (uint8))``. A MeshError when the layout is wrong
+/// or the file cannot be written.
 #[pyfunction]
-fn _ply_join_records<'py>(
-    py: Python<'py>,
-    sizes: PyReadonlyArray1<'py, i64>,
-    fields: Vec<(u8, u32, u8, u8, PyReadonlyArray1<'py, u8>)>,
-) -> PyResult<Bound<'py, numpy::PyArray1<u8>>> {
-    use numpy::IntoPyArray;
+fn _ply_write_records(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    sizes: PyReadonlyArray1<'_, i64>,
+    fields: Vec<(u8, u32, u8, u8, PyReadonlyArray1<'_, u8>)>,
+) -> PyResult<()> {
     let sizes = sizes.as_slice()?;
     let cols = fields
         .iter()
         .map(|(c, per, vs, ss, d)| Ok(crate::io::ply::Field { count: *c, per: *per, value_size: *vs, source_size: *ss, data: d.as_slice()? }))
         .collect::<PyResult<Vec<_>>>()?;
-    let body = super::detach(py, || crate::io::ply::join_records(sizes, &cols)).map_err(super::err)?;
-    Ok(body.into_pyarray(py))
+    super::run_interruptible(py, || {
+        let mut f = std::fs::OpenOptions::new()
+            .append(true)
+            .open(&path)
+            .map_err(|e| crate::MeshError::Io(format!("{}: {e}", path.display())))?;
+        crate::io::ply::write_records(&mut f, sizes, &cols, 0)
+    })
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -183,7 +191,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_ply_gather, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_gather_file, m)?)?;
     m.add_function(wrap_pyfunction!(_ply_split_records, m)?)?;
-    m.add_function(wrap_pyfunction!(_ply_join_records, m)?)?;
+    m.add_function(wrap_pyfunction!(_ply_write_records, m)?)?;
     m.add_function(wrap_pyfunction!(_read_obj, m)?)?;
     m.add_function(wrap_pyfunction!(_write_obj, m)?)?;
     Ok(())
