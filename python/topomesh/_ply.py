@@ -35,8 +35,8 @@ _PLY_NUM = dict(_PLY_INT, float="f4", float32="f4", double="f8", float64="f8")
 def _write_ply(tmp: str, mesh: Mesh, fields: tuple | None = None) -> None:
     """Binary little-endian PLY: the header here, the face records laid out
     by the core and appended to the file (``_ply_write_records``: plyfile
-    writes list properties one face at a time, 25 s for 1M faces). ``fields`` is ``_ply_fields(None,
-    mesh)`` when the caller has it already."""
+    writes list properties one face at a time, 25 s for 1M faces).
+    ``fields`` is ``_ply_fields(None, mesh)`` when the caller has it already."""
     verts, sizes = mesh.vertices, mesh.face_sizes
     idx, twins = mesh.face_indices, mesh.corner_twins
     if len(verts) >= 2**31 or len(idx) >= 2**31:
@@ -72,7 +72,6 @@ def _write_ply(tmp: str, mesh: Mesh, fields: tuple | None = None) -> None:
     _ply_write_records(tmp, sizes, cols)
 
 
-
 def _raw(a):
     return np.ascontiguousarray(a).view(np.uint8).reshape(-1)
 
@@ -83,8 +82,8 @@ class _Source:
     by the core straight from the file (``_ply_gather_file``: chunks through
     two reused buffers, so the file's bytes take no fresh pages; reading a
     36 MiB file whole took 18-20 ms before its gather could start); the whole
-    file (``_read_bytes``) only for what needs it: faces of several sizes, a
-    vertex layout other than x y z float64 first, a header past the probe.
+    file (``_read_bytes``) only for what needs it: faces of several sizes or
+    a header past the probe.
     A read-only memory map was tried for issue 19: fast on a file read
     twice, but 5-10x slower than a copy when the file had just been written,
     the usual save-then-load case: every page faulted in while the kernel
