@@ -31,6 +31,7 @@ use super::{Mesh, BuildOptions, NONE, MAX_ELEMENTS};
 use super::FaceStart;
 use crate::error::{MeshError, Result};
 use glam::DVec3;
+use std::borrow::Cow;
 
 impl Mesh {
     /// The twin corner of every exported corner, aligned with
@@ -390,7 +391,12 @@ fn check_twins_size(nv: usize, n: usize, nf: usize) -> Result<()> {
 /// the sequential path then handles holes and point-spheres and names the
 /// problem. (With that path alone, rebuilding a 960k-quad torus took 154 ms
 /// on one thread, of which the builder needs 63 ms; with this one, 88-105.)
-fn closed_fast<T: Copy + Into<i64> + Sync>(positions: &[DVec3], sizes: &[i64], indices: &[T], twins: &[T]) -> Result<Option<(Vec<u32>, Vec<u32>, Vec<u32>)>> {
+fn closed_fast<'a, T: IndexColumn>(
+    positions: &[DVec3],
+    sizes: &[i64],
+    indices: &'a [T],
+    twins: &'a [T],
+) -> Result<Option<(Vec<u32>, Cow<'a, [u32]>, Cow<'a, [u32]>)>> {
     use super::build::{first_bad_face, first_index};
     use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     let (nv, n) = (positions.len(), indices.len());
@@ -411,17 +417,11 @@ fn closed_fast<T: Copy + Into<i64> + Sync>(positions: &[DVec3], sizes: &[i64], i
     if acc != n as u64 {
         return Ok(None);
     }
-    // converted and range-checked in one pass each; a negative twin (a
-    // boundary side or a point-sphere) is out of range here too
+    // range-checked (and int64 converted) in one pass each; a negative twin
+    // (a boundary side or a point-sphere) is out of range here too
     let out = AtomicBool::new(false);
-    let narrow = |x: i64, end: usize| {
-        if x < 0 || x >= end as i64 {
-            out.store(true, Relaxed);
-        }
-        x as u32
-    };
-    let verts = crate::cancel::par_collect(n, |c| narrow(indices[c].into(), nv))?;
-    let twin = crate::cancel::par_collect(n, |c| narrow(twins[c].into(), n))?;
+    let verts = T::as_u32(indices, nv, &out)?;
+    let twin = T::as_u32(twins, n, &out)?;
     if out.load(Relaxed) {
         return Ok(None);
     }
@@ -430,6 +430,41 @@ fn closed_fast<T: Copy + Into<i64> + Sync>(positions: &[DVec3], sizes: &[i64], i
     // a cancelled search finds nothing: never build on it
     crate::cancel::check()?;
     Ok(bad.is_none().then_some((sizes_u, verts, twin)))
+}
+
+/// A column of indices or twins as [`closed_fast`] reads it: `u32` values,
+/// with `out` set when one is outside `0..end`.
+trait IndexColumn: Copy + Sync + Sized {
+    fn as_u32<'a>(s: &'a [Self], end: usize, out: &std::sync::atomic::AtomicBool) -> Result<Cow<'a, [u32]>>;
+}
+
+impl IndexColumn for i64 {
+    /// Converted in one parallel pass.
+    fn as_u32<'a>(s: &'a [i64], end: usize, out: &std::sync::atomic::AtomicBool) -> Result<Cow<'a, [u32]>> {
+        let col = crate::cancel::par_collect(s.len(), |c| {
+            let x = s[c];
+            if x < 0 || x >= end as i64 {
+                out.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+            x as u32
+        })?;
+        Ok(Cow::Owned(col))
+    }
+}
+
+impl IndexColumn for i32 {
+    /// Read in place: checked in one parallel pass, then the same bits read
+    /// as `u32` (no copy: a 1M-triangle PLY's two int32 columns would have
+    /// been 24 MB of fresh pages).
+    fn as_u32<'a>(s: &'a [i32], end: usize, out: &std::sync::atomic::AtomicBool) -> Result<Cow<'a, [u32]>> {
+        if super::build::first_index(s, |&x| x < 0 || x as i64 >= end as i64).is_some() {
+            out.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+        crate::cancel::check()?;
+        // SAFETY: i32 and u32 have the same size and alignment and every bit
+        // pattern is a valid u32; the slice borrows `s` for as long.
+        Ok(Cow::Borrowed(unsafe { std::slice::from_raw_parts(s.as_ptr().cast::<u32>(), s.len()) }))
+    }
 }
 
 #[cfg(test)]
