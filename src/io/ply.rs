@@ -175,6 +175,7 @@ fn narrow_n(dst: &mut [u8], src: &[u8]) -> bool {
 /// The records of `sizes.len()` faces (`sizes[r]` corners each) laid out
 /// property after property, as a PLY binary little-endian element body.
 pub fn join_records(sizes: &[i64], fields: &[Field]) -> Result<Vec<u8>> {
+    check_layout(sizes, fields)?;
     let mut out = Vec::new();
     join_into(sizes, fields, &mut out)?;
     Ok(out)
@@ -205,12 +206,11 @@ fn check_layout(sizes: &[i64], fields: &[Field]) -> Result<usize> {
 }
 
 /// [`join_records`] into `out`, whose allocation is reused when it is
-/// large enough.
+/// large enough; `fields` already passed [`check_layout`] with `sizes`.
 fn join_into(sizes: &[i64], fields: &[Field], out: &mut Vec<u8>) -> Result<()> {
     use rayon::prelude::*;
     use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
     let bad = |msg: String| MeshError::InvalidArgument(format!("PLY record layout: {msg}"));
-    check_layout(sizes, fields)?;
     let len = |k: usize| -> usize {
         fields.iter().map(|f| if f.count == 0 { f.value_size as usize } else { f.count as usize + k * f.per as usize * f.value_size as usize }).sum()
     };
@@ -305,7 +305,7 @@ pub fn write_records<W: std::io::Write + Send>(w: &mut W, sizes: &[i64], fields:
                 Field { data: &f.data[a..b], ..*f }
             })
             .collect();
-        join_into(&sizes[r0..r1], &sub, out)
+        join_into(&sizes[r0..r1], &sub, out) // each chunk's part of the layout checked above
     };
     let parts = starts.len() - 1;
     let (mut cur, mut next) = (Vec::new(), Vec::new());
@@ -332,14 +332,7 @@ const GATHER_BLOCK: usize = 1 << 14;
 /// per column into pages mapped up front, where NumPy's strided copies of
 /// a structured view took 25 ms of a 1M-triangle file's 45 ms read.
 pub fn gather(data: &[u8], start: usize, n: usize, record: usize, fields: &[(usize, usize)]) -> Result<Vec<Vec<u8>>> {
-    let bad = |msg: String| MeshError::InvalidArgument(format!("PLY records: {msg}"));
-    let end = n.checked_mul(record).and_then(|b| b.checked_add(start));
-    if end.is_none_or(|e| e > data.len()) {
-        return Err(bad(format!("{n} records of {record} bytes from byte {start} run past the end of the {} bytes", data.len())));
-    }
-    if let Some(&(o, w)) = fields.iter().find(|&&(o, w)| o + w > record) {
-        return Err(bad(format!("a field of {w} bytes at offset {o} does not fit a record of {record}")));
-    }
+    check_records(start as u64, n, record, fields, data.len() as u64)?;
     let mut out = columns(n, fields);
     if !gather_into(&data[start..start + n * record], record, fields, &mut out, 0, GATHER_BLOCK) {
         return Err(MeshError::Interrupted);
@@ -439,6 +432,20 @@ fn gather_into(src: &[u8], record: usize, fields: &[(usize, usize)], out: &mut [
     })
 }
 
+/// Refuses records of [`gather`] that run past the end of `len` bytes, or
+/// fields that do not fit a record.
+fn check_records(start: u64, n: usize, record: usize, fields: &[(usize, usize)], len: u64) -> Result<()> {
+    let bad = |msg: String| MeshError::InvalidArgument(format!("PLY records: {msg}"));
+    let end = (n as u64).checked_mul(record as u64).and_then(|b| b.checked_add(start));
+    if end.is_none_or(|e| e > len) {
+        return Err(bad(format!("{n} records of {record} bytes from byte {start} run past the end of the {len} bytes")));
+    }
+    if let Some(&(o, w)) = fields.iter().find(|&&(o, w)| o + w > record) {
+        return Err(bad(format!("a field of {w} bytes at offset {o} does not fit a record of {record}")));
+    }
+    Ok(())
+}
+
 /// [`gather`] straight from the file at `path`: its records are read in
 /// chunks into two reused buffers, the next chunk read while this one is
 /// gathered, so the file's bytes never take fresh pages. Reading a 36 MiB
@@ -446,17 +453,9 @@ fn gather_into(src: &[u8], record: usize, fields: &[(usize, usize)], out: &mut [
 /// zeroing the buffer, before the gather could start.
 pub fn gather_file(path: &std::path::Path, start: u64, n: usize, record: usize, fields: &[(usize, usize)]) -> Result<Vec<Vec<u8>>> {
     use std::io::{Read, Seek, SeekFrom};
-    let bad = |msg: String| MeshError::InvalidArgument(format!("PLY records: {msg}"));
     let io = |e: std::io::Error| MeshError::Io(format!("{}: cannot read ({e})", path.display()));
-    if let Some(&(o, w)) = fields.iter().find(|&&(o, w)| o + w > record) {
-        return Err(bad(format!("a field of {w} bytes at offset {o} does not fit a record of {record}")));
-    }
     let mut f = std::fs::File::open(path).map_err(io)?;
-    let len = f.metadata().map_err(io)?.len();
-    let end = (n as u64).checked_mul(record as u64).and_then(|b| b.checked_add(start));
-    if end.is_none_or(|e| e > len) {
-        return Err(bad(format!("{n} records of {record} bytes from byte {start} run past the end of the {len} bytes")));
-    }
+    check_records(start, n, record, fields, f.metadata().map_err(io)?.len())?;
     let bytes = fields.iter().map(|&(_, w)| w as u64).sum::<u64>() * n as u64;
     crate::budget::check("load", &format!("{} ({n} records)", path.display()), bytes)?;
     let mut out = columns(n, fields);
@@ -535,15 +534,22 @@ mod tests {
         assert!(e.contains("negative list length"), "{e}");
     }
 
-    #[test]
-    fn join_is_the_inverse_of_split() {
-        // sizes 3, 0, 5, 1 and a long run, with a scalar, a 1-byte-count list and a 4-byte-count list of 2 per corner
+    /// Face sizes 3, 0, 5, 1 and a long run over several blocks, a u16 scalar
+    /// per face and two doubles per corner: `(sizes, corners, tag, uv)`.
+    fn mixed_faces() -> (Vec<i64>, usize, Vec<u8>, Vec<u8>) {
         let mut sizes = vec![3i64, 0, 5, 1];
         sizes.extend(std::iter::repeat_n(4, 2 * BLOCK + 7));
         let nc: usize = sizes.iter().map(|&k| k as usize).sum();
-        let idx: Vec<u8> = (0..nc as i32).flat_map(|i| i.to_le_bytes()).collect();
         let tag: Vec<u8> = (0..sizes.len() as u16).flat_map(|i| i.wrapping_mul(7).to_le_bytes()).collect();
         let uv: Vec<u8> = (0..2 * nc as u64).flat_map(|i| (i as f64 * 0.5).to_le_bytes()).collect();
+        (sizes, nc, tag, uv)
+    }
+
+    #[test]
+    fn join_is_the_inverse_of_split() {
+        // mixed_faces, with a scalar, a 1-byte-count list and a 4-byte-count list of 2 per corner
+        let (sizes, nc, tag, uv) = mixed_faces();
+        let idx: Vec<u8> = (0..nc as i32).flat_map(|i| i.to_le_bytes()).collect();
         let fields = [
             Field { count: 1, per: 1, value_size: 4, source_size: 4, data: &idx },
             Field { count: 0, per: 1, value_size: 2, source_size: 2, data: &tag },
@@ -565,14 +571,10 @@ mod tests {
 
     #[test]
     fn written_records_are_the_joined_ones() {
-        // the sizes and fields of join_is_the_inverse_of_split, an int64 column narrowed,
-        // written in chunks of 1, 3 and 1000 faces and the default, and in one
-        let mut sizes = vec![3i64, 0, 5, 1];
-        sizes.extend(std::iter::repeat_n(4, 2 * BLOCK + 7));
-        let nc: usize = sizes.iter().map(|&k| k as usize).sum();
+        // mixed_faces with an int64 column narrowed, written in chunks of 1, 3
+        // and 1000 faces and the default, and in one
+        let (sizes, nc, tag, uv) = mixed_faces();
         let idx: Vec<u8> = (0..nc as i64).flat_map(|i| (i - 2).to_le_bytes()).collect();
-        let tag: Vec<u8> = (0..sizes.len() as u16).flat_map(|i| i.wrapping_mul(7).to_le_bytes()).collect();
-        let uv: Vec<u8> = (0..2 * nc as u64).flat_map(|i| (i as f64 * 0.5).to_le_bytes()).collect();
         let fields = [
             Field { count: 1, per: 1, value_size: 4, source_size: 8, data: &idx },
             Field { count: 0, per: 1, value_size: 2, source_size: 2, data: &tag },
