@@ -6,6 +6,7 @@ from __future__ import annotations
 import copy
 import os
 import pickle
+import re
 import subprocess
 import sys
 import textwrap
@@ -187,6 +188,47 @@ def test_bad_twins_name_corner_and_face(dtype):
         Mesh.from_flat(v, s, i, twins=t[:-1])
     with pytest.raises(MeshError, match=r"corner 3 of face 1 is its own twin"):
         Mesh.from_flat(v, s, i, twins=np.where(np.arange(12) == 3, 3, t))
+
+
+def _built(build):
+    """``build()``'s mesh, or the message of the MeshError it raised."""
+    try:
+        return build()
+    except MeshError as e:
+        return str(e)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_int32_polygons_build_what_int64_polygons_build(name):
+    """int32 face arrays (a foreign PLY file's, pyvista's and others') are read
+    in place: the same mesh, or the same refusal, from flat indices without
+    twins and from (F, k) C-order arrays as from int64; Fortran-order and
+    strided int32 arrays take the int64 path and agree too."""
+    m = CORPUS[name]
+    v, s, i = m.vertices, m.face_sizes, m.face_indices
+    for multi in (False, True):
+        ref = _built(lambda: Mesh.from_flat(v, s, i, allow_multi_edges=multi))
+        assert _built(lambda: Mesh.from_flat(v, s, i.astype(np.int32), allow_multi_edges=multi)) == ref
+        if len(s) and (s == s[0]).all():
+            f64 = i.reshape(-1, int(s[0]))
+            ref2 = _built(lambda: Mesh.from_polygons(v, f64, allow_multi_edges=multi))
+            for f32 in (f64.astype(np.int32), np.asfortranarray(f64.astype(np.int32)), np.repeat(f64.astype(np.int32), 2, axis=0)[::2]):
+                assert _built(lambda: Mesh.from_polygons(v, f32, allow_multi_edges=multi)) == ref2
+
+
+def test_int32_polygons_name_the_bad_index():
+    t = T.tetrahedron()
+    for bad in (4, -1):
+        f = t.face_indices.reshape(-1, 3).astype(np.int32)
+        f[1, 2] = bad
+        with pytest.raises(MeshError, match=rf"index {bad}") as e32:
+            Mesh.from_polygons(t.vertices, f)
+        with pytest.raises(MeshError) as e64:
+            Mesh.from_polygons(t.vertices, f.astype(np.int64))
+        assert str(e32.value) == str(e64.value)
+        with pytest.raises(MeshError) as flat32:
+            Mesh.from_flat(t.vertices, t.face_sizes, f.reshape(-1))
+        assert str(flat32.value) == str(e64.value)
 
 
 def test_size_sum_overflow_is_a_mesh_error():

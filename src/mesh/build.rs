@@ -48,12 +48,17 @@ impl Mesh {
     /// are found by vertex pair; an edge between `a` and `b` matches the one
     /// side going `a → b` with the one going `b → a`; self-loop sides at one
     /// vertex pair up in order of appearance.
-    pub fn from_polygons(
-        positions: Vec<DVec3>,
-        sizes: &[i64],
-        indices: &[i64],
-        opts: BuildOptions,
-    ) -> Result<Mesh> {
+    pub fn from_polygons(positions: Vec<DVec3>, sizes: &[i64], indices: &[i64], opts: BuildOptions) -> Result<Mesh> {
+        Self::from_polygons_of(positions, sizes, indices, opts)
+    }
+
+    /// [`Mesh::from_polygons`] with int32 indices (a PLY file's, and the face
+    /// arrays of many libraries), read as they are: no int64 copy.
+    pub fn from_polygons_i32(positions: Vec<DVec3>, sizes: &[i64], indices: &[i32], opts: BuildOptions) -> Result<Mesh> {
+        Self::from_polygons_of(positions, sizes, indices, opts)
+    }
+
+    fn from_polygons_of<T: Copy + Sync + Into<i64>>(positions: Vec<DVec3>, sizes: &[i64], indices: &[T], opts: BuildOptions) -> Result<Mesh> {
         let nv = positions.len();
         if nv > MAX_ELEMENTS || indices.len() > MAX_ELEMENTS / 2 {
             return Err(MeshError::InvalidArgument(format!(
@@ -90,12 +95,15 @@ impl Mesh {
             )));
         }
         // the first bad index in corner order, i.e. of the lowest face
-        if let Some(c) = first_index(indices, |&i| i < 0 || i as usize >= nv) {
+        if let Some(c) = first_index(indices, |&i| {
+            let i: i64 = i.into();
+            i < 0 || i as usize >= nv
+        }) {
             let f = face_of(&offsets, c as u32);
-            return Err(MeshError::IndexOutOfRange { face: f, position: c - offsets[f], index: indices[c], n_vertices: nv });
+            return Err(MeshError::IndexOutOfRange { face: f, position: c - offsets[f], index: indices[c].into(), n_vertices: nv });
         }
         // par_collect: the columns' pages are mapped in one call per chunk before the fill
-        let mut verts: Vec<u32> = crate::cancel::par_collect(indices.len(), |c| indices[c] as u32)?;
+        let mut verts: Vec<u32> = crate::cancel::par_collect(indices.len(), |c| Into::<i64>::into(indices[c]) as u32)?;
         let n = verts.len();
         // head vertex of every corner's side: the next corner's vertex, except
         // at the end of a face, which wraps to its first corner

@@ -320,3 +320,40 @@ fn ear_clipping_handles_a_star() {
     let exact: f64 = (0..10).map(|k| pos[k].truncate().perp_dot(pos[(k + 1) % 10].truncate()) / 2.0).sum();
     assert!((area - exact).abs() < 1e-12, "{area} vs {exact}");
 }
+
+#[test]
+fn int32_polygons_build_what_int64_polygons_build() {
+    // every corpus mesh and the open cube through both index types, with and
+    // without multi-edges allowed, then the same refusals
+    let open = ("open", crate::schemes::hosts::test_meshes::cube_with_hole());
+    let mut built = 0;
+    for (name, m) in crate::schemes::hosts::test_meshes::corpus().into_iter().chain([open]) {
+        let (sizes, idx) = m.to_polygons().to_i64();
+        let idx32: Vec<i32> = idx.iter().map(|&i| i as i32).collect();
+        for allow_multi_edges in [false, true] {
+            let opts = BuildOptions { close_boundaries: true, allow_multi_edges };
+            let wide = Mesh::from_polygons(m.positions().to_vec(), &sizes, &idx, opts);
+            let narrow = Mesh::from_polygons_i32(m.positions().to_vec(), &sizes, &idx32, opts);
+            match (wide, narrow) {
+                (Ok(a), Ok(b)) => {
+                    assert_eq!(a, b, "{name}");
+                    built += 1;
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+                (a, b) => panic!("{name}: {:?} against {:?}", a.map(|_| ()), b.map(|_| ())),
+            }
+        }
+    }
+    assert!(built >= 10, "only {built} meshes built");
+    let cube = primitives::cube();
+    let (sizes, idx) = cube.to_polygons().to_i64();
+    for bad in [8i64, -1] {
+        let mut wide = idx.clone();
+        wide[5] = bad;
+        let narrow: Vec<i32> = wide.iter().map(|&i| i as i32).collect();
+        let a = Mesh::from_polygons(cube.positions().to_vec(), &sizes, &wide, BuildOptions::default()).unwrap_err().to_string();
+        let b = Mesh::from_polygons_i32(cube.positions().to_vec(), &sizes, &narrow, BuildOptions::default()).unwrap_err().to_string();
+        assert_eq!(a, b);
+        assert!(a.contains(&format!("index {bad}")), "{a}");
+    }
+}

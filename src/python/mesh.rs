@@ -7,7 +7,7 @@ use super::{arg_err, err};
 use crate::mesh::{BuildOptions, Corner, EdgeId, FaceId, Mesh, VertexId};
 use glam::DVec3;
 use numpy::ndarray::{ArrayView1, ArrayView2};
-use numpy::{PyArray1, PyArray2};
+use numpy::{PyArray1, PyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use std::sync::OnceLock;
 
@@ -115,12 +115,34 @@ fn vertex_point(obj: &Bound<'_, PyAny>) -> PyResult<[f64; 3]> {
     super::convert::point3(obj, "create_vertex", "point")
 }
 
-fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: &[i64], close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
+/// Flat face indices as the caller gave them: int64, or an int32 array's
+/// values read in place (a PLY file's, many libraries' face arrays).
+enum FlatIndices<'a> {
+    I64(&'a [i64]),
+    I32(&'a [i32]),
+}
+
+/// The values of `obj` when it is a C-contiguous int32 array of `ndim`
+/// dimensions, borrowed (read as they are, no int64 copy).
+fn int32_array<'py>(obj: &Bound<'py, PyAny>, ndim: usize) -> Option<numpy::PyReadonlyArrayDyn<'py, i32>> {
+    let a = obj.cast::<numpy::PyArrayDyn<i32>>().ok()?;
+    (a.ndim() == ndim && a.is_c_contiguous()).then(|| numpy::PyArrayMethods::readonly(a))
+}
+
+fn build(py: Python<'_>, pos: Vec<DVec3>, sizes: &[i64], idx: FlatIndices<'_>, close_boundaries: bool, allow_multi_edges: bool) -> PyResult<PyMesh> {
     let opts = BuildOptions { close_boundaries, allow_multi_edges };
-    let c = crate::budget::Counts::plain(pos.len() as u64, idx.len() as u64 / 2, sizes.len() as u64);
+    let corners = match idx {
+        FlatIndices::I64(i) => i.len(),
+        FlatIndices::I32(i) => i.len(),
+    };
+    let c = crate::budget::Counts::plain(pos.len() as u64, corners as u64 / 2, sizes.len() as u64);
     let m = super::run_interruptible(py, || {
         crate::budget::check("from_polygons", &format!("a mesh of {} faces", sizes.len()), crate::budget::build_bytes(&c))?;
-        Mesh::from_polygons(pos, sizes, idx, opts).map_err(|e| match e {
+        match idx {
+            FlatIndices::I64(i) => Mesh::from_polygons(pos, sizes, i, opts),
+            FlatIndices::I32(i) => Mesh::from_polygons_i32(pos, sizes, i, opts),
+        }
+        .map_err(|e| match e {
             // an even number of sides on one vertex pair is how a mesh with
             // multi-edges is written (OBJ, OFF, polygon arrays): say how to read it back
             crate::MeshError::NonManifoldEdge { ref faces, .. } if !allow_multi_edges && faces.len() % 2 == 0 => crate::MeshError::InvalidArgument(format!(
@@ -180,8 +202,15 @@ impl PyMesh {
     ) -> PyResult<PyMesh> {
         let keep = super::boundary::keep_boundaries("from_polygons", close_boundaries, boundaries)?;
         let pos = positions(py, vertices)?;
+        // an (F, k) int32 array (k > 0) is read in place
+        if let Some(a) = int32_array(faces, 2) {
+            let (nf, k) = (a.shape()[0], a.shape()[1]);
+            if k > 0 {
+                return build(py, pos, &vec![k as i64; nf], FlatIndices::I32(a.as_slice()?), keep, allow_multi_edges);
+            }
+        }
         let (sizes, idx) = self::faces(py, faces)?;
-        build(py, pos, &sizes, idx.as_slice(), keep, allow_multi_edges)
+        build(py, pos, &sizes, FlatIndices::I64(idx.as_slice()), keep, allow_multi_edges)
     }
 
     /// Build a mesh from vertices, ``face_sizes`` (F,) and flat ``face_indices``,
@@ -245,7 +274,11 @@ impl PyMesh {
                 }
                 Ok(m)
             }
-            _ => build(py, pos, sizes.as_slice(), indices_1d(py, face_indices, "face_indices")?.as_slice(), keep, allow_multi_edges),
+            _ => match int32_array(face_indices, 1) {
+                // int32 indices (a foreign PLY file's) are read as they are
+                Some(i) => build(py, pos, sizes.as_slice(), FlatIndices::I32(i.as_slice()?), keep, allow_multi_edges),
+                None => build(py, pos, sizes.as_slice(), FlatIndices::I64(indices_1d(py, face_indices, "face_indices")?.as_slice()), keep, allow_multi_edges),
+            },
         }
     }
 
