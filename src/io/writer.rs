@@ -12,8 +12,16 @@ pub enum TextFormat {
     Off,
 }
 
+/// Vertices or faces formatted per parallel job of [`write_text`].
+const TEXT_CHUNK: usize = 1 << 14;
+
 /// Writes the exported polygons of `m` (holes left out) as OBJ or OFF.
-pub fn write_text<W: Write>(m: &Mesh, format: TextFormat, out: W) -> Result<()> {
+/// The lines are formatted in parallel, chunk by chunk, and written in
+/// order while the next chunks are formatted: formatting floats one line
+/// after another took 200 ms of an OBJ save of 1M triangles (`perf`:
+/// mostly `f64`'s shortest-decimal formatting, on one thread).
+pub fn write_text<W: Write + Send>(m: &Mesh, format: TextFormat, out: W) -> Result<()> {
+    use rayon::prelude::*;
     let io = |e: std::io::Error| MeshError::Io(e.to_string());
     let mut w = std::io::BufWriter::with_capacity(1 << 20, out);
     let p = m.to_polygons();
@@ -22,30 +30,60 @@ pub fn write_text<W: Write>(m: &Mesh, format: TextFormat, out: W) -> Result<()> 
         TextFormat::Off => writeln!(w, "OFF\n{} {} {}", m.n_vertices(), p.sizes.len(), m.n_edges()).map_err(io)?,
     }
     let prefix = if format == TextFormat::Obj { "v " } else { "" };
-    for q in m.positions() {
-        // Debug on f64 prints the shortest decimal that parses back to the
-        // same bits, with an exponent for very large or small magnitudes
-        writeln!(w, "{prefix}{:?} {:?} {:?}", q.x, q.y, q.z).map_err(io)?;
-    }
-    let mut k = 0;
-    for &s in &p.sizes {
-        let face = &p.indices[k..k + s as usize];
-        k += s as usize;
-        match format {
-            TextFormat::Obj => {
-                w.write_all(b"f").map_err(io)?;
-                for &i in face {
-                    write!(w, " {}", i + 1).map_err(io)?;
-                }
-            }
-            TextFormat::Off => {
-                write!(w, "{s}").map_err(io)?;
-                for &i in face {
-                    write!(w, " {i}").map_err(io)?;
-                }
-            }
+    let pos = m.positions();
+    // first corner of every face chunk
+    let mut starts = Vec::with_capacity(p.sizes.len() / TEXT_CHUNK + 2);
+    let mut k = 0usize;
+    for (i, &s) in p.sizes.iter().enumerate() {
+        if i % TEXT_CHUNK == 0 {
+            starts.push(k);
         }
-        w.write_all(b"\n").map_err(io)?;
+        k += s as usize;
+    }
+    let (nvc, nfc) = (pos.len().div_ceil(TEXT_CHUNK), starts.len());
+    // chunk j: vertex chunk j, then face chunk j - nvc; formatted into its own buffer
+    let text = |j: usize| -> Vec<u8> {
+        let mut b = Vec::with_capacity(64 * TEXT_CHUNK);
+        if j < nvc {
+            for q in &pos[j * TEXT_CHUNK..((j + 1) * TEXT_CHUNK).min(pos.len())] {
+                // Debug on f64 prints the shortest decimal that parses back to the
+                // same bits, with an exponent for very large or small magnitudes
+                let _ = writeln!(b, "{prefix}{:?} {:?} {:?}", q.x, q.y, q.z);
+            }
+            return b;
+        }
+        let c = j - nvc;
+        let mut k = starts[c];
+        for &s in &p.sizes[c * TEXT_CHUNK..((c + 1) * TEXT_CHUNK).min(p.sizes.len())] {
+            let face = &p.indices[k..k + s as usize];
+            k += s as usize;
+            // writes to a Vec cannot fail
+            let _ = match format {
+                TextFormat::Obj => {
+                    b.push(b'f');
+                    face.iter().try_for_each(|&i| write!(b, " {}", i + 1))
+                }
+                TextFormat::Off => write!(b, "{s}").and_then(|()| face.iter().try_for_each(|&i| write!(b, " {i}"))),
+            };
+            b.push(b'\n');
+        }
+        b
+    };
+    // a batch of chunks per wave: formatted in parallel while the previous wave is written
+    let wave = 4 * rayon::current_num_threads().max(1);
+    let total = nvc + nfc;
+    let mut done: Vec<Vec<u8>> = Vec::new();
+    let mut next = 0;
+    while next < total || !done.is_empty() {
+        crate::cancel::check()?;
+        let range = next..(next + wave).min(total);
+        next = range.end;
+        let (written, formatted) = rayon::join(
+            || done.iter().try_for_each(|b| w.write_all(b)),
+            || range.into_par_iter().map(text).collect::<Vec<_>>(),
+        );
+        written.map_err(io)?;
+        done = formatted;
     }
     w.flush().map_err(io)
 }
@@ -54,6 +92,66 @@ pub fn write_text<W: Write>(m: &Mesh, format: TextFormat, out: W) -> Result<()> 
 mod tests {
     use super::*;
     use crate::primitives;
+
+    /// The lines as the writer wrote them one after another before it ran in parallel.
+    fn sequential(m: &Mesh, format: TextFormat) -> Vec<u8> {
+        let mut w = Vec::new();
+        let p = m.to_polygons();
+        match format {
+            TextFormat::Obj => writeln!(w, "# written by topomesh").unwrap(),
+            TextFormat::Off => writeln!(w, "OFF\n{} {} {}", m.n_vertices(), p.sizes.len(), m.n_edges()).unwrap(),
+        }
+        let prefix = if format == TextFormat::Obj { "v " } else { "" };
+        for q in m.positions() {
+            writeln!(w, "{prefix}{:?} {:?} {:?}", q.x, q.y, q.z).unwrap();
+        }
+        let mut k = 0;
+        for &s in &p.sizes {
+            let face = &p.indices[k..k + s as usize];
+            k += s as usize;
+            match format {
+                TextFormat::Obj => {
+                    w.extend_from_slice(b"f");
+                    face.iter().for_each(|&i| write!(w, " {}", i + 1).unwrap());
+                }
+                TextFormat::Off => {
+                    write!(w, "{s}").unwrap();
+                    face.iter().for_each(|&i| write!(w, " {i}").unwrap());
+                }
+            }
+            w.extend_from_slice(b"\n");
+        }
+        w
+    }
+
+    #[test]
+    fn parallel_text_is_the_sequential_text() {
+        // several chunks of vertices and of faces, triangles and quads interleaved, odd coordinates
+        let t = primitives::torus(300, 200, 3.0, 1.0).unwrap();
+        let p = t.to_polygons();
+        let (mut sizes, mut idx) = (Vec::new(), Vec::new());
+        for (f, q) in p.indices.chunks(4).enumerate() {
+            let q: Vec<i64> = q.iter().map(|&i| i as i64).collect();
+            if f % 2 == 0 {
+                sizes.extend([3, 3]);
+                idx.extend([q[0], q[1], q[2], q[0], q[2], q[3]]);
+            } else {
+                sizes.push(4);
+                idx.extend(q);
+            }
+        }
+        let mut pos = t.positions().to_vec();
+        pos[7].x = 0.1 + 0.2;
+        pos[8].y = 1e-300;
+        pos[9].z = -2.5e17;
+        let m = Mesh::from_polygons(pos, &sizes, &idx, crate::mesh::BuildOptions::default()).unwrap();
+        assert!(m.n_vertices() > 2 * TEXT_CHUNK && m.n_faces() > 4 * TEXT_CHUNK);
+        for format in [TextFormat::Obj, TextFormat::Off] {
+            let mut out = Vec::new();
+            write_text(&m, format, &mut out).unwrap();
+            assert!(out == sequential(&m, format), "{format:?}");
+        }
+    }
 
     #[test]
     fn obj_and_off_text() {

@@ -357,3 +357,53 @@ fn int32_polygons_build_what_int64_polygons_build() {
         assert!(a.contains(&format!("index {bad}")), "{a}");
     }
 }
+
+#[test]
+fn multi_edges_found_per_vertex_as_by_sorting_every_edge() {
+    // the reference: every edge's vertex pair (self-loops aside), sorted
+    let reference = |m: &Mesh| {
+        let mut pairs: Vec<(u32, u32)> = m
+            .edges()
+            .filter_map(|e| {
+                let h = e.halfedge();
+                let (a, b) = (m.vertex(h).0, m.head(h).0);
+                (a != b).then_some((a.min(b), a.max(b)))
+            })
+            .collect();
+        pairs.sort_unstable();
+        pairs.windows(2).any(|w| w[0] == w[1])
+    };
+    let mut seen = [0usize; 2];
+    let mut check = |name: &str, m: &Mesh| {
+        let found = m.has_multi_edges();
+        assert_eq!(found, reference(m), "{name}");
+        seen[found as usize] += 1;
+    };
+    let open = ("open".to_string(), crate::schemes::hosts::test_meshes::cube_with_hole());
+    for (name, m) in crate::schemes::hosts::test_meshes::corpus().into_iter().map(|(n, m)| (n.to_string(), m)).chain([open]) {
+        check(&name, &m);
+    }
+    // valence above 16: a pyramid over a 20-gon (apex and base of valence 20, no
+    // multi-edge) and a beach ball of 20 two-gons (its two poles joined 20 times)
+    let n = 20;
+    let mut pos: Vec<DVec3> = (0..n).map(|i| DVec3::new((i as f64).cos(), (i as f64).sin(), 0.0)).collect();
+    pos.push(DVec3::Z);
+    let mut sizes = vec![n as i64];
+    let mut idx: Vec<i64> = (0..n as i64).rev().collect();
+    for i in 0..n as i64 {
+        sizes.push(3);
+        idx.extend([i, (i + 1) % n as i64, n as i64]);
+    }
+    check("pyramid", &Mesh::from_polygons(pos, &sizes, &idx, BuildOptions::default()).unwrap());
+    // two-gon i is corners 2i (north to south) and 2i + 1 (south to north); its
+    // north-to-south side is glued to the next two-gon's south-to-north side
+    let mut twins = vec![0i64; 2 * n];
+    for i in 0..n {
+        let j = 2 * ((i + 1) % n) + 1;
+        (twins[2 * i], twins[j]) = (j as i64, 2 * i as i64);
+    }
+    let ball = Mesh::from_corner_twins_i64(vec![DVec3::Z, -DVec3::Z], &vec![2; n], &[0, 1].repeat(n), &twins).unwrap();
+    assert_eq!((ball.n_edges(), ball.genus()), (n, 0));
+    check("beach ball", &ball);
+    assert!(seen[0] >= 3 && seen[1] >= 2, "{seen:?}");
+}

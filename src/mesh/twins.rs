@@ -344,16 +344,36 @@ impl Mesh {
 
     /// Whether the mesh has two edges between the same two distinct vertices.
     pub fn has_multi_edges(&self) -> bool {
-        let mut pairs: Vec<(u32, u32)> = self
-            .edges()
-            .filter_map(|e| {
-                let h = e.halfedge();
-                let (a, b) = (self.vertex(h).0, self.head(h).0);
-                (a != b).then_some((a.min(b), a.max(b)))
-            })
-            .collect();
-        pairs.sort_unstable();
-        pairs.windows(2).any(|w| w[0] == w[1])
+        use rayon::prelude::*;
+        // per vertex, the heads of its outgoing half-edges (self-loops aside, whose two
+        // half-edges both leave it): a head met twice is a second edge to the same vertex.
+        // In parallel and without a sort of every edge (that took 44 ms of an OBJ save of
+        // 1M triangles, sequential).
+        (0..self.n_vertices() as u32).into_par_iter().with_min_len(1 << 12).any(|v| {
+            let mut few = [0u32; 16];
+            let (mut k, mut many) = (0usize, Vec::new());
+            for h in self.vertex_halfedges(super::VertexId(v)) {
+                let w = self.head(h).0;
+                if w == v {
+                    continue;
+                }
+                if k < few.len() {
+                    if few[..k].contains(&w) {
+                        return true;
+                    }
+                    few[k] = w;
+                    k += 1;
+                } else {
+                    many.push(w);
+                }
+            }
+            // a vertex of valence above 16: all its heads sorted
+            !many.is_empty() && {
+                many.extend_from_slice(&few);
+                many.sort_unstable();
+                many.windows(2).any(|p| p[0] == p[1])
+            }
+        })
     }
 
     /// Whether a polygon list alone (OBJ, OFF) gives this mesh back:
