@@ -326,7 +326,7 @@ fn distinct_rows(values: &[f64], k: usize) -> (Vec<usize>, Vec<u32>) {
 /// tables of the distinct per-corner values, `f v/vt/vn` corners, and a `g`
 /// or `usemtl` line wherever a face's name differs from the previous face's.
 /// Floats as the shortest decimal that reads back to the same bits.
-pub fn write_obj<W: Write>(m: &Mesh, attrs: &ObjAttributes<'_>, out: W) -> Result<()> {
+pub fn write_obj<W: Write + Send>(m: &Mesh, attrs: &ObjAttributes<'_>, out: W) -> Result<()> {
     let io = |e: std::io::Error| MeshError::Io(e.to_string());
     let p = m.to_polygons();
     let (nc, nf) = (p.indices.len(), p.sizes.len());
@@ -355,58 +355,85 @@ pub fn write_obj<W: Write>(m: &Mesh, attrs: &ObjAttributes<'_>, out: W) -> Resul
     }
     let mut w = std::io::BufWriter::with_capacity(1 << 20, out);
     writeln!(w, "# written by topomesh").map_err(io)?;
-    for q in m.positions() {
-        writeln!(w, "v {:?} {:?} {:?}", q.x, q.y, q.z).map_err(io)?;
-    }
     let vt = attrs.texcoords.map(|(t, k)| {
         let (first, index) = distinct_rows(t, k);
         (t, k, first, index)
     });
-    if let Some((t, k, first, _)) = &vt {
-        for &c in first {
-            w.write_all(b"vt").map_err(io)?;
-            for x in &t[c * k..(c + 1) * k] {
-                write!(w, " {x:?}").map_err(io)?;
-            }
-            w.write_all(b"\n").map_err(io)?;
-        }
-    }
     let vn = attrs.normals.map(|n| (n, distinct_rows(n, 3)));
-    if let Some((n, (first, _))) = &vn {
-        for &c in first {
-            writeln!(w, "vn {:?} {:?} {:?}", n[3 * c], n[3 * c + 1], n[3 * c + 2]).map_err(io)?;
+    // the file's sections (v, vt, vn, then faces), each in chunks of TEXT_CHUNK lines
+    // formatted in parallel and written in order (writer::write_pieces)
+    use super::writer::{vertex_lines, write_pieces, TEXT_CHUNK};
+    let pos = m.positions();
+    let chunks = |n: usize| n.div_ceil(TEXT_CHUNK);
+    let (n_v, n_t, n_n) = (chunks(pos.len()), chunks(vt.as_ref().map_or(0, |x| x.2.len())), chunks(vn.as_ref().map_or(0, |x| x.1 .0.len())));
+    // first corner of every face chunk
+    let starts: Vec<usize> = p.sizes.chunks(TEXT_CHUNK).scan(0usize, |k, c| {
+        let s = *k;
+        *k += c.iter().map(|&x| x as usize).sum::<usize>();
+        Some(s)
+    }).collect();
+    // the lines of chunk j of a section of n lines
+    let span = |j: usize, n: usize| j * TEXT_CHUNK..((j + 1) * TEXT_CHUNK).min(n);
+    let piece = |j: usize| -> Vec<u8> {
+        if j < n_v {
+            return vertex_lines(pos, j, "v ");
         }
-    }
-    let (mut group, mut material) = (None, None);
-    let mut k = 0;
-    for (f, &s) in p.sizes.iter().enumerate() {
-        for (key, names, current) in [("g", attrs.groups, &mut group), ("usemtl", attrs.materials, &mut material)] {
-            if let Some((ids, list)) = names {
-                if *current != Some(ids[f]) {
-                    *current = Some(ids[f]);
-                    let name = &list[ids[f] as usize];
-                    if name.is_empty() {
-                        writeln!(w, "{key}").map_err(io)?;
-                    } else {
-                        writeln!(w, "{key} {name}").map_err(io)?;
+        // a Vec takes every write: the results below are all Ok
+        let mut b = Vec::with_capacity(64 * TEXT_CHUNK);
+        let j = j - n_v;
+        if j < n_t {
+            let (t, k, first, _) = vt.as_ref().expect("n_t > 0 only with texture coordinates");
+            for &c in &first[span(j, first.len())] {
+                b.extend_from_slice(b"vt");
+                for x in &t[c * k..(c + 1) * k] {
+                    let _ = write!(b, " {x:?}");
+                }
+                b.push(b'\n');
+            }
+            return b;
+        }
+        let j = j - n_t;
+        if j < n_n {
+            let (n, (first, _)) = vn.as_ref().expect("n_n > 0 only with normals");
+            for &c in &first[span(j, first.len())] {
+                let _ = writeln!(b, "vn {:?} {:?} {:?}", n[3 * c], n[3 * c + 1], n[3 * c + 2]);
+            }
+            return b;
+        }
+        let j = j - n_n;
+        let faces = span(j, nf);
+        // a `g` or `usemtl` line where a face's name differs from the previous face's
+        // (the chunk's first face compares with the last face of the chunk before)
+        let before = |ids: &[i64]| (faces.start > 0).then(|| ids[faces.start - 1]);
+        let (mut group, mut material) = (attrs.groups.and_then(|(ids, _)| before(ids)), attrs.materials.and_then(|(ids, _)| before(ids)));
+        let mut k = starts[j];
+        for f in faces {
+            let s = p.sizes[f] as usize;
+            for (key, names, current) in [("g", attrs.groups, &mut group), ("usemtl", attrs.materials, &mut material)] {
+                if let Some((ids, list)) = names {
+                    if *current != Some(ids[f]) {
+                        *current = Some(ids[f]);
+                        let name = &list[ids[f] as usize];
+                        let _ = if name.is_empty() { writeln!(b, "{key}") } else { writeln!(b, "{key} {name}") };
                     }
                 }
             }
-        }
-        w.write_all(b"f").map_err(io)?;
-        for c in k..k + s as usize {
-            write!(w, " {}", p.indices[c] + 1).map_err(io)?;
-            match (&vt, &vn) {
-                (Some((_, _, _, ti)), Some((_, (_, ni)))) => write!(w, "/{}/{}", ti[c] + 1, ni[c] + 1),
-                (Some((_, _, _, ti)), None) => write!(w, "/{}", ti[c] + 1),
-                (None, Some((_, (_, ni)))) => write!(w, "//{}", ni[c] + 1),
-                (None, None) => Ok(()),
+            b.push(b'f');
+            for c in k..k + s {
+                let _ = write!(b, " {}", p.indices[c] + 1);
+                let _ = match (&vt, &vn) {
+                    (Some((_, _, _, ti)), Some((_, (_, ni)))) => write!(b, "/{}/{}", ti[c] + 1, ni[c] + 1),
+                    (Some((_, _, _, ti)), None) => write!(b, "/{}", ti[c] + 1),
+                    (None, Some((_, (_, ni)))) => write!(b, "//{}", ni[c] + 1),
+                    (None, None) => Ok(()),
+                };
             }
-            .map_err(io)?;
+            k += s;
+            b.push(b'\n');
         }
-        k += s as usize;
-        w.write_all(b"\n").map_err(io)?;
-    }
+        b
+    };
+    write_pieces(&mut w, n_v + n_t + n_n + starts.len(), piece)?;
     w.flush().map_err(io)
 }
 
@@ -512,6 +539,88 @@ f 1 2 3\ng a b\nusemtl M\nf 1/1 3/-1 4/2/1\no x\nf 1//1 2//1 -1//-1\ng a b\nusem
         assert_eq!(got, vec!["", "top", "top", "", "", "top"]);
         let e = write_obj(&m, &ObjAttributes { texcoords: Some((&uv[1..], 2)), ..Default::default() }, Vec::new()).unwrap_err();
         assert!(e.to_string().contains("texture coordinates"), "{e}");
+    }
+
+    /// The writer as it wrote one line after another before it ran in parallel.
+    fn sequential(m: &Mesh, attrs: &ObjAttributes<'_>) -> Vec<u8> {
+        let p = m.to_polygons();
+        let mut w: Vec<u8> = Vec::new();
+        writeln!(w, "# written by topomesh").unwrap();
+        for q in m.positions() {
+            writeln!(w, "v {:?} {:?} {:?}", q.x, q.y, q.z).unwrap();
+        }
+        let vt = attrs.texcoords.map(|(t, k)| {
+            let (first, index) = distinct_rows(t, k);
+            (t, k, first, index)
+        });
+        if let Some((t, k, first, _)) = &vt {
+            for &c in first {
+                w.write_all(b"vt").unwrap();
+                for x in &t[c * k..(c + 1) * k] {
+                    write!(w, " {x:?}").unwrap();
+                }
+                w.write_all(b"\n").unwrap();
+            }
+        }
+        let vn = attrs.normals.map(|n| (n, distinct_rows(n, 3)));
+        if let Some((n, (first, _))) = &vn {
+            for &c in first {
+                writeln!(w, "vn {:?} {:?} {:?}", n[3 * c], n[3 * c + 1], n[3 * c + 2]).unwrap();
+            }
+        }
+        let (mut group, mut material) = (None, None);
+        let mut k = 0;
+        for (f, &s) in p.sizes.iter().enumerate() {
+            for (key, names, current) in [("g", attrs.groups, &mut group), ("usemtl", attrs.materials, &mut material)] {
+                if let Some((ids, list)) = names {
+                    if *current != Some(ids[f]) {
+                        *current = Some(ids[f]);
+                        let name = &list[ids[f] as usize];
+                        if name.is_empty() {
+                            writeln!(w, "{key}").unwrap();
+                        } else {
+                            writeln!(w, "{key} {name}").unwrap();
+                        }
+                    }
+                }
+            }
+            w.write_all(b"f").unwrap();
+            for c in k..k + s as usize {
+                write!(w, " {}", p.indices[c] + 1).unwrap();
+                match (&vt, &vn) {
+                    (Some((_, _, _, ti)), Some((_, (_, ni)))) => write!(w, "/{}/{}", ti[c] + 1, ni[c] + 1),
+                    (Some((_, _, _, ti)), None) => write!(w, "/{}", ti[c] + 1),
+                    (None, Some((_, (_, ni)))) => write!(w, "//{}", ni[c] + 1),
+                    (None, None) => Ok(()),
+                }
+                .unwrap();
+            }
+            k += s as usize;
+            w.write_all(b"\n").unwrap();
+        }
+        w
+    }
+
+    #[test]
+    fn parallel_obj_is_the_sequential_obj() {
+        // several chunks of every section; names that change at a chunk's first face and
+        // names that carry over it; empty names; all attributes, some, none
+        let m = crate::primitives::torus(300, 200, 3.0, 1.0).unwrap();
+        let (nc, nf) = (m.to_polygons().indices.len(), m.n_faces());
+        assert!(nf > 3 * super::super::writer::TEXT_CHUNK);
+        let uv: Vec<f64> = (0..2 * nc).map(|i| ((i * 7919) % 100_003) as f64 / 1000.0).collect();
+        let normals: Vec<f64> = (0..3 * nc).map(|i| ((i * 104_729) % 65_521) as f64 * 1e-5 - 0.3).collect();
+        let names: Vec<String> = ["", "a", "b c"].iter().map(|s| s.to_string()).collect();
+        let t = super::super::writer::TEXT_CHUNK;
+        let groups: Vec<i64> = (0..nf).map(|f| if f == t { 2 } else { ((f / 1000) % 3) as i64 }).collect();
+        let materials: Vec<i64> = (0..nf).map(|f| ((f / (t / 2)) % 2) as i64).collect();
+        let all = ObjAttributes { texcoords: Some((&uv, 2)), normals: Some(&normals), groups: Some((&groups, &names)), materials: Some((&materials, &names)) };
+        let some = ObjAttributes { normals: Some(&normals), materials: Some((&materials, &names)), ..Default::default() };
+        for (what, attrs) in [("all", all), ("some", some), ("none", ObjAttributes::default())] {
+            let mut out = Vec::new();
+            write_obj(&m, &attrs, &mut out).unwrap();
+            assert!(out == sequential(&m, &attrs), "{what}");
+        }
     }
 
     #[test]

@@ -12,8 +12,8 @@ pub enum TextFormat {
     Off,
 }
 
-/// Vertices or faces formatted per parallel job of [`write_text`].
-const TEXT_CHUNK: usize = 1 << 14;
+/// Lines formatted per parallel job of [`write_text`] and `write_obj`.
+pub(crate) const TEXT_CHUNK: usize = 1 << 14;
 
 /// Writes the exported polygons of `m` (holes left out) as OBJ or OFF.
 /// The lines are formatted in parallel, chunk by chunk, and written in
@@ -21,7 +21,6 @@ const TEXT_CHUNK: usize = 1 << 14;
 /// after another took 200 ms of an OBJ save of 1M triangles (`perf`:
 /// mostly `f64`'s shortest-decimal formatting, on one thread).
 pub fn write_text<W: Write + Send>(m: &Mesh, format: TextFormat, out: W) -> Result<()> {
-    use rayon::prelude::*;
     let io = |e: std::io::Error| MeshError::Io(e.to_string());
     let mut w = std::io::BufWriter::with_capacity(1 << 20, out);
     let p = m.to_polygons();
@@ -43,15 +42,10 @@ pub fn write_text<W: Write + Send>(m: &Mesh, format: TextFormat, out: W) -> Resu
     let (nvc, nfc) = (pos.len().div_ceil(TEXT_CHUNK), starts.len());
     // chunk j: vertex chunk j, then face chunk j - nvc; formatted into its own buffer
     let text = |j: usize| -> Vec<u8> {
-        let mut b = Vec::with_capacity(64 * TEXT_CHUNK);
         if j < nvc {
-            for q in &pos[j * TEXT_CHUNK..((j + 1) * TEXT_CHUNK).min(pos.len())] {
-                // Debug on f64 prints the shortest decimal that parses back to the
-                // same bits, with an exponent for very large or small magnitudes
-                let _ = writeln!(b, "{prefix}{:?} {:?} {:?}", q.x, q.y, q.z);
-            }
-            return b;
+            return vertex_lines(pos, j, prefix);
         }
+        let mut b = Vec::with_capacity(64 * TEXT_CHUNK);
         let c = j - nvc;
         let mut k = starts[c];
         for &s in &p.sizes[c * TEXT_CHUNK..((c + 1) * TEXT_CHUNK).min(p.sizes.len())] {
@@ -69,23 +63,42 @@ pub fn write_text<W: Write + Send>(m: &Mesh, format: TextFormat, out: W) -> Resu
         }
         b
     };
-    // a batch of chunks per wave: formatted in parallel while the previous wave is written
+    write_pieces(&mut w, nvc + nfc, text)?;
+    w.flush().map_err(io)
+}
+
+/// Writes `piece(0)`, `piece(1)`, … `piece(n - 1)` to `w` in order: the
+/// pieces are formatted in parallel, a wave of a few per thread at a time,
+/// and each wave is written while the next one is formatted.
+pub(crate) fn write_pieces<W: Write + Send>(w: &mut W, n: usize, piece: impl Fn(usize) -> Vec<u8> + Sync) -> Result<()> {
+    use rayon::prelude::*;
     let wave = 4 * rayon::current_num_threads().max(1);
-    let total = nvc + nfc;
     let mut done: Vec<Vec<u8>> = Vec::new();
     let mut next = 0;
-    while next < total || !done.is_empty() {
+    while next < n || !done.is_empty() {
         crate::cancel::check()?;
-        let range = next..(next + wave).min(total);
+        let range = next..(next + wave).min(n);
         next = range.end;
         let (written, formatted) = rayon::join(
             || done.iter().try_for_each(|b| w.write_all(b)),
-            || range.into_par_iter().map(text).collect::<Vec<_>>(),
+            || range.into_par_iter().map(&piece).collect::<Vec<_>>(),
         );
-        written.map_err(io)?;
+        written.map_err(|e| MeshError::Io(e.to_string()))?;
         done = formatted;
     }
-    w.flush().map_err(io)
+    Ok(())
+}
+
+/// `v x y z` lines (`prefix` before each) of the positions of chunk `j` of
+/// [`TEXT_CHUNK`] vertices, floats as the shortest decimal that reads back
+/// to the same bits (`f64`'s Debug), with an exponent for very large or
+/// small magnitudes.
+pub(crate) fn vertex_lines(pos: &[glam::DVec3], j: usize, prefix: &str) -> Vec<u8> {
+    let mut b = Vec::with_capacity(64 * TEXT_CHUNK);
+    for q in &pos[j * TEXT_CHUNK..((j + 1) * TEXT_CHUNK).min(pos.len())] {
+        let _ = writeln!(b, "{prefix}{:?} {:?} {:?}", q.x, q.y, q.z); // a Vec takes every write
+    }
+    b
 }
 
 #[cfg(test)]
