@@ -362,16 +362,11 @@ pub fn write_obj<W: Write + Send>(m: &Mesh, attrs: &ObjAttributes<'_>, out: W) -
     let vn = attrs.normals.map(|n| (n, distinct_rows(n, 3)));
     // the file's sections (v, vt, vn, then faces), each in chunks of TEXT_CHUNK lines
     // formatted in parallel and written in order (writer::write_pieces)
-    use super::writer::{vertex_lines, write_pieces, TEXT_CHUNK};
+    use super::writer::{face_chunk_starts, vertex_lines, write_pieces, TEXT_CHUNK};
     let pos = m.positions();
     let chunks = |n: usize| n.div_ceil(TEXT_CHUNK);
     let (n_v, n_t, n_n) = (chunks(pos.len()), chunks(vt.as_ref().map_or(0, |x| x.2.len())), chunks(vn.as_ref().map_or(0, |x| x.1 .0.len())));
-    // first corner of every face chunk
-    let starts: Vec<usize> = p.sizes.chunks(TEXT_CHUNK).scan(0usize, |k, c| {
-        let s = *k;
-        *k += c.iter().map(|&x| x as usize).sum::<usize>();
-        Some(s)
-    }).collect();
+    let starts = face_chunk_starts(&p.sizes);
     // the lines of chunk j of a section of n lines
     let span = |j: usize, n: usize| j * TEXT_CHUNK..((j + 1) * TEXT_CHUNK).min(n);
     let piece = |j: usize| -> Vec<u8> {

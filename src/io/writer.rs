@@ -30,15 +30,7 @@ pub fn write_text<W: Write + Send>(m: &Mesh, format: TextFormat, out: W) -> Resu
     }
     let prefix = if format == TextFormat::Obj { "v " } else { "" };
     let pos = m.positions();
-    // first corner of every face chunk
-    let mut starts = Vec::with_capacity(p.sizes.len() / TEXT_CHUNK + 2);
-    let mut k = 0usize;
-    for (i, &s) in p.sizes.iter().enumerate() {
-        if i % TEXT_CHUNK == 0 {
-            starts.push(k);
-        }
-        k += s as usize;
-    }
+    let starts = face_chunk_starts(&p.sizes);
     let (nvc, nfc) = (pos.len().div_ceil(TEXT_CHUNK), starts.len());
     // chunk j: vertex chunk j, then face chunk j - nvc; formatted into its own buffer
     let text = |j: usize| -> Vec<u8> {
@@ -87,6 +79,18 @@ pub(crate) fn write_pieces<W: Write + Send>(w: &mut W, n: usize, piece: impl Fn(
         done = formatted;
     }
     Ok(())
+}
+
+/// The first corner of every chunk of [`TEXT_CHUNK`] faces of `sizes`.
+pub(crate) fn face_chunk_starts(sizes: &[u32]) -> Vec<usize> {
+    sizes
+        .chunks(TEXT_CHUNK)
+        .scan(0usize, |k, c| {
+            let first = *k;
+            *k += c.iter().map(|&s| s as usize).sum::<usize>();
+            Some(first)
+        })
+        .collect()
 }
 
 /// `v x y z` lines (`prefix` before each) of the positions of chunk `j` of
