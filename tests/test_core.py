@@ -313,3 +313,15 @@ def test_every_scheme_rejects_negative_iterations_and_shows_progress(scheme, cap
     assert getattr(cube, scheme)(iterations=0) == cube
     getattr(cube, scheme)(iterations=1, progress=True)
     assert "1/1" in capsys.readouterr().err  # the tqdm bar
+
+
+@pytest.mark.parametrize("scheme", ["catmull_clark", "loop", "dual"])
+def test_multi_level_call_releasing_the_heap_equals_its_steps(scheme):
+    # the level before the last has >= 2**17 half-edges, so the call returns
+    # glibc's free heap pages before it (src/python/alloc.rs); nothing else changes
+    m = topomesh.torus(400, 100) if scheme == "dual" else topomesh.torus(120, 80)
+    step = getattr(m, scheme)(iterations=1)
+    assert 2 * step.n_edges >= 1 << 17
+    two = getattr(m, scheme)(iterations=2)
+    assert two == getattr(step, scheme)(iterations=1)
+    np.testing.assert_array_equal(two.vertices, getattr(step, scheme)(iterations=1).vertices)

@@ -300,6 +300,11 @@ pub(crate) fn iterate_with<S: Send>(
                 crate::cancel::check()?;
                 let src = cur.take().map_or(Src::Input(mesh), Src::Level);
                 budget::check_level(name, k, n, &Counts::of(&src), predict)?;
+                // the earlier levels' freed temporaries, returned to the
+                // system before the largest level (issue 19's peak target)
+                if k == n && k > 1 && src.n_halfedges() >= alloc::TRIM_MIN_HALFEDGES {
+                    alloc::release_free_heap();
+                }
                 cur = Some(step(src, &mut state)?);
                 done.store(k, Ordering::Relaxed);
             }
