@@ -221,8 +221,8 @@ fn dual_of_fanned_loop(m: &Mesh) -> Result<Mesh> {
             }
         }
     }
-    let betas: Vec<f64> = (0..64).map(l::loop_beta).collect();
-    let beta = |n: usize| if n < betas.len() { betas[n] } else { l::loop_beta(n) };
+    let betas = l::Betas::new();
+    let beta = |n: usize| betas.get(n);
     let tri = |p: u32| 4 * (p / 3) + p % 3;
     let mut walk = DualWalk::new(pos, 4 * nh, nv + ne, 2 * nh);
     // the faces of Loop's vertex points: per outgoing corner x of T, in
@@ -384,7 +384,7 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
     }
     // Loop's triangle at corner h
     let tri = |h: usize| 4 * face[h] + loc[h] as u32;
-    let betas: Vec<f64> = (0..64).map(l::loop_beta).collect();
+    let betas = l::Betas::new();
     let mut walk = DualWalk::new(pos, 4 * nh, nv + ne, 2 * nh);
     for v in 0..nv {
         crate::cancel::poll(v)?;
@@ -404,7 +404,7 @@ fn dual_of_loop(t: &Mesh) -> Result<Mesh> {
                 break;
             }
         }
-        let beta = if n < betas.len() { betas[n] } else { l::loop_beta(n) };
+        let beta = betas.get(n);
         let vp = p[v] * (1.0 - n as f64 * beta) + sum * beta;
         let (mut h, mut last) = (g, NONE);
         loop {
