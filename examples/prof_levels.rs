@@ -1,7 +1,7 @@
 //! One warm subdivision step at a chosen level on the 81,920-triangle
 //! icosphere (issue 19; `TOPOMESH_PROF_INPUT=torus`: the 100k-quad torus),
 //! for profilers and A/B runs, one thread:
-//! `RAYON_NUM_THREADS=1 cargo run --release --example prof_levels -- catmull_clark|loop|midpoint|honeycomb|vertex_truncation 3 [REPS]`.
+//! `RAYON_NUM_THREADS=1 cargo run --release --example prof_levels -- catmull_clark|loop|midpoint|doo_sabin|sqrt3|honeycomb|vertex_truncation 3 [REPS]`.
 //! Level L times one step on the output of L − 1 steps; `iter` as a 4th
 //! argument times `L` steps from the sphere instead (what `iterations=L` does),
 //! `counts` the budget's `Counts::of` on the level's input. Prints the median
@@ -24,6 +24,8 @@ fn main() {
         "loop" => loop_subdivision,
         "midpoint" => topomesh::schemes::midpoint::midpoint,
         "honeycomb" => |m| topomesh::schemes::honeycomb::honeycomb(m, 0.5, None),
+        "doo_sabin" => topomesh::schemes::doo_sabin::doo_sabin,
+        "sqrt3" => topomesh::schemes::sqrt3::sqrt3,
         "vertex_truncation" => |m| topomesh::schemes::vertex_truncation::vertex_truncation(m, topomesh::schemes::vertex_truncation::Truncation::Chaikin),
         _ => catmull_clark,
     };

@@ -57,7 +57,8 @@ pub fn sqrt3(m: &Mesh) -> Result<Mesh> {
 /// Kobbelt's αₙ.
 #[inline]
 pub fn sqrt3_alpha(n: usize) -> f64 {
-    (4.0 - 2.0 * (std::f64::consts::TAU / n as f64).cos()) / 9.0
+    // cos(2π/n) from the table of turns (the same bits as computing it)
+    (4.0 - 2.0 * super::hosts::turn_cos(1, n)) / 9.0
 }
 
 /// The stencil row of old vertex `v`: `(1 − αₙ) v + αₙ/n Σ neighbours`
