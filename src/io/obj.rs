@@ -22,7 +22,6 @@
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use glam::DVec3;
-use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
@@ -304,7 +303,8 @@ pub struct ObjAttributes<'a> {
 /// value share a row, so a seam stays a seam.
 fn distinct_rows(values: &[f64], k: usize) -> (Vec<usize>, Vec<u32>) {
     let mut first: Vec<usize> = Vec::new();
-    let mut ids: HashMap<[u64; 3], u32> = HashMap::with_capacity(values.len() / k.max(1) / 2);
+    // Fx, not SipHash: hashing was a fifth of a save of 1.3M triangles with uv
+    let mut ids: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::with_capacity_and_hasher(values.len() / k.max(1) / 2, Default::default());
     let index = values
         .chunks_exact(k)
         .enumerate()

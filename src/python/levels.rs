@@ -444,13 +444,27 @@ pub(crate) fn run<'py>(
 /// Value ids of rows of `k` numbers by exact equality (bit patterns, with
 /// -0.0 equal to 0.0), and the table of distinct rows in first-seen order.
 fn dedupe(a: &[f64], k: usize) -> (Vec<u32>, Vec<f64>) {
-    let mut seen: std::collections::HashMap<Vec<u64>, u32> = std::collections::HashMap::new();
+    let bits = |x: f64| if x == 0.0 { 0 } else { x.to_bits() };
+    // rows of up to 4 numbers (uv, normals, colours) as fixed keys, hashed
+    // with Fx: SipHash and a Vec per row were 5 % of a corner-data level
+    if k <= 4 {
+        dedupe_by(a, k, |row| {
+            let mut key = [0u64; 4];
+            row.iter().zip(&mut key).for_each(|(&x, b)| *b = bits(x));
+            key
+        })
+    } else {
+        dedupe_by(a, k, |row| row.iter().map(|&x| bits(x)).collect::<Vec<u64>>())
+    }
+}
+
+fn dedupe_by<K: std::hash::Hash + Eq>(a: &[f64], k: usize, key: impl Fn(&[f64]) -> K) -> (Vec<u32>, Vec<f64>) {
+    let mut seen: rustc_hash::FxHashMap<K, u32> = Default::default();
     let mut ids = Vec::with_capacity(a.len() / k.max(1));
     let mut table = Vec::new();
     for row in a.chunks_exact(k.max(1)) {
-        let key: Vec<u64> = row.iter().map(|&x| if x == 0.0 { 0 } else { x.to_bits() }).collect();
         let n = seen.len() as u32;
-        let id = *seen.entry(key).or_insert_with(|| {
+        let id = *seen.entry(key(row)).or_insert_with(|| {
             table.extend_from_slice(row);
             n
         });
