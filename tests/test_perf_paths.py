@@ -147,6 +147,28 @@ def test_populate_is_on_by_default_and_changes_no_result():
     assert r.returncode != 0 and 'TOPOMESH_POPULATE = "maybe"' in r.stderr, r.stderr
 
 
+def test_zeroed_blocks_read_zero_after_dirty_ones():
+    # large zeroed blocks drop their absent pages instead of writing them
+    # (src/python/alloc.rs, zero_block); after a dirty block of the same size
+    # was freed, fully written (resident) or only its first MiB (mostly
+    # absent), and at sizes that are not whole pages, every byte reads zero;
+    # with TOPOMESH_ZERO_DROP=0 too, and a value it cannot read is an error
+    sizes = [1 << 20, (1 << 20) + 123, 5 << 20, (17 << 20) + 4095, 40 << 20]
+    code = f"import topomesh; print(topomesh._core._zeroed_blocks_are_zero({sizes}))"
+    clean = {k: v for k, v in os.environ.items() if k != "TOPOMESH_ZERO_DROP"}
+
+    def run(**env):
+        return subprocess.run([sys.executable, "-c", code], env={**clean, **env}, capture_output=True, text=True, timeout=120)
+
+    for env in [{}, {"TOPOMESH_ZERO_DROP": "0"}]:
+        r = run(**env)
+        assert r.stdout.split() == ["True"], (env, r.stderr)
+    r = run(TOPOMESH_ZERO_DROP="maybe")
+    assert r.returncode != 0 and 'TOPOMESH_ZERO_DROP = "maybe"' in r.stderr, r.stderr
+    with pytest.raises(topomesh.MeshError, match="above 1 GiB"):
+        topomesh._core._zeroed_blocks_are_zero([2 << 30])
+
+
 def test_results_same_with_and_without_cache():
     old = topomesh.set_block_cache(256 << 20)
     try:

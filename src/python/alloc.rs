@@ -33,6 +33,12 @@
 //!   size, and a large request that no cached block fits empties the cache
 //!   (see [`BlockCache::take`]). Setting the limit to 0 frees what it holds.
 //!
+//! * **Zeroed blocks** of at least 1 MiB ([`zero_block`], on by default,
+//!   `TOPOMESH_ZERO_DROP=0` turns it off): the pages glibc had given back
+//!   are dropped rather than written, resident ones written.
+//! * **The heap's free pages** are given back once before the last level
+//!   of a large multi-level call ([`release_free_heap`]).
+//!
 //! Only topomesh's own (Rust) allocations go through here; Python's and
 //! NumPy's are untouched.
 
@@ -143,6 +149,94 @@ fn advise_huge(p: *mut u8, size: usize) {
     }
 }
 
+/// Zeroed blocks of at least this size are cleared by [`zero_block`].
+const ZERO_BLOCK_MIN: usize = 1 << 20;
+/// Whether [`zero_block`] may drop pages (`TOPOMESH_ZERO_DROP=0` at import
+/// turns it off: glibc's `calloc` then clears every zeroed block).
+static ZERO_DROP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(true);
+
+pub(crate) fn set_zero_drop(on: bool) {
+    ZERO_DROP.store(on, Ordering::Relaxed);
+}
+
+/// Clears `size` bytes at `p` for `alloc_zeroed`. glibc's `calloc` writes
+/// zeros over a block it reuses from its heaps, page by page on one thread,
+/// faulting in the pages it had given back to the system (its heaps' tops
+/// are trimmed on free). Here each 16 MiB span of whole pages is probed
+/// (`mincore`): mostly absent, it is dropped (`MADV_DONTNEED`: private
+/// anonymous memory then reads as zero pages, faulted in by whoever writes
+/// them first, the fill's threads in parallel); mostly resident, it is
+/// written, which is cheaper than faulting resident pages again. The
+/// partial pages at both ends are written. `menger_sponge(4)` on two
+/// threads, warm calls: 25–32 ms → 15–20 ms (`benches/README.md`).
+///
+/// # Safety
+/// `p..p + size` lies inside one live block this allocator got from
+/// `System`, private anonymous memory (glibc's heaps and maps).
+unsafe fn zero_block(p: *mut u8, size: usize) {
+    const PAGE: usize = 4096;
+    const SPAN: usize = 4096 * PAGE;
+    let (a, b) = (p as usize, p as usize + size);
+    let (start, end) = (a.next_multiple_of(PAGE), b & !(PAGE - 1));
+    if end <= start || !ZERO_DROP.load(Ordering::Relaxed) || !cfg!(target_os = "linux") {
+        // SAFETY: the caller's block
+        unsafe { std::ptr::write_bytes(p, 0, size) };
+        return;
+    }
+    // SAFETY: the partial pages at both ends, inside the block
+    unsafe {
+        std::ptr::write_bytes(p, 0, start - a);
+        std::ptr::write_bytes(end as *mut u8, 0, b - end);
+    }
+    // one byte per page of a span, on the stack: no allocation in here
+    let mut probe = [0u8; SPAN / PAGE];
+    let mut s = start;
+    while s < end {
+        let len = SPAN.min(end - s);
+        let pages = len / PAGE;
+        // SAFETY: page-aligned whole pages inside the block; `probe` has a
+        // byte for each of them. Neither call changes live data of anyone
+        // else: the pages are the caller's and about to be zero anyway.
+        let dropped = unsafe {
+            let resident = if libc::mincore(s as *mut libc::c_void, len, probe.as_mut_ptr()) == 0 {
+                probe[..pages].iter().filter(|&&x| x & 1 != 0).count()
+            } else {
+                pages
+            };
+            2 * resident < pages && libc::madvise(s as *mut libc::c_void, len, libc::MADV_DONTNEED) == 0
+        };
+        if !dropped {
+            // SAFETY: as above
+            unsafe { std::ptr::write_bytes(s as *mut u8, 0, len) };
+        }
+        s += len;
+    }
+}
+
+/// Test hook: zeroed blocks of these sizes, each allocated right after a
+/// block of the same size had only its first MiB written with ones (so
+/// glibc may hand back the same memory, mostly absent: the dropping path)
+/// and freed, and again after a block written whole (resident: the writing
+/// path): whether every byte read zero.
+pub(crate) fn zeroed_blocks_are_zero(sizes: &[usize]) -> bool {
+    sizes.iter().all(|&n| {
+        let fresh = vec![0u8; n];
+        let mut ok = fresh.iter().all(|&x| x == 0);
+        drop(fresh);
+        // the partly written one first, while the memory past its first
+        // MiB has never been touched
+        for written in [n.min(ZERO_BLOCK_MIN), n] {
+            let mut dirty = vec![0u8; n];
+            dirty[..written].fill(1);
+            std::hint::black_box(&dirty);
+            drop(dirty);
+            let z = vec![0u8; n];
+            ok &= z.iter().all(|&x| x == 0);
+        }
+        ok
+    })
+}
+
 impl BlockCache {
     #[inline]
     fn cacheable(&self, layout: &Layout) -> bool {
@@ -228,6 +322,16 @@ unsafe impl GlobalAlloc for BlockCache {
                 unsafe { std::ptr::write_bytes(p, 0, layout.size()) };
                 return p;
             }
+        }
+        if layout.size() >= ZERO_BLOCK_MIN && layout.align() <= MAX_ALIGN {
+            // SAFETY: forwarded with the caller's layout; cleared below.
+            let p = unsafe { System.alloc(layout) };
+            if !p.is_null() {
+                // SAFETY: p holds layout.size() bytes of a block from System.
+                unsafe { zero_block(p, layout.size()) };
+                advise_huge(p, layout.size());
+            }
+            return p;
         }
         // SAFETY: forwarded with the caller's layout.
         let p = unsafe { System.alloc_zeroed(layout) };

@@ -48,6 +48,16 @@ fn _populate() -> bool {
     crate::mesh::populate_on()
 }
 
+/// Whether the allocator's zeroed blocks of these sizes read zero after
+/// dirty blocks of the same sizes were freed (tests; `src/python/alloc.rs`).
+#[pyfunction]
+fn _zeroed_blocks_are_zero(sizes: Vec<usize>) -> PyResult<bool> {
+    if let Some(&n) = sizes.iter().find(|&&n| n > 1 << 30) {
+        return Err(arg_err(format!("_zeroed_blocks_are_zero: size {n} is above 1 GiB")));
+    }
+    Ok(super::alloc::zeroed_blocks_are_zero(&sizes))
+}
+
 /// The allocator's huge-page advice as the environment set it at import:
 /// ``(on, largest advised block in bytes)`` (tests; `src/python/alloc.rs`).
 #[pyfunction]
@@ -65,6 +75,15 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
             _ => return Err(arg_err(format!("TOPOMESH_HUGE_PAGES = {v:?} must be 1 (advise huge pages) or 0 (the default)"))),
         };
         super::alloc::set_huge_pages(on);
+    }
+    // on by default (src/python/alloc.rs, zero_block)
+    if let Ok(v) = std::env::var("TOPOMESH_ZERO_DROP") {
+        let on = match v.trim().to_ascii_lowercase().as_str() {
+            "" | "1" | "true" | "yes" | "on" => true,
+            "0" | "false" | "no" | "off" => false,
+            _ => return Err(arg_err(format!("TOPOMESH_ZERO_DROP = {v:?} must be 1 (zeroed blocks drop absent pages, the default) or 0"))),
+        };
+        super::alloc::set_zero_drop(on);
     }
     // on by default (src/mesh/populate.rs)
     if let Ok(v) = std::env::var("TOPOMESH_POPULATE") {
@@ -90,6 +109,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(set_block_cache, m)?)?;
     m.add_function(wrap_pyfunction!(block_cache, m)?)?;
     m.add_function(wrap_pyfunction!(_huge_page_advice, m)?)?;
+    m.add_function(wrap_pyfunction!(_zeroed_blocks_are_zero, m)?)?;
     m.add_function(wrap_pyfunction!(_populate, m)?)?;
     Ok(())
 }
