@@ -65,33 +65,31 @@ fn _huge_page_advice() -> (bool, usize) {
     super::alloc::huge_pages()
 }
 
+/// An on/off switch read from the environment at import: None when unset,
+/// `empty` for an empty value; a value it cannot read is an error naming the
+/// variable and what it `must_be`.
+fn env_switch(var: &str, empty: bool, must_be: &str) -> PyResult<Option<bool>> {
+    let Ok(v) = std::env::var(var) else { return Ok(None) };
+    match v.trim().to_ascii_lowercase().as_str() {
+        "" => Ok(Some(empty)),
+        "1" | "true" | "yes" | "on" => Ok(Some(true)),
+        "0" | "false" | "no" | "off" => Ok(Some(false)),
+        _ => Err(arg_err(format!("{var} = {v:?} must be {must_be}"))),
+    }
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // opt-in (src/python/alloc.rs); "0" was the spelling for off when the
     // advice was on by default, and still is
-    if let Ok(v) = std::env::var("TOPOMESH_HUGE_PAGES") {
-        let on = match v.trim().to_ascii_lowercase().as_str() {
-            "1" | "true" | "yes" | "on" => true,
-            "" | "0" | "false" | "no" | "off" => false,
-            _ => return Err(arg_err(format!("TOPOMESH_HUGE_PAGES = {v:?} must be 1 (advise huge pages) or 0 (the default)"))),
-        };
+    if let Some(on) = env_switch("TOPOMESH_HUGE_PAGES", false, "1 (advise huge pages) or 0 (the default)")? {
         super::alloc::set_huge_pages(on);
     }
     // on by default (src/python/alloc.rs, zero_block)
-    if let Ok(v) = std::env::var("TOPOMESH_ZERO_DROP") {
-        let on = match v.trim().to_ascii_lowercase().as_str() {
-            "" | "1" | "true" | "yes" | "on" => true,
-            "0" | "false" | "no" | "off" => false,
-            _ => return Err(arg_err(format!("TOPOMESH_ZERO_DROP = {v:?} must be 1 (zeroed blocks drop absent pages, the default) or 0"))),
-        };
+    if let Some(on) = env_switch("TOPOMESH_ZERO_DROP", true, "1 (zeroed blocks drop absent pages, the default) or 0")? {
         super::alloc::set_zero_drop(on);
     }
     // on by default (src/mesh/populate.rs)
-    if let Ok(v) = std::env::var("TOPOMESH_POPULATE") {
-        let on = match v.trim().to_ascii_lowercase().as_str() {
-            "" | "1" | "true" | "yes" | "on" => true,
-            "0" | "false" | "no" | "off" => false,
-            _ => return Err(arg_err(format!("TOPOMESH_POPULATE = {v:?} must be 1 (map output pages in one call, the default) or 0"))),
-        };
+    if let Some(on) = env_switch("TOPOMESH_POPULATE", true, "1 (map output pages in one call, the default) or 0")? {
         crate::mesh::set_populate(on);
     }
     if let Ok(s) = std::env::var("TOPOMESH_HUGE_PAGES_MAX") {
