@@ -298,22 +298,35 @@ pub struct ObjAttributes<'a> {
     pub materials: Option<(&'a [i64], &'a [String])>,
 }
 
-/// The distinct rows of per-corner values in order of first use and each
-/// corner's row (bit equality, with -0.0 taken as 0.0): corners that share a
-/// value share a row, so a seam stays a seam.
-fn distinct_rows(values: &[f64], k: usize) -> (Vec<usize>, Vec<u32>) {
+/// The distinct rows of `k` values per corner in order of first use and
+/// each corner's row (bit equality, with -0.0 taken as 0.0): corners that
+/// share a value share a row, so a seam stays a seam. Also the value table
+/// of the face-varying levels (`python/levels.rs`).
+pub(crate) fn distinct_rows(values: &[f64], k: usize) -> (Vec<usize>, Vec<u32>) {
+    let bits = |x: f64| (x + 0.0).to_bits();
+    // rows of up to 4 values (uv, normals, colours) as fixed keys
+    if k <= 4 {
+        rows_by(values, k, |row| {
+            let mut key = [0u64; 4];
+            row.iter().zip(&mut key).for_each(|(&x, b)| *b = bits(x));
+            key
+        })
+    } else {
+        rows_by(values, k, |row| row.iter().map(|&x| bits(x)).collect::<Vec<u64>>())
+    }
+}
+
+/// [`distinct_rows`] by a key per row, hashed with Fx (SipHash was a fifth
+/// of a save of 1.3M triangles with uv).
+fn rows_by<K: std::hash::Hash + Eq>(values: &[f64], k: usize, key: impl Fn(&[f64]) -> K) -> (Vec<usize>, Vec<u32>) {
+    let k = k.max(1);
     let mut first: Vec<usize> = Vec::new();
-    // Fx, not SipHash: hashing was a fifth of a save of 1.3M triangles with uv
-    let mut ids: rustc_hash::FxHashMap<[u64; 3], u32> = rustc_hash::FxHashMap::with_capacity_and_hasher(values.len() / k.max(1) / 2, Default::default());
+    let mut ids: rustc_hash::FxHashMap<K, u32> = rustc_hash::FxHashMap::with_capacity_and_hasher(values.len() / k / 2, Default::default());
     let index = values
         .chunks_exact(k)
         .enumerate()
         .map(|(c, row)| {
-            let mut key = [0u64; 3];
-            for (j, &x) in row.iter().enumerate() {
-                key[j] = (x + 0.0).to_bits();
-            }
-            *ids.entry(key).or_insert_with(|| {
+            *ids.entry(key(row)).or_insert_with(|| {
                 first.push(c);
                 (first.len() - 1) as u32
             })

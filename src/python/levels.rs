@@ -442,35 +442,12 @@ pub(crate) fn run<'py>(
 }
 
 /// Value ids of rows of `k` numbers by exact equality (bit patterns, with
-/// -0.0 equal to 0.0), and the table of distinct rows in first-seen order.
+/// -0.0 equal to 0.0), and the table of distinct rows in first-seen order
+/// (OBJ's `vt` table, `io::obj::distinct_rows`).
 fn dedupe(a: &[f64], k: usize) -> (Vec<u32>, Vec<f64>) {
-    let bits = |x: f64| if x == 0.0 { 0 } else { x.to_bits() };
-    // rows of up to 4 numbers (uv, normals, colours) as fixed keys, hashed
-    // with Fx: SipHash and a Vec per row were 5 % of a corner-data level
-    if k <= 4 {
-        dedupe_by(a, k, |row| {
-            let mut key = [0u64; 4];
-            row.iter().zip(&mut key).for_each(|(&x, b)| *b = bits(x));
-            key
-        })
-    } else {
-        dedupe_by(a, k, |row| row.iter().map(|&x| bits(x)).collect::<Vec<u64>>())
-    }
-}
-
-fn dedupe_by<K: std::hash::Hash + Eq>(a: &[f64], k: usize, key: impl Fn(&[f64]) -> K) -> (Vec<u32>, Vec<f64>) {
-    let mut seen: rustc_hash::FxHashMap<K, u32> = Default::default();
-    let mut ids = Vec::with_capacity(a.len() / k.max(1));
-    let mut table = Vec::new();
-    for row in a.chunks_exact(k.max(1)) {
-        let n = seen.len() as u32;
-        let id = *seen.entry(key(row)).or_insert_with(|| {
-            table.extend_from_slice(row);
-            n
-        });
-        ids.push(id);
-    }
-    (ids, table)
+    let (first, ids) = crate::io::obj::distinct_rows(a, k);
+    let k = k.max(1);
+    (ids, first.iter().flat_map(|&c| a[c * k..(c + 1) * k].iter().copied()).collect())
 }
 
 /// Zero levels: every element is its own origin.
