@@ -43,6 +43,8 @@
 //! NumPy's are untouched.
 
 use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 /// Multi-level calls release the heap's free pages before their last level
 /// when the level before it has at least this many half-edges
@@ -66,8 +68,6 @@ pub(crate) fn release_free_heap() {
         libc::malloc_trim(0);
     }
 }
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 const MIN_BLOCK: usize = 1 << 20;
 const SLOTS: usize = 32;
@@ -168,7 +168,7 @@ pub(crate) fn set_zero_drop(on: bool) {
 /// them first, the fill's threads in parallel); mostly resident, it is
 /// written, which is cheaper than faulting resident pages again. The
 /// partial pages at both ends are written. `menger_sponge(4)` on two
-/// threads, warm calls: 25–32 ms → 15–20 ms (`benches/README.md`).
+/// threads, warm calls: 25–37 ms → 15–18 ms (`benches/README.md`).
 ///
 /// # Safety
 /// `p..p + size` lies inside one live block this allocator got from
@@ -178,7 +178,7 @@ unsafe fn zero_block(p: *mut u8, size: usize) {
     const SPAN: usize = 4096 * PAGE;
     let (a, b) = (p as usize, p as usize + size);
     let (start, end) = (a.next_multiple_of(PAGE), b & !(PAGE - 1));
-    if end <= start || !ZERO_DROP.load(Ordering::Relaxed) || !cfg!(target_os = "linux") {
+    if end <= start {
         // SAFETY: the caller's block
         unsafe { std::ptr::write_bytes(p, 0, size) };
         return;
@@ -323,7 +323,7 @@ unsafe impl GlobalAlloc for BlockCache {
                 return p;
             }
         }
-        if layout.size() >= ZERO_BLOCK_MIN && layout.align() <= MAX_ALIGN {
+        if layout.size() >= ZERO_BLOCK_MIN && layout.align() <= MAX_ALIGN && cfg!(target_os = "linux") && ZERO_DROP.load(Ordering::Relaxed) {
             // SAFETY: forwarded with the caller's layout; cleared below.
             let p = unsafe { System.alloc(layout) };
             if !p.is_null() {
