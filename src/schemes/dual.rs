@@ -90,25 +90,30 @@ fn step_one_pass(m: &Mesh) -> Result<Mesh> {
     let (nv, ne, nh) = (m.n_vertices(), m.n_edges(), m.n_halfedges());
     let face = &m.he_face;
     let prev = &m.he_prev;
-    let pos = centroids(m)?;
-    // keys: the input's edges
-    let mut walk = DualWalk::new(pos, nh, nv, ne);
-    for v in 0..nv {
-        crate::cancel::poll(v)?;
-        let s = m.v_out[v];
-        let (mut h, mut last) = (s, NONE);
-        loop {
-            let p = prev[h as usize];
-            let f = face[h as usize];
-            walk.put(v, f, (p >> 1) as usize, &mut last);
-            h = p ^ 1;
-            if h == s {
-                break;
+    // the walk needs no position: the centroids are summed beside it (on a
+    // second thread when there is one; issue 19, the dual's two-thread rows)
+    let walk = || -> Result<DualWalk> {
+        // keys: the input's edges
+        let mut walk = DualWalk::for_points(m.n_faces(), nh, nv, ne);
+        for v in 0..nv {
+            crate::cancel::poll(v)?;
+            let s = m.v_out[v];
+            let (mut h, mut last) = (s, NONE);
+            loop {
+                let p = prev[h as usize];
+                let f = face[h as usize];
+                walk.put(v, f, (p >> 1) as usize, &mut last);
+                h = p ^ 1;
+                if h == s {
+                    break;
+                }
             }
+            walk.close(v, last);
         }
-        walk.close(v, last);
-    }
-    Mesh::from_columns(walk.finish()?)
+        Ok(walk)
+    };
+    let (pos, walk) = rayon::join(|| centroids(m), walk);
+    Mesh::from_columns(walk?.finish_with(pos?)?)
 }
 
 /// The corner mean of every face in face order: the dual's positions,
@@ -120,22 +125,30 @@ pub(crate) fn centroids(m: &Mesh) -> Result<Vec<DVec3>> {
 
 /// [`centroids`] from the columns alone (the in-place dual holds them
 /// without a `Mesh`): each face's corner mean, summed from its first corner
-/// (the same bits as [`face_centroids`]).
+/// (the same bits as [`face_centroids`]), faces in parallel (issue 19: a
+/// serial loop here was 13 % of a one-thread dual under `perf`, a part the
+/// second thread could not share).
 pub(crate) fn centroids_of(f_start: &[u32], next: &[u32], vert: &[u32], pos: &[DVec3]) -> Result<Vec<DVec3>> {
-    let mut out = Vec::with_capacity(f_start.len());
-    for (f, &s) in f_start.iter().enumerate() {
-        crate::cancel::poll(f)?;
-        let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
-        loop {
-            sum += pos[vert[h as usize] as usize];
-            n += 1;
-            h = next[h as usize];
-            if h == s {
-                break;
+    let out: Vec<DVec3> = f_start
+        .par_iter()
+        .with_min_len(MIN_LEN)
+        .map(|&s| {
+            if crate::cancel::requested() {
+                return DVec3::ZERO; // the check after the loop reports it
             }
-        }
-        out.push(sum / n as f64);
-    }
+            let (mut h, mut sum, mut n) = (s, DVec3::ZERO, 0usize);
+            loop {
+                sum += pos[vert[h as usize] as usize];
+                n += 1;
+                h = next[h as usize];
+                if h == s {
+                    break;
+                }
+            }
+            sum / n as f64
+        })
+        .collect();
+    crate::cancel::check()?;
     Ok(out)
 }
 

@@ -26,6 +26,24 @@ impl DualWalk {
         DualWalk { cols, slot: vec![0; n_keys], n_out: 0 }
     }
 
+    /// [`DualWalk::new`] for `n_points` output vertices whose positions are
+    /// given at [`finish_with`](Self::finish_with) (computed beside the walk).
+    pub(crate) fn for_points(n_points: usize, n_halfedges: usize, n_faces: usize, n_keys: usize) -> DualWalk {
+        let mut cols = Columns::for_points(n_points, n_halfedges, n_faces);
+        cols.v_out.fill(NONE);
+        DualWalk { cols, slot: vec![0; n_keys], n_out: 0 }
+    }
+
+    /// [`finish`](Self::finish) of a walk made by [`for_points`](Self::for_points),
+    /// with its `n_points` positions.
+    pub(crate) fn finish_with(mut self, pos: Vec<DVec3>) -> Result<Columns> {
+        if pos.len() != self.cols.v_out.len() {
+            return Err(MeshError::Invariant(format!("dual: {} positions for {} vertices", pos.len(), self.cols.v_out.len())));
+        }
+        self.cols.pos = pos;
+        self.finish()
+    }
+
     /// The output vertices' positions, for walks that place them as they go.
     pub(crate) fn positions_mut(&mut self) -> &mut [DVec3] {
         &mut self.cols.pos
