@@ -62,17 +62,23 @@
 //! no general builder runs. Faces come in the order of the grid scan (cells in
 //! `x, y, z` order, then directions `−x, +x, −y, +y, −z, +z`), each from the same
 //! first corner; vertices and edges are numbered by owner cell.
-//! Memory beside the mesh: 12 bytes per kept cell.
+//! What a cell contributes depends on its 27-bit neighbourhood alone, and
+//! only 321 neighbourhoods occur at levels 0–5: each one's masks, owners
+//! and corners are worked out once per process (`recipes.rs`), and a cell
+//! keeps its recipe's index from pass 1 to pass 3.
+//! Memory beside the mesh: 14 bytes per kept cell.
 
 use crate::error::{MeshError, Result};
-use crate::mesh::{Mesh, NONE};
+use crate::mesh::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
 
 #[cfg(test)]
 mod reference;
+mod recipes;
 mod tables;
 
+use recipes::{Recipe, Recipes, MAX_OWNERS, MISS};
 use tables::{split_lens, Cells, Stencils};
 
 /// Highest level built (level 6 would need ~10 GB).
@@ -102,8 +108,9 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     let nv_expect = nf + 2 - 2 * menger_sponge_genus(level);
     let kept = 20u64.pow(level);
     let counts = crate::budget::Counts::plain(nv_expect, 2 * nf, nf);
-    crate::budget::check("menger_sponge", &format!("level {level}"), crate::budget::mesh_bytes(&counts) + 12 * kept)?;
-    let st = Stencils::new();
+    crate::budget::check("menger_sponge", &format!("level {level}"), crate::budget::mesh_bytes(&counts) + 14 * kept)?;
+    // both fixed for all levels: built once per process
+    let st = Stencils::get();
     let g = Cells::new(level);
     let n = g.n;
     let nc = g.row_start[n * n] as usize;
@@ -115,15 +122,20 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
     let mut fmask = vec![0u8; nc];
     let mut emask = vec![0u16; nc];
     let mut vmask = vec![0u8; nc];
+    // per kept cell: its recipe's index ([`MISS`]: built on the spot)
+    let mut rid = vec![0u16; nc];
+    let rec = Recipes::table();
     let slab_counts: Vec<Option<[usize; 3]>> = {
         let lens = || (0..n).map(|x| g.slab(x).len());
         let (fs, es, vs) = (split_lens(&mut fmask, lens()), split_lens(&mut emask, lens()), split_lens(&mut vmask, lens()));
+        let is = split_lens(&mut rid, lens());
         fs.into_par_iter()
             .zip(es)
             .zip(vs)
+            .zip(is)
             .enumerate()
             .with_min_len(min_len)
-            .map(|(x, ((fs, es), vs))| {
+            .map(|(x, (((fs, es), vs), ids))| {
                 if crate::cancel::requested() {
                     return Some([0; 3]); // the check after the loop reports it
                 }
@@ -131,31 +143,20 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
                 let (mut cf, mut ce, mut cv, mut ok) = (0, 0, 0, true);
                 g.for_slab(x, |row, _, _, z, ci| {
                     let nb = g.neighbourhood(row, z);
-                    let mut f = 0u8;
-                    for d in 0..6 {
-                        if nb & (1 << st.face[d]) == 0 {
-                            f |= 1 << d;
+                    let built;
+                    let (r, id) = match rec.find(nb) {
+                        Some((r, id)) => (r, id),
+                        None => {
+                            built = Recipe::build(st, nb);
+                            (&built, MISS)
                         }
-                    }
-                    // owned: no earlier cell around it is kept; boundary: not all are
-                    let mut e = 0u16;
-                    for le in 0..12 {
-                        if nb & st.edge_before[le] == 0 && nb & st.edge_all[le] != st.edge_all[le] {
-                            e |= 1 << le;
-                        }
-                    }
-                    let mut v = 0u8;
-                    for i in 0..8 {
-                        if nb & st.vert_before[i] == 0 && nb & st.vert_all[i] != st.vert_all[i] {
-                            v |= 1 << i;
-                            ok &= st.manifold[st.vert_pattern(nb, i) as usize];
-                        }
-                    }
+                    };
+                    ok &= r.ok;
                     let k = ci - base;
-                    (fs[k], es[k], vs[k]) = (f, e, v);
-                    cf += ones8(f) as usize;
-                    ce += ones16(e) as usize;
-                    cv += ones8(v) as usize;
+                    (fs[k], es[k], vs[k], ids[k]) = (r.fmask, r.emask, r.vmask, id);
+                    cf += ones8(r.fmask) as usize;
+                    ce += ones16(r.emask) as usize;
+                    cv += ones8(r.vmask) as usize;
                 });
                 ok.then_some([cf, ce, cv])
             })
@@ -213,14 +214,13 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
         let cols = [SyncPtr(m.he_next.as_mut_ptr()), SyncPtr(m.he_prev.as_mut_ptr()), SyncPtr(m.he_vert.as_mut_ptr()), SyncPtr(m.he_face.as_mut_ptr())];
         let f_start = SyncPtr(m.f_start.as_mut_ptr());
         let scale = 2.0 / n as f64;
-        let (g, st, fmask, emask, vmask, eoff, voff) = (&g, &st, &fmask, &emask, &vmask, &eoff, &voff);
+        let (g, fmask, emask, vmask, eoff, voff, rid) = (&g, &fmask, &emask, &vmask, &eoff, &voff, &rid);
         (0..n).into_par_iter().with_min_len(min_len).for_each(|x| {
             if crate::cancel::requested() {
                 return; // the check after the loop reports it
             }
             let mut f = slab_start[x][0];
             g.for_slab(x, |row, x, y, z, ci| {
-                let nb = g.neighbourhood(row, z);
                 let vm = vmask[ci];
                 for i in 0..8 {
                     if vm & (1 << i) != 0 {
@@ -230,52 +230,49 @@ pub fn menger_sponge(level: u32) -> Result<Mesh> {
                         unsafe { pos.write(v as usize, p) };
                     }
                 }
-                let fm = fmask[ci];
-                if fm == 0 {
+                if fmask[ci] == 0 {
                     return;
                 }
-                // ids of this cell's corners and edges, found through their owners
-                let mut vid = [NONE; 8];
-                let mut vdir = [0u8; 8];
-                let mut eid = [NONE; 12];
-                for d in 0..6 {
-                    if fm & (1 << d) == 0 {
-                        continue;
+                let built;
+                let r = match rid[ci] {
+                    MISS => {
+                        built = Recipe::build(st, g.neighbourhood(row, z));
+                        &built
                     }
-                    let qc = &st.quads[d];
-                    let mut h = [0u32; 4];
-                    for (e, q) in qc.iter().enumerate() {
-                        let le = q.edge as usize;
-                        if eid[le] == NONE {
-                            let cells = &st.edge_cells[le];
-                            let k = (0..le & 3).find(|&k| nb & (1 << cells[k]) != 0).unwrap_or(le & 3);
-                            let oi = if k == le & 3 { ci } else { g.index(row, z, st.edge_rel[le][k]) };
-                            // the edge is the owner's edge 4·axis + k
-                            eid[le] = eoff[oi] + ones16(emask[oi] & ((1u16 << ((le & !3) + k)) - 1));
-                        }
-                        h[e] = 2 * eid[le] + q.neg as u32;
-                    }
+                    i => rec.get(i),
+                };
+                // the owner cells of this cell's edges and corners, then
+                // their ids: the owner's first id plus its owned ones below
+                let mut own = [0usize; MAX_OWNERS + 1];
+                own[0] = ci;
+                for (o, &b) in own[1..].iter_mut().zip(&r.owners[..r.n_owners as usize]) {
+                    *o = g.index_bit(row, z, b as usize);
+                }
+                let mut eid = [0u32; 12];
+                for j in 0..r.n_edges as usize {
+                    let oi = own[r.edge_slot[j] as usize];
+                    eid[j] = eoff[oi] + ones16(emask[oi] & r.edge_below[j]);
+                }
+                let mut vid = [0u32; 8];
+                for j in 0..r.n_verts as usize {
+                    let oi = own[r.vert_slot[j] as usize];
+                    vid[j] = voff[oi] + ones8(vmask[oi] & r.vert_below[j]);
+                }
+                for q in &r.faces[..r.n_faces as usize] {
+                    let h = q.map(|c| 2 * eid[c.edge as usize] + c.neg as u32);
                     // SAFETY: a manifold boundary (checked in pass 1) has each
                     // grid-edge direction in exactly one face, so half-edge h
                     // and the v_out of its tail are written by this corner only;
                     // face f belongs to this slab.
                     unsafe {
                         f_start.write(f, h[0]);
-                        for (e, q) in qc.iter().enumerate() {
-                            let i = q.corner as usize;
-                            if vid[i] == NONE {
-                                let cells = &st.vert_cells[i];
-                                let k = (0..i).find(|&k| nb & (1 << cells[k]) != 0).unwrap_or(i);
-                                let oi = if k == i { ci } else { g.index(row, z, st.vert_rel[i][k]) };
-                                vid[i] = voff[oi] + ones8(vmask[oi] & ((1u8 << k) - 1));
-                                vdir[i] = st.first_dir(nb, i);
-                            }
-                            let (hn, v) = (h[(e + 1) % 4], vid[i]);
+                        for (e, c) in q.iter().enumerate() {
+                            let (hn, v) = (h[(e + 1) % 4], vid[c.vert as usize]);
                             cols[0].write(h[e] as usize, hn);
                             cols[1].write(hn as usize, h[e]);
                             cols[2].write(h[e] as usize, v);
                             cols[3].write(h[e] as usize, f as u32);
-                            if vdir[i] == q.dir {
+                            if c.v_out {
                                 v_out.write(v as usize, h[e]);
                             }
                         }

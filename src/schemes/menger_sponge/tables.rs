@@ -69,10 +69,6 @@ pub(super) struct Stencils {
     /// The 4 cells around cell edge `le = 4·axis + su + 2·sv` (base
     /// `su·e_u + sv·e_v`), in [`edge_cells`] order.
     pub(super) edge_cells: [[u32; 4]; 12],
-    /// Offsets of those cells.
-    pub(super) edge_rel: [[[i32; 3]; 4]; 12],
-    /// Offsets of the cells of `vert_cells`.
-    pub(super) vert_rel: [[[i32; 3]; 8]; 8],
     /// Masks of all cells around corner `i` / edge `le`, and of those before
     /// this cell (the earlier ones own it when kept).
     pub(super) vert_all: [u32; 8],
@@ -88,13 +84,17 @@ pub(super) struct Stencils {
 }
 
 impl Stencils {
+    /// The process's stencils, built on first use.
+    pub(super) fn get() -> &'static Stencils {
+        static ST: std::sync::OnceLock<Stencils> = std::sync::OnceLock::new();
+        ST.get_or_init(Stencils::new)
+    }
+
     pub(super) fn new() -> Stencils {
         let mut st = Stencils {
             face: [0; 6],
             vert_cells: [[0; 8]; 8],
             edge_cells: [[0; 4]; 12],
-            edge_rel: [[[0; 3]; 4]; 12],
-            vert_rel: [[[0; 3]; 8]; 8],
             vert_all: [0; 8],
             vert_before: [0; 8],
             edge_all: [0; 12],
@@ -110,8 +110,7 @@ impl Stencils {
         }
         for i in 0..8 {
             for k in 0..8 {
-                st.vert_rel[i][k] = sub(corner_off(i), corner_off(k));
-                st.vert_cells[i][k] = nb_bit(st.vert_rel[i][k]);
+                st.vert_cells[i][k] = nb_bit(sub(corner_off(i), corner_off(k)));
                 st.vert_all[i] |= 1 << st.vert_cells[i][k];
                 if k < i {
                     st.vert_before[i] |= 1 << st.vert_cells[i][k];
@@ -131,7 +130,6 @@ impl Stencils {
             let a = le / 4;
             let base = add(if le & 1 == 1 { unit((a + 1) % 3) } else { [0; 3] }, if le & 2 == 2 { unit((a + 2) % 3) } else { [0; 3] });
             let cells = edge_cells(base, a);
-            st.edge_rel[le] = cells;
             for k in 0..4 {
                 st.edge_cells[le][k] = nb_bit(cells[k]);
                 st.edge_all[le] |= 1 << st.edge_cells[le][k];
@@ -320,11 +318,12 @@ impl Cells {
         nb
     }
 
-    /// Compact index of the kept cell at offset `d` from cell `z` of the row.
+    /// Compact index of the kept cell at bit `b` of cell `z`'s neighbourhood
+    /// mask (offset `(b / 9 − 1, b / 3 % 3 − 1, b % 3 − 1)` from it).
     #[inline]
-    pub(super) fn index(&self, r: &Row, z: usize, d: [i32; 3]) -> usize {
-        let t = ((d[0] + 1) * 3 + d[1] + 1) as usize;
-        (r.start[t] + self.z_rank[r.off[t] + (z as i32 + d[2]) as usize]) as usize
+    pub(super) fn index_bit(&self, r: &Row, z: usize, b: usize) -> usize {
+        let t = b / 3;
+        (r.start[t] + self.z_rank[r.off[t] + z + b % 3 - 1]) as usize
     }
 
     /// Calls `f(row, z, index)` for the kept cells of slab `x` in order.
