@@ -67,16 +67,16 @@ pub(crate) fn cubic_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
     // the pentagons of prev(twin h) and next(h)'s twin; the spokes in those
     // of next h and prev h. Stored at the corner after it: rot[x] is
     // twin(prev x), the step of a rotation round x's vertex.
-    let mut rot = Vec::with_capacity(nhp);
-    for &h in fh.iter() {
+    // (written per pentagon into a sized column: `extend` with a 5-array
+    // compiled to a memmove call per pentagon, 4 % of the call under `perf`)
+    let mut rot = vec![0u32; nhp];
+    for (r, &h) in rot.chunks_exact_mut(5).zip(fh.iter()) {
         let (t, nx, pr) = (h ^ 1, next[h as usize], prev[h as usize]);
-        rot.extend([
-            5 * cidx[pr as usize] + 3,
-            5 * cidx[t as usize],
-            5 * cidx[prev[t as usize] as usize] + 2,
-            5 * cidx[(nx ^ 1) as usize] + 1,
-            5 * cidx[nx as usize] + 4,
-        ]);
+        r[0] = 5 * cidx[pr as usize] + 3;
+        r[1] = 5 * cidx[t as usize];
+        r[2] = 5 * cidx[prev[t as usize] as usize] + 2;
+        r[3] = 5 * cidx[(nx ^ 1) as usize] + 1;
+        r[4] = 5 * cidx[nx as usize] + 4;
     }
     // pentagonalization's v_out (each vertex's first corner in face order)
     // and centroids (summed from corner 0, as `dual_dual` sums them)
