@@ -188,6 +188,13 @@ impl Recipes {
         })
     }
 
+    /// A table without recipes: every lookup misses (for the tests of the
+    /// builder's on-the-spot path).
+    #[cfg(test)]
+    pub(super) fn empty() -> Recipes {
+        Recipes { keys: vec![EMPTY; 1 << BITS], index: vec![0; 1 << BITS], recipes: Vec::new() }
+    }
+
     #[inline]
     fn hash(nb: u32) -> usize {
         (nb.wrapping_mul(0x9E37_79B9) >> (32 - BITS)) as usize
