@@ -21,15 +21,17 @@ impl DualWalk {
     /// A walk writing `n_halfedges` half-edges and `n_faces` faces over the
     /// output vertices `pos`, whose sides cross `n_keys` keys.
     pub(crate) fn new(pos: Vec<DVec3>, n_halfedges: usize, n_faces: usize, n_keys: usize) -> DualWalk {
-        let mut cols = Columns::new(pos, n_halfedges, n_faces);
-        cols.v_out.fill(NONE);
-        DualWalk { cols, slot: vec![0; n_keys], n_out: 0 }
+        DualWalk::over(Columns::new(pos, n_halfedges, n_faces), n_keys)
     }
 
     /// [`DualWalk::new`] for `n_points` output vertices whose positions are
     /// given at [`finish_with`](Self::finish_with) (computed beside the walk).
     pub(crate) fn for_points(n_points: usize, n_halfedges: usize, n_faces: usize, n_keys: usize) -> DualWalk {
-        let mut cols = Columns::for_points(n_points, n_halfedges, n_faces);
+        DualWalk::over(Columns::for_points(n_points, n_halfedges, n_faces), n_keys)
+    }
+
+    /// A walk over fresh columns, no vertex given its first corner yet.
+    fn over(mut cols: Columns, n_keys: usize) -> DualWalk {
         cols.v_out.fill(NONE);
         DualWalk { cols, slot: vec![0; n_keys], n_out: 0 }
     }

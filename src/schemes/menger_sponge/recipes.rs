@@ -293,7 +293,6 @@ mod tests {
         let found = scan();
         assert_eq!(found.len(), 321);
         assert_eq!(PATTERNS, &found[..]);
-        let st = Stencils::new();
         let t = Recipes::table();
         for &nb in PATTERNS {
             let (r, i) = t.find(nb).unwrap();
