@@ -66,6 +66,7 @@ pub(crate) mod build;
 pub mod canonical;
 mod chiral;
 mod dual_ambo;
+mod dual_chiral;
 mod dual_kis;
 mod inset;
 pub(crate) mod kis;
@@ -205,7 +206,7 @@ impl Op {
             Expand => ambo(&ambo(m)?),
             Ortho => ortho::ortho(m),
             Gyro => gyro(m),
-            Snub => dual(&gyro(m)?),
+            Snub => dual_chiral::snub(m),
             Bevel => bevel::bevel(m),
             Meta => kis(&dual_ambo::join(m)?, None),
             Needle(n) => kis(&dual(m)?, n),
@@ -214,7 +215,7 @@ impl Op {
             Chamfer => chamfer(m),
             Subdivide => subdivide(m),
             Whirl => whirl(m),
-            Volute => dual(&whirl(&dual(m)?)?),
+            Volute => dual_chiral::dual_whirl(&dual(m)?),
             Propellor => propellor(m),
             Quinto => quinto(m),
             Loft(n) => loft(m, n),

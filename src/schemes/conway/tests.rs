@@ -440,7 +440,7 @@ fn canonical_form() {
     assert!(canonical::canonicalize(&cube_with_hole(), 10, 0.0).is_err());
 }
 
-/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, `truncate`, and
+/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, `truncate`, `dual_chiral`, and
 /// the operators made of them) give what the compositions they replace give: the same mesh,
 /// face parents and errors, on the scheme corpus (non-convex faces,
 /// self-loops, two-gons, genus 3, point-spheres) and on open meshes (which
@@ -459,6 +459,9 @@ fn fused_builds_are_their_compositions() {
         ("meta", Box::new(|m| Op::Meta.apply(m)), Box::new(|m| kis(&dual(&ambo(m)?)?, None))),
         ("zip", Box::new(|m| Op::Zip(None).apply(m)), Box::new(|m| dual(&kis(m, None)?))),
         ("truncate", Box::new(|m| Op::Truncate(None).apply(m)), Box::new(|m| dual(&kis(&dual(m)?, None)?))),
+        ("snub", Box::new(|m| Op::Snub.apply(m)), Box::new(|m| dual(&chiral::gyro(m)?))),
+        ("volute", Box::new(|m| Op::Volute.apply(m)), Box::new(|m| dual(&chiral::whirl(&dual(m)?)?))),
+        ("dual whirl", Box::new(dual_chiral::dual_whirl), Box::new(|m| dual(&chiral::whirl(m)?))),
     ];
     for (op, fused, composed) in &pairs {
         for (name, m) in &ms {
