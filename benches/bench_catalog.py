@@ -23,7 +23,11 @@ topomesh is imported (and OPENBLAS_NUM_THREADS=1). Each row: one untimed warm-up
 row's faces/s over Catmull-Clark's (the fastest builder of the package,
 bench_subdivision.py) on the big input, timed between the row's own calls: a
 ratio that the machine's load (shared by several jobs) changes much less than
-the raw figures. The speed-up column divides the two runs' ``vs CC``.
+the raw figures. ``M corners/s`` counts output corners (half-edges) instead of
+faces, and ``corners vs CC`` divides it by Catmull-Clark's (whose output is
+quads: four corners a face): a scheme whose faces are hexagons writes 1.5×
+the corners of one whose faces are quads for the same face count. The
+speed-up column divides the two runs' ``vs CC``.
 """
 
 from __future__ import annotations
@@ -87,9 +91,10 @@ def overrides(entry, mesh) -> dict:
 UNCHECKED = {"wireframe", "wireframe_columns"}
 
 
-def time_row(entry, mesh, runs: int, ref, extra: dict | None = None) -> tuple[float, int, float]:
-    """Median time and output faces of the row, and the median faces/s of
-    the reference (Catmull-Clark on the big input) timed between its calls."""
+def time_row(entry, mesh, runs: int, ref, extra: dict | None = None) -> tuple[float, int, int, float]:
+    """Median time, output faces and output corners of the row, and the
+    median faces/s of the reference (Catmull-Clark on the big input) timed
+    between its calls."""
     from topomesh.catalog import run_entry
 
     kw = overrides(entry, mesh) | (extra or {})
@@ -104,7 +109,7 @@ def time_row(entry, mesh, runs: int, ref, extra: dict | None = None) -> tuple[fl
             t = time.perf_counter()
             out = run_entry(entry, mesh, **kw)
             ts.append(time.perf_counter() - t)
-    return statistics.median(ts), len(out.face_sizes), statistics.median(rs)
+    return statistics.median(ts), len(out.face_sizes), int(out.face_sizes.sum()), statistics.median(rs)
 
 
 def main() -> None:
@@ -139,12 +144,14 @@ def main() -> None:
             variants.append((f"{key} (check_crossings=False)", {"check_crossings": False}))
         for name, extra in variants:
             try:
-                t, nf, cc = time_row(e, mesh, args.runs, ref, extra)
-                rows.append({"row": name, "method": e["method"], "input_faces": mesh.n_faces, "ms": 1e3 * t, "faces": nf, "mfs": nf / t / 1e6, "cc_mfs": cc})
+                t, nf, nc, cc = time_row(e, mesh, args.runs, ref, extra)
+                rows.append({"row": name, "method": e["method"], "input_faces": mesh.n_faces, "ms": 1e3 * t, "faces": nf, "mfs": nf / t / 1e6,
+                             "corners": nc, "mcs": nc / t / 1e6, "cc_mfs": cc})
             except Exception as ex:  # reported in the table, not raised
                 rows.append({"row": name, "method": e["method"], "input_faces": mesh.n_faces, "error": f"{type(ex).__name__}: {ex}"[:120]})
             r = rows[-1]
-            print(f"{name:45s} " + (f"{r['ms']:9.1f} ms {r['faces']:>10,} faces {r['mfs']:6.2f} M/s (CC {r['cc_mfs']:5.2f})" if "ms" in r else r["error"]), flush=True)
+            print(f"{name:45s} " + (f"{r['ms']:9.1f} ms {r['faces']:>10,} faces {r['mfs']:6.2f} M/s, {r['mcs']:6.1f} M corners/s (CC {r['cc_mfs']:5.2f} M faces/s)"
+                                    if "ms" in r else r["error"]), flush=True)
     total = time.perf_counter() - t_all
     load1 = os.getloadavg()[0]
     if args.quick or args.only:
@@ -167,6 +174,11 @@ def write_table(rows, baseline: Path | None, total: float, load: tuple[float, fl
     cc_before = before.get("scheme/Catmull-Clark", {}).get("mfs")
     ok = [r for r in rows if "mfs" in r]
     met = [r for r in ok if r["mfs"] >= TARGET]
+
+    def corners_vs(r):
+        # Catmull-Clark's output is all quads: 4 corners per face
+        return r["mcs"] / (4 * ref_of(r, cc)) if "mcs" in r else None
+    per_corner = [(corners_vs(r), r["row"]) for r in ok if "mcs" in r]
     lines = [
         "# Catalog benchmark",
         "",
@@ -176,16 +188,21 @@ def write_table(rows, baseline: Path | None, total: float, load: tuple[float, fl
         "single figures are noisy, `vs CC` less so).",
         "Input: 400×250 quad torus (100,000 quads); dome on a 100×50 torus (5,000 quads). One level, median of 5 calls.",
         f"Target (issue 16): ≥ {TARGET:.0f} M output faces/s. Met by {len(met)} of {len(ok)} rows. Total run {total:.0f} s.",
+        "Per output corner (half-edge), against Catmull-Clark's (4 per face) timed beside the row: `corners vs CC`; the lowest five: "
+        + ", ".join(f"{n} {v:.2f}" for v, n in sorted(per_corner)[:5]) + ".",
         "",
-        "| row | input faces | output faces | ms | M faces/s | vs CC |" + (" before: M faces/s | before: vs CC | speed-up |" if before else ""),
-        "| --- | ---: | ---: | ---: | ---: | ---: |" + (" ---: | ---: | ---: |" if before else ""),
+        "| row | input faces | output faces | ms | M faces/s | vs CC | M corners/s | corners vs CC |"
+        + (" before: M faces/s | before: vs CC | speed-up |" if before else ""),
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |" + (" ---: | ---: | ---: |" if before else ""),
     ]
     for r in rows:
         if "mfs" not in r:
-            lines.append(f"| {r['row']} | {r['input_faces']:,} | – | – | – | – |" + (" | | |" if before else "") + f" error: {r['error']}")
+            lines.append(f"| {r['row']} | {r['input_faces']:,} | – | – | – | – | – | – |" + (" | | |" if before else "") + f" error: {r['error']}")
             continue
         vs = r["mfs"] / ref_of(r, cc)
-        line = f"| {r['row']} | {r['input_faces']:,} | {r['faces']:,} | {r['ms']:.1f} | {r['mfs']:.2f} | {vs:.2f} |"
+        cv = corners_vs(r)
+        line = (f"| {r['row']} | {r['input_faces']:,} | {r['faces']:,} | {r['ms']:.1f} | {r['mfs']:.2f} | {vs:.2f} | "
+                + (f"{r['mcs']:.1f} | {cv:.2f} |" if cv is not None else "– | – |"))
         if before:
             b = before.get(r["row"])
             if b and cc_before:
