@@ -36,6 +36,8 @@ fn main() {
     ops.push(("root3".into(), Box::new(topmod::compose::root3)));
     ops.push(("dual_loop".into(), Box::new(topmod::compose::dual_loop)));
     ops.push(("cubic_pentagonalize".into(), Box::new(|m: &Mesh| topmod::compose::cubic_pentagonalize(m, 0.0))));
+    ops.push(("dual_pentagonalize".into(), Box::new(|m: &Mesh| topmod::compose::dual_pentagonalize(m, 0.0))));
+    ops.push(("dual_pentagonalize (composed)".into(), Box::new(|m: &Mesh| topomesh::schemes::dual::dual(&topmod::pentagonal::pentagonalize(&topomesh::schemes::dual::dual(m)?, 0.0)?))));
     ops.push(("dual_pentagon_preserving".into(), Box::new(|m: &Mesh| topmod::compose::dual_pentagon_preserving(m, 0.75))));
     ops.push(("remesh_12_6_4".into(), Box::new(|m: &Mesh| topmod::compose::remesh_12_6_4(m, 0.7))));
     ops.push(("dual_checkerboard".into(), Box::new(|m: &Mesh| topmod::compose::dual_checkerboard(m, 0.33))));

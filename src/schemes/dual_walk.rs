@@ -88,6 +88,31 @@ impl DualWalk {
         Ok(self.cols)
     }
 
+    /// The dual's faces `0..n`, each walked round a vertex of a mesh that
+    /// is never built, whose corners the caller names by index arithmetic:
+    /// face w from corner `start(w)`, where `step(x)` gives corner x's face
+    /// (the output vertex), the key of the side entering x and the other
+    /// corner whose side carries that key (where the walk goes on: the twin
+    /// of the entering side, as [`super::dual`] turns round a vertex).
+    pub(crate) fn rings(mut self, n: usize, start: impl Fn(usize) -> usize, step: impl Fn(usize) -> (u32, usize, usize)) -> Result<Columns> {
+        let mut lasts = Vec::with_capacity(n);
+        for w in 0..n {
+            crate::cancel::poll(w)?;
+            let s = start(w);
+            let (mut x, mut last) = (s, NONE);
+            loop {
+                let (f, key, nx) = step(x);
+                self.put(w, f, key, &mut last);
+                x = nx;
+                if x == s {
+                    break;
+                }
+            }
+            lasts.push(last);
+        }
+        self.finish_at(&lasts)
+    }
+
     /// [`finish`](Self::finish) for walks that closed no face yet: face `w`
     /// is closed at `lasts[w]` once the count is checked.
     pub(crate) fn finish_at(mut self, lasts: &[u32]) -> Result<Columns> {

@@ -60,28 +60,6 @@ fn first_in(c: &Ctx) -> Option<Vec<u32>> {
     (!first.contains(&NONE)).then_some(first)
 }
 
-/// The dual's faces, in order: face w walked from corner `start(w)`, where
-/// `step(x)` gives corner x's polygon, the key of its previous side and the
-/// other corner carrying that key.
-fn rings(mut walk: DualWalk, n: usize, start: impl Fn(usize) -> usize, step: impl Fn(usize) -> (u32, usize, usize)) -> Result<Mesh> {
-    let mut lasts = Vec::with_capacity(n);
-    for w in 0..n {
-        crate::cancel::poll(w)?;
-        let s = start(w);
-        let (mut x, mut last) = (s, NONE);
-        loop {
-            let (p, key, nx) = step(x);
-            walk.put(w, p, key, &mut last);
-            x = nx;
-            if x == s {
-                break;
-            }
-        }
-        lasts.push(last);
-    }
-    Mesh::from_columns(walk.finish_at(&lasts)?)
-}
-
 /// `dual(&gyro(m)?)` (snub), the same output and errors.
 pub(crate) fn snub(m: &Mesh) -> Result<Mesh> {
     if !fused(m) {
@@ -132,7 +110,7 @@ pub(crate) fn snub(m: &Mesh) -> Result<Mesh> {
             (5 * g + 1).min(5 * (g ^ 1) + 2).min(5 * prev[g] as usize + 4)
         }
     };
-    rings(DualWalk::new(pos, 10 * ne, nv + nf + nh, 3 * nh), nv + nf + nh, start, step)
+    Mesh::from_columns(DualWalk::new(pos, 10 * ne, nv + nf + nh, 3 * nh).rings(nv + nf + nh, start, step)?)
 }
 
 /// `dual(&whirl(x)?)` (volute's last two steps), the same output and errors.
@@ -205,5 +183,5 @@ pub(crate) fn dual_whirl(x: &Mesh) -> Result<Mesh> {
             (6 * g).min(6 * prev[g] as usize + 5)
         }
     };
-    rings(DualWalk::new(pos, 14 * ne, nv + 2 * nh, 4 * nh), nv + 2 * nh, start, step)
+    Mesh::from_columns(DualWalk::new(pos, 14 * ne, nv + 2 * nh, 4 * nh).rings(nv + 2 * nh, start, step)?)
 }

@@ -111,7 +111,7 @@ pub(super) fn dual_dual(p: &Mesh) -> Result<Mesh> {
 /// pentagonalization + dual): V' = 2E, E' = 5E, F' = V + F + 2E; histogram:
 /// the input's face sizes, one k-gon per valence-k vertex and 2E triangles.
 pub fn dual_pentagonalize(m: &Mesh, offset: f64) -> Result<Mesh> {
-    dual(&super::pentagonal::pentagonalize(&dual(m)?, offset)?)
+    super::pentagonalize_dual::dual_of_pentagonalize(&dual(m)?, offset)
 }
 
 /// Dual pentagon preserving (`subdivideDualPentagonPreserving`: dual +
@@ -214,6 +214,36 @@ mod tests {
                     (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
                     (a, b) => panic!("{name}, offset {off}: fused {:?}, composition {:?}", a.err(), b.err()),
                 }
+            }
+        }
+    }
+
+    /// The fused dual pentagonalization is the composition it fuses, on the
+    /// same inputs as [`cubic_pentagonalize_is_its_composition`], traced
+    /// (face parents, which take the composition) and not.
+    #[test]
+    fn dual_pentagonalize_is_its_composition() {
+        use crate::schemes::face_parents::traced;
+        use crate::schemes::hosts::test_meshes::{one_gon_two_gon_cube, open_meshes};
+        let mut ms = super::super::tests::meshes();
+        ms.push(("one_gon_two_gon", one_gon_two_gon_cube()));
+        ms.extend(open_meshes());
+        let composed = |m: &Mesh, off: f64| dual(&super::super::pentagonal::pentagonalize(&dual(m)?, off)?);
+        for (name, m) in &ms {
+            for off in [0.0, 0.3, 1.0, 1.5] {
+                match (dual_pentagonalize(m, off), composed(m, off)) {
+                    (Ok(a), Ok(b)) => assert!(a == b, "{name}, offset {off}: the fused build differs from the composition"),
+                    (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+                    (a, b) => panic!("{name}, offset {off}: fused {:?}, composition {:?}", a.err(), b.err()),
+                }
+            }
+            match (traced(m, || dual_pentagonalize(m, 0.3)), traced(m, || composed(m, 0.3))) {
+                (Ok((a, pa)), Ok((b, pb))) => {
+                    assert!(a == b, "{name}: the traced build differs from the composition");
+                    assert_eq!(pa, pb, "{name}: face parents");
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{name}"),
+                (a, b) => panic!("{name}: traced fused {:?}, composition {:?}", a.err(), b.err()),
             }
         }
     }

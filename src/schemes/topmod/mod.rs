@@ -56,6 +56,7 @@ mod root4_dual;
 pub mod pentagonal;
 mod root3_dual;
 mod pentagonal_dual;
+mod pentagonalize_dual;
 pub mod stellate;
 pub mod twelve_six_four;
 mod twelve_six_four_dual;
