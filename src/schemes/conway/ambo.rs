@@ -30,6 +30,67 @@ pub fn ambo(m: &Mesh) -> Result<Mesh> {
     })
 }
 
+/// Expand (`e` = `aa`, cantellation): `ambo(ambo(m))` in one pass, without
+/// the inner ambo's mesh A (issue 16: A was built only for the outer ambo to
+/// read it). A's edges are numbered by first corner, and every one first
+/// appears in A's faces inside the faces of m, laid in face-layout order:
+/// the edge of A with key `next h` (from mid(h) to mid(next h)) is edge
+/// `cidx[h]`, its first side F(h) = 2 cidx[h] and its second side, in the
+/// face around tail(h) at corner h, G(h) = 2 cidx[prev h] + 1 (the rotation
+/// there is h, twin prev h, …, as [`Ctx::rotation`] walks it). The outer
+/// ambo then lays, with A's half-edges as keys and A's edges as vertices:
+/// * per face f of m: corner h at edge cidx[h], key F(next h);
+/// * per vertex v of m: corner g (in rotation order) at edge cidx[prev g],
+///   key G(the next g in rotation);
+/// * per edge e of m (A's vertex mid(e), from its first corner in A's face
+///   order, the side h of e with the lower cidx): F(h), G(h), F(twin h),
+///   G(twin h), each at its edge with itself as key.
+/// The same faces, keys and order as the composition, so the same bits
+/// (`fused_builds_are_their_compositions`); holes, point-spheres and traced
+/// builds (face parents) take the composition.
+pub fn expand(m: &Mesh) -> Result<Mesh> {
+    use crate::mesh::POINT;
+    if m.n_faces() == 0 || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & POINT != 0) || crate::schemes::face_parents::recording() {
+        return ambo(&ambo(m)?);
+    }
+    let c = Ctx::new(m)?;
+    let (nv, ne, nf, nh) = (c.nv, c.ne, c.nf, c.nh);
+    // the inner ambo's check, then the outer's on A's counts
+    reserve("ambo", m, ne, 2 * ne, nf + nv)?;
+    super::build::reserve_from("ambo", &crate::budget::Counts::plain(ne as u64, 2 * ne as u64, (nf + nv) as u64), 2 * ne, 4 * ne, nf + nv + ne)?;
+    let cidx = &c.fl.cidx;
+    let (next, prev) = (c.next, c.prev);
+    let fs = |h: usize| 2 * cidx[h];
+    let gs = |h: usize| 2 * cidx[prev[h] as usize] + 1;
+    // A's vertices (m's midpoints), then the midpoints of A's edges
+    let a: Vec<_> = (0..ne).map(|e| c.mid(e)).collect();
+    let mut pos = vec![glam::DVec3::ZERO; 2 * ne];
+    for (j, &h) in c.fl.fh.iter().enumerate() {
+        crate::cancel::poll(j)?;
+        pos[j] = (a[(h >> 1) as usize] + a[(next[h as usize] >> 1) as usize]) * 0.5;
+    }
+    drop(a);
+    let mut out = Out::new(pos, 2 * nh, nf + nv + ne, 4 * nh);
+    for f in 0..nf {
+        crate::cancel::poll(f)?;
+        out.face(c.corners(f).map(|h| (cidx[h], fs(next[h] as usize))));
+    }
+    let mut ring = Vec::new();
+    for v in 0..nv {
+        crate::cancel::poll(v)?;
+        ring.clear();
+        ring.extend(c.rotation(v));
+        let k = ring.len();
+        out.face((0..k).map(|j| (cidx[prev[ring[j]] as usize], gs(ring[(j + 1) % k]))));
+    }
+    for e in 0..ne {
+        crate::cancel::poll(e)?;
+        let h = if cidx[2 * e] <= cidx[2 * e + 1] { 2 * e } else { 2 * e + 1 };
+        out.face([fs(h), gs(h), fs(h ^ 1), gs(h ^ 1)].map(|x| (x >> 1, x)));
+    }
+    out.finish("ambo")
+}
+
 /// The face inside every face: corners at the midpoints of its edges, the
 /// side `mid(h) → mid(next h)` along `C(next h)`. Midpoint of edge e is
 /// output vertex `base + e`.

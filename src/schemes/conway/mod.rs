@@ -203,7 +203,7 @@ impl Op {
             Truncate(n) => dual(&kis(&dual(m)?, n)?),
             Kis(n) => kis(m, n),
             Join => dual_ambo::join(m),
-            Expand => ambo(&ambo(m)?),
+            Expand => ambo::expand(m),
             Ortho => ortho::ortho(m),
             Gyro => gyro(m),
             Snub => dual_chiral::snub(m),
