@@ -69,6 +69,7 @@ mod dual_ambo;
 mod dual_chiral;
 mod dual_kis;
 mod inset;
+mod meta;
 pub(crate) mod kis;
 mod ortho;
 pub mod seeds;
@@ -208,7 +209,7 @@ impl Op {
             Gyro => gyro(m),
             Snub => dual_chiral::snub(m),
             Bevel => bevel::bevel(m),
-            Meta => kis(&dual_ambo::join(m)?, None),
+            Meta => meta::meta(m),
             Needle(n) => kis(&dual(m)?, n),
             Zip(None) => dual_kis::dual_kis(m),
             Zip(n) => dual(&kis(m, n)?),

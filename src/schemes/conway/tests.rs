@@ -440,7 +440,7 @@ fn canonical_form() {
     assert!(canonical::canonicalize(&cube_with_hole(), 10, 0.0).is_err());
 }
 
-/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, `truncate`, `dual_chiral`, `ambo::expand`, and
+/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, `truncate`, `dual_chiral`, `ambo::expand`, `meta`, and
 /// the operators made of them) give what the compositions they replace give: the same mesh,
 /// face parents and errors, on the scheme corpus (non-convex faces,
 /// self-loops, two-gons, genus 3, point-spheres) and on open meshes (which
