@@ -69,7 +69,7 @@ mod dual_ambo;
 mod dual_chiral;
 mod dual_kis;
 mod inset;
-mod meta;
+mod kis_of;
 pub(crate) mod kis;
 mod ortho;
 pub mod seeds;
@@ -209,7 +209,8 @@ impl Op {
             Gyro => gyro(m),
             Snub => dual_chiral::snub(m),
             Bevel => bevel::bevel(m),
-            Meta => meta::meta(m),
+            Meta => kis_of::meta(m),
+            Needle(None) => kis_of::needle(m),
             Needle(n) => kis(&dual(m)?, n),
             Zip(None) => dual_kis::dual_kis(m),
             Zip(n) => dual(&kis(m, n)?),

@@ -440,7 +440,7 @@ fn canonical_form() {
     assert!(canonical::canonicalize(&cube_with_hole(), 10, 0.0).is_err());
 }
 
-/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, `truncate`, `dual_chiral`, `ambo::expand`, `meta`, and
+/// The fused builds (`dual_ambo::join`, `ortho`, `bevel`, `dual_kis`, `truncate`, `dual_chiral`, `ambo::expand`, `kis_of`, and
 /// the operators made of them) give what the compositions they replace give: the same mesh,
 /// face parents and errors, on the scheme corpus (non-convex faces,
 /// self-loops, two-gons, genus 3, point-spheres) and on open meshes (which
@@ -461,6 +461,7 @@ fn fused_builds_are_their_compositions() {
         ("truncate", Box::new(|m| Op::Truncate(None).apply(m)), Box::new(|m| dual(&kis(&dual(m)?, None)?))),
         ("snub", Box::new(|m| Op::Snub.apply(m)), Box::new(|m| dual(&chiral::gyro(m)?))),
         ("expand", Box::new(|m| Op::Expand.apply(m)), Box::new(|m| ambo(&ambo(m)?))),
+        ("needle", Box::new(|m| Op::Needle(None).apply(m)), Box::new(|m| kis(&dual(m)?, None))),
         ("volute", Box::new(|m| Op::Volute.apply(m)), Box::new(|m| dual(&chiral::whirl(&dual(m)?)?))),
         ("dual whirl", Box::new(dual_chiral::dual_whirl), Box::new(|m| dual(&chiral::whirl(m)?))),
     ];
