@@ -241,6 +241,13 @@ pub(crate) fn refuse_holes(scheme: &str, m: &Mesh) -> Result<()> {
     }))
 }
 
+/// Whether a composition's one-pass build applies to `m`: a closed mesh
+/// with faces, no point-spheres, and no face parents being traced (those
+/// take the composition, which records them step by step).
+pub(crate) fn fusable(m: &Mesh) -> bool {
+    m.n_faces() > 0 && m.n_holes() == 0 && m.v_out.iter().all(|&o| o & crate::mesh::POINT == 0) && !super::face_parents::recording()
+}
+
 /// Runs `scheme` on `m` with its point-spheres set aside, then appends them
 /// unchanged (same position, one vertex and one face each). Meshes with hole
 /// faces are refused ([`refuse_holes`]): the closed-mesh scheme functions (boundary rules are in their levels).

@@ -49,8 +49,7 @@ pub fn ambo(m: &Mesh) -> Result<Mesh> {
 /// (`fused_builds_are_their_compositions`); holes, point-spheres and traced
 /// builds (face parents) take the composition.
 pub fn expand(m: &Mesh) -> Result<Mesh> {
-    use crate::mesh::POINT;
-    if m.n_faces() == 0 || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & POINT != 0) || crate::schemes::face_parents::recording() {
+    if !crate::schemes::hosts::fusable(m) {
         return ambo(&ambo(m)?);
     }
     let c = Ctx::new(m)?;

@@ -35,17 +35,11 @@
 use super::build::{reserve, Ctx};
 use super::chiral::{gyro, whirl};
 use crate::error::Result;
-use crate::mesh::{Mesh, NONE, POINT};
+use crate::mesh::{Mesh, NONE};
 use crate::schemes::dual::dual;
 use crate::schemes::dual_walk::DualWalk;
-use crate::schemes::hosts::check_output_size;
+use crate::schemes::hosts::{check_output_size, fusable};
 use glam::DVec3;
-
-/// Whether the fused build applies: a closed mesh with faces and without
-/// point-spheres, no face parents being traced.
-fn fused(m: &Mesh) -> bool {
-    !(m.n_faces() == 0 || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & POINT != 0) || crate::schemes::face_parents::recording())
-}
 
 /// Per input vertex, its lowest incoming half-edge (the first polygon with
 /// the vertex as its corner 3), or None if a vertex has none.
@@ -62,7 +56,7 @@ fn first_in(c: &Ctx) -> Option<Vec<u32>> {
 
 /// `dual(&gyro(m)?)` (snub), the same output and errors.
 pub(crate) fn snub(m: &Mesh) -> Result<Mesh> {
-    if !fused(m) {
+    if !fusable(m) {
         return dual(&gyro(m)?);
     }
     let c = Ctx::new(m)?;
@@ -115,7 +109,7 @@ pub(crate) fn snub(m: &Mesh) -> Result<Mesh> {
 
 /// `dual(&whirl(x)?)` (volute's last two steps), the same output and errors.
 pub(crate) fn dual_whirl(x: &Mesh) -> Result<Mesh> {
-    if !fused(x) {
+    if !fusable(x) {
         return dual(&whirl(x)?);
     }
     let c = Ctx::new(x)?;

@@ -32,13 +32,13 @@ use super::kis::{apex_of, kis};
 use crate::budget::Counts;
 use crate::error::Result;
 use crate::schemes::dual::dual;
-use crate::mesh::{Mesh, POINT};
-use crate::schemes::hosts::check_output_size;
+use crate::mesh::Mesh;
+use crate::schemes::hosts::{check_output_size, fusable};
 use glam::DVec3;
 
 /// `kis(&join(m)?, None)`, the same output and errors.
 pub(crate) fn meta(m: &Mesh) -> Result<Mesh> {
-    if m.n_faces() == 0 || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & POINT != 0) || crate::schemes::face_parents::recording() {
+    if !fusable(m) {
         return kis(&join(m)?, None);
     }
     crate::cancel::check()?;
@@ -85,7 +85,7 @@ fn apex_over(p: &[DVec3]) -> DVec3 {
 
 /// `kis(&dual(m)?, None)` (needle), the same output and errors.
 pub(crate) fn needle(m: &Mesh) -> Result<Mesh> {
-    if m.n_faces() == 0 || m.n_holes() > 0 || m.v_out.iter().any(|&o| o & POINT != 0) || crate::schemes::face_parents::recording() {
+    if !fusable(m) {
         return kis(&dual(m)?, None);
     }
     crate::cancel::check()?;

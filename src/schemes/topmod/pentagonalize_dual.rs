@@ -25,22 +25,17 @@
 //! the composition.
 
 use crate::error::Result;
-use crate::mesh::{Mesh, NONE, POINT};
+use crate::mesh::{Mesh, NONE};
 use crate::schemes::dual::dual;
 use crate::schemes::dual_walk::DualWalk;
-use crate::schemes::hosts::check_output_size;
+use crate::schemes::hosts::{check_output_size, fusable};
 use crate::schemes::keyed::In;
 use glam::DVec3;
 
 /// `dual(&pentagonalize(x, offset)?)`, the same output and errors.
 pub(crate) fn dual_of_pentagonalize(x: &Mesh, offset: f64) -> Result<Mesh> {
     let composed = || dual(&super::pentagonal::pentagonalize(x, offset)?);
-    if !(offset.is_finite() && (0.0..=1.0).contains(&offset))
-        || x.n_faces() == 0
-        || x.n_holes() > 0
-        || x.v_out.iter().any(|&o| o & POINT != 0)
-        || crate::schemes::face_parents::recording()
-    {
+    if !(offset.is_finite() && (0.0..=1.0).contains(&offset) && fusable(x)) {
         return composed();
     }
     let i = In::new(x)?;
