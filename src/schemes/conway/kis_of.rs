@@ -96,19 +96,8 @@ pub(crate) fn needle(m: &Mesh) -> Result<Mesh> {
     let (prev, face) = (&m.he_prev, &m.he_face);
     let mut pos = crate::schemes::dual::centroids(m)?;
     pos.reserve_exact(nv);
-    // the rotation of v from v_out[v]: g, twin(prev g), …
-    let rotation = |v: usize, out: &mut Vec<u32>| {
-        out.clear();
-        let s = m.v_out[v];
-        let mut g = s;
-        loop {
-            out.push(g);
-            g = prev[g as usize] ^ 1;
-            if g == s {
-                break;
-            }
-        }
-    };
+    // the rotation of v from v_out[v]: g, twin(prev g), … (as the dual walks it)
+    let rotation = |v: usize, out: &mut Vec<u32>| crate::schemes::dual_walk::rotation(&m.he_next, m.v_out[v], out);
     let (mut ring, mut p) = (Vec::new(), Vec::new());
     for v in 0..nv {
         crate::cancel::poll(v)?;
