@@ -128,6 +128,23 @@ def test_operator_formulas_keep_genus(name, op):
     assert np.array_equal(before[0], m.vertices) and np.array_equal(before[1], m.face_indices)
 
 
+# operators built in one pass instead of through their definitions (issue 16)
+ONE_PASS = {"j": "da", "o": "daa", "e": "aa", "m": "kj", "n": "kd", "z": "dk", "t": "dkd", "b": "dkda", "s": "dg", "v": "dwd"}
+
+
+@pytest.mark.parametrize("name", INPUTS)
+@pytest.mark.parametrize("letter", sorted(ONE_PASS))
+def test_one_pass_operators_are_their_definitions(name, letter):
+    """The one-pass build gives, bit for bit, what the definition's letters
+    give applied one call at a time."""
+    m = INPUTS[name]()
+    r, d = m.conway(letter), m
+    for c in reversed(ONE_PASS[letter]):
+        d = d.conway(c)
+    assert np.array_equal(r.face_sizes, d.face_sizes) and np.array_equal(r.face_indices, d.face_indices)
+    assert np.array_equal(r.vertices, d.vertices)
+
+
 @pytest.mark.parametrize("seed", ["T", "C", "D", "P5", "A4", "Y4"])
 @pytest.mark.parametrize("op", OPS, ids=[o["letter"] for o in OPS])
 def test_outputs_are_watertight(seed, op):
