@@ -37,7 +37,7 @@ pub fn ambo(m: &Mesh) -> Result<Mesh> {
 /// the edge of A with key `next h` (from mid(h) to mid(next h)) is edge
 /// `cidx[h]`, its first side F(h) = 2 cidx[h] and its second side, in the
 /// face around tail(h) at corner h, G(h) = 2 cidx[prev h] + 1 (the rotation
-/// there is h, twin prev h, …, as [`Ctx::rotation`] walks it). The outer
+/// there is h, twin prev h, …, as the dual walks it). The outer
 /// ambo then lays, with A's half-edges as keys and A's edges as vertices:
 /// * per face f of m: corner h at edge cidx[h], key F(next h);
 /// * per vertex v of m: corner g (in rotation order) at edge cidx[prev g],
@@ -52,17 +52,18 @@ pub fn expand(m: &Mesh) -> Result<Mesh> {
     if !crate::schemes::hosts::fusable(m) {
         return ambo(&ambo(m)?);
     }
-    let c = Ctx::new(m)?;
+    // no face centroids (`Ctx`): neither ambo reads them
+    let c = super::build::In::new(m)?;
     let (nv, ne, nf, nh) = (c.nv, c.ne, c.nf, c.nh);
     // the inner ambo's check, then the outer's on A's counts
     reserve("ambo", m, ne, 2 * ne, nf + nv)?;
     super::build::reserve_from("ambo", &crate::budget::Counts::plain(ne as u64, 2 * ne as u64, (nf + nv) as u64), 2 * ne, 4 * ne, nf + nv + ne)?;
     let cidx = &c.fl.cidx;
-    let (next, prev) = (c.next, c.prev);
+    let (next, prev, vert, p) = (c.next, c.prev, c.vert, &m.pos);
     let fs = |h: usize| 2 * cidx[h];
     let gs = |h: usize| 2 * cidx[prev[h] as usize] + 1;
-    // A's vertices (m's midpoints), then the midpoints of A's edges
-    let a: Vec<_> = (0..ne).map(|e| c.mid(e)).collect();
+    // A's vertices (m's midpoints, as `Ctx::mid`), then the midpoints of A's edges
+    let a: Vec<_> = (0..ne).map(|e| (p[vert[2 * e] as usize] + p[vert[2 * e + 1] as usize]) * 0.5).collect();
     let mut pos = vec![glam::DVec3::ZERO; 2 * ne];
     for (j, &h) in c.fl.fh.iter().enumerate() {
         crate::cancel::poll(j)?;
@@ -72,19 +73,18 @@ pub fn expand(m: &Mesh) -> Result<Mesh> {
     let mut out = Out::new(pos, 2 * nh, nf + nv + ne, 4 * nh);
     for f in 0..nf {
         crate::cancel::poll(f)?;
-        out.face(c.corners(f).map(|h| (cidx[h], fs(next[h] as usize))));
+        out.face(c.fl.corners(f).iter().map(|&h| (cidx[h as usize], fs(next[h as usize] as usize))));
     }
     let mut ring = Vec::new();
     for v in 0..nv {
         crate::cancel::poll(v)?;
-        ring.clear();
-        ring.extend(c.rotation(v));
+        crate::schemes::dual_walk::rotation(next, m.v_out[v], &mut ring);
         let k = ring.len();
-        out.face((0..k).map(|j| (cidx[prev[ring[j]] as usize], gs(ring[(j + 1) % k]))));
+        out.face((0..k).map(|j| (cidx[prev[ring[j] as usize] as usize], gs(ring[(j + 1) % k] as usize))));
     }
     for e in 0..ne {
         crate::cancel::poll(e)?;
-        let h = if cidx[2 * e] <= cidx[2 * e + 1] { 2 * e } else { 2 * e + 1 };
+        let h = super::dual_ambo::first_side(&c, e) as usize;
         out.face([fs(h), gs(h), fs(h ^ 1), gs(h ^ 1)].map(|x| (x >> 1, x)));
     }
     out.finish("ambo")
